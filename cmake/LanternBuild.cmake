@@ -1,0 +1,79 @@
+# Build helpers shared by every Lantern target: language level, warnings, sanitizers,
+# and the lantern_module / lantern_executable / lantern_test functions.
+include_guard(GLOBAL)
+
+set(CMAKE_EXPORT_COMPILE_COMMANDS ON)
+if(NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
+    set(CMAKE_BUILD_TYPE RelWithDebInfo CACHE STRING "Build type" FORCE)
+endif()
+
+find_package(Threads REQUIRED)
+
+# One interface target carries every flag, so options are configured through targets only.
+add_library(lantern_build_options INTERFACE)
+add_library(lantern::build_options ALIAS lantern_build_options)
+target_compile_features(lantern_build_options INTERFACE cxx_std_20)
+target_compile_options(lantern_build_options INTERFACE
+    $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wshadow>
+    $<$<BOOL:${LANTERN_WERROR}>:-Werror>)
+if(LANTERN_ASSERTS)
+    target_compile_definitions(lantern_build_options INTERFACE LANTERN_ENABLE_ASSERTS=1)
+endif()
+
+if(LANTERN_SANITIZE STREQUAL "address")
+    set(_lantern_san -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+elseif(LANTERN_SANITIZE STREQUAL "undefined")
+    set(_lantern_san -fsanitize=undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+elseif(LANTERN_SANITIZE STREQUAL "thread")
+    set(_lantern_san -fsanitize=thread -fno-omit-frame-pointer)
+elseif(NOT LANTERN_SANITIZE STREQUAL "")
+    message(FATAL_ERROR "LANTERN_SANITIZE must be address, undefined, thread or empty (got '${LANTERN_SANITIZE}')")
+endif()
+if(_lantern_san)
+    target_compile_options(lantern_build_options INTERFACE ${_lantern_san})
+    target_link_options(lantern_build_options INTERFACE ${_lantern_san})
+    target_compile_definitions(lantern_build_options INTERFACE LANTERN_SANITIZER_BUILD=1)
+endif()
+
+# lantern_module(<name> [SOURCES ...] [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# Creates the static library lantern_<name> with the alias engine::<name>; its include/
+# folder is PUBLIC. Header-only modules pass no SOURCES and become INTERFACE libraries.
+function(lantern_module name)
+    cmake_parse_arguments(ARG "" "NAMESPACE" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+    if(NOT ARG_NAMESPACE)
+        set(ARG_NAMESPACE engine)
+    endif()
+    set(target lantern_${name})
+    if(ARG_SOURCES)
+        add_library(${target} STATIC ${ARG_SOURCES})
+        target_include_directories(${target} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+        target_link_libraries(${target} PUBLIC lantern::build_options ${ARG_PUBLIC_DEPS}
+                                        PRIVATE ${ARG_PRIVATE_DEPS})
+    else()
+        add_library(${target} INTERFACE)
+        target_include_directories(${target} INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+        target_link_libraries(${target} INTERFACE lantern::build_options ${ARG_PUBLIC_DEPS})
+    endif()
+    add_library(${ARG_NAMESPACE}::${name} ALIAS ${target})
+endfunction()
+
+# lantern_executable(<name> SOURCES ... [DEPS ...])
+function(lantern_executable name)
+    cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+    add_executable(${name} ${ARG_SOURCES})
+    target_link_libraries(${name} PRIVATE lantern::build_options ${ARG_DEPS})
+endfunction()
+
+# lantern_test(<name> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s])
+# One GoogleTest executable per module; every TEST becomes its own CTest entry.
+function(lantern_test name)
+    cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+    if(NOT ARG_TIMEOUT)
+        set(ARG_TIMEOUT 300)
+    endif()
+    add_executable(${name} ${ARG_SOURCES})
+    target_link_libraries(${name} PRIVATE lantern::build_options lantern::test_common
+                          GTest::gtest GTest::gtest_main ${ARG_DEPS})
+    gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST
+                         PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+endfunction()

@@ -1,0 +1,124 @@
+// Systems on the job graph: each system declares what it reads and writes, and the
+// schedule orders conflicting systems (in the order they were added) while independent
+// ones run in parallel.
+//
+// Two systems conflict when one writes a component or resource type that the other reads
+// or writes. Edges go from the earlier-added system to the later one, so the result is the
+// same as running the systems one by one in order, whatever the thread count. Explicit
+// after() edges add to those. Structural changes go through ctx.commands(), which are
+// applied after all systems have run (the sync point); then the world's tick advances.
+//
+// Change detection: ctx.last_run is the world tick when this system last ran (0 the first
+// time); compare component ticks against it (View::each_changed).
+#pragma once
+
+#include "lantern/ecs/command_buffer.hpp"
+#include "lantern/ecs/world.hpp"
+#include "lantern/jobs/job_graph.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lantern::ecs {
+
+struct SystemContext {
+    World& world;
+    jobs::JobSystem& jobs;
+    std::uint32_t worker; // thread running the system
+    Tick last_run;        // world tick at this system's previous run (0 = never)
+    Tick this_run;        // current world tick
+    CommandQueues& queues;
+    CommandBuffer& commands() { return queues.for_worker(jobs.current_worker()); }
+};
+
+// Access key: component and resource types live in separate id spaces.
+struct AccessKey {
+    enum Kind : std::uint8_t { component, resource } kind;
+    TypeId id;
+    friend bool operator==(AccessKey, AccessKey) = default;
+};
+
+class Schedule;
+
+class SystemBuilder {
+  public:
+    template <typename... T>
+    SystemBuilder& reads() {
+        (add(reads_of(), AccessKey{AccessKey::component, component_id<T>()}), ...);
+        return *this;
+    }
+    template <typename... T>
+    SystemBuilder& writes() {
+        (add(writes_of(), AccessKey{AccessKey::component, component_id<T>()}), ...);
+        return *this;
+    }
+    template <typename... T>
+    SystemBuilder& reads_resource() {
+        (add(reads_of(), AccessKey{AccessKey::resource, resource_id<T>()}), ...);
+        return *this;
+    }
+    template <typename... T>
+    SystemBuilder& writes_resource() {
+        (add(writes_of(), AccessKey{AccessKey::resource, resource_id<T>()}), ...);
+        return *this;
+    }
+    // Runs on the main thread (window, GPU submission).
+    SystemBuilder& main_thread();
+    SystemBuilder& priority(jobs::Priority p);
+    // Runs after the named, earlier-added system regardless of declared access.
+    SystemBuilder& after(const char* system_name);
+
+  private:
+    friend class Schedule;
+    SystemBuilder(Schedule& s, std::uint32_t index) : schedule_(s), index_(index) {}
+    std::vector<AccessKey>& reads_of();
+    std::vector<AccessKey>& writes_of();
+    static void add(std::vector<AccessKey>& v, AccessKey k);
+    Schedule& schedule_;
+    std::uint32_t index_;
+};
+
+class Schedule {
+  public:
+    using SystemFn = std::function<void(SystemContext&)>;
+
+    explicit Schedule(jobs::JobSystem& jobs);
+
+    SystemBuilder add(const char* name, SystemFn fn);
+    // Runs every system once (in parallel where access allows), applies the recorded
+    // commands, advances the world tick. Call from the job system's main thread.
+    void run(World& world);
+
+    std::uint32_t size() const { return static_cast<std::uint32_t>(systems_.size()); }
+    const jobs::JobGraph& graph();
+    // True when system b must wait for system a (directly or through others).
+    bool ordered(std::uint32_t a, std::uint32_t b);
+    std::uint32_t index_of(const char* name) const;
+
+  private:
+    friend class SystemBuilder;
+    struct System {
+        std::string name;
+        const char* profile_name;
+        SystemFn fn;
+        std::vector<AccessKey> reads, writes;
+        std::vector<std::uint32_t> after;
+        bool main_thread = false;
+        jobs::Priority priority = jobs::Priority::normal;
+        Tick last_run = 0;
+    };
+    void build();
+    static bool conflicts(const System& a, const System& b);
+
+    jobs::JobSystem& jobs_;
+    std::vector<System> systems_;
+    jobs::JobGraph graph_;
+    bool dirty_ = true;
+    World* world_ = nullptr;
+    std::unique_ptr<CommandQueues> queues_;
+};
+
+} // namespace lantern::ecs

@@ -1,0 +1,245 @@
+// The ECS world: entities, component pools, resources (singletons) and change ticks.
+//
+// Threads. Reads (get, view iteration, contains) may run concurrently. Structural changes
+// (create, destroy, emplace, remove, clear) need exclusive access and are rejected by
+// assertion on a pool that a view is iterating; inside jobs and iterations record them in
+// a CommandBuffer and apply it at a sync point. reserve() alone is thread-safe.
+//
+// Change tracking. The world has a tick, advanced by advance_tick() at sync points (the
+// Schedule does it after each run). emplace records the element as added and changed at
+// the current tick; patch() marks it changed. A system remembers the tick it last ran at
+// and asks View::each_changed / each_added, or a pool's last_changed/last_removed, what
+// happened since. get() never marks: write through patch() when others must see it.
+//
+// Errors. Using a stale or null handle, adding a component twice, or removing/getting one
+// that is absent is a programmer error (LANTERN_ASSERT). try_get and contains answer
+// instead of asserting.
+#pragma once
+
+#include "lantern/core/assert.hpp"
+#include "lantern/ecs/entity.hpp"
+#include "lantern/ecs/pool.hpp"
+
+#include <atomic>
+#include <memory>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace lantern::ecs {
+
+template <typename... T>
+struct Exclude {};
+template <typename... T>
+inline constexpr Exclude<T...> exclude{};
+
+template <typename Include, typename ExcludeList>
+class View;
+template <typename... T>
+struct Include {};
+
+class World {
+  public:
+    World();
+    ~World();
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    // ---- entities
+    Entity create();
+    void destroy(Entity e);
+    bool alive(Entity e) const {
+        return e.index < slots_.size() && slots_[e.index] == e.generation && !is_free(e.index);
+    }
+    // Thread-safe: a handle that becomes a live (empty) entity at the next flush_reserved(),
+    // which apply(), create() and the Schedule's sync points call.
+    Entity reserve();
+    void flush_reserved();
+    std::uint32_t alive_count() const { return alive_count_; }
+    // Calls f(Entity) for every live entity, in index order.
+    template <typename F>
+    void each_entity(F&& f) const;
+
+    // ---- components
+    template <typename T, typename... Args>
+    T& emplace(Entity e, Args&&... args) {
+        LANTERN_ASSERT(alive(e), "emplace on a dead or stale entity");
+        return assure<T>().emplace(e, tick_, std::forward<Args>(args)...);
+    }
+    // Adds or replaces; replacing marks the component changed.
+    template <typename T, typename... Args>
+    T& emplace_or_replace(Entity e, Args&&... args);
+    template <typename T>
+    void remove(Entity e) {
+        LANTERN_ASSERT(alive(e), "remove on a dead or stale entity");
+        Pool<T>* p = find_pool<T>();
+        std::uint32_t pos = p ? p->find(e) : PoolBase::absent;
+        LANTERN_ASSERT(pos != PoolBase::absent, "remove of a component the entity does not have");
+        p->erase_at(pos, tick_);
+    }
+    // Removes if present; returns whether it was.
+    template <typename T>
+    bool try_remove(Entity e) {
+        Pool<T>* p = find_pool<T>();
+        std::uint32_t pos = p ? p->find(e) : PoolBase::absent;
+        if (pos == PoolBase::absent) return false;
+        p->erase_at(pos, tick_);
+        return true;
+    }
+    template <typename T>
+    T& get(Entity e) {
+        Pool<T>* p = find_pool<T>();
+        LANTERN_ASSERT(p != nullptr, "get of a component type no entity has");
+        return p->get(e);
+    }
+    template <typename T>
+    const T& get(Entity e) const {
+        return const_cast<World*>(this)->get<T>(e);
+    }
+    template <typename T>
+    T* try_get(Entity e) {
+        Pool<T>* p = find_pool<T>();
+        return p ? p->try_get(e) : nullptr;
+    }
+    template <typename T>
+    const T* try_get(Entity e) const {
+        return const_cast<World*>(this)->try_get<T>(e);
+    }
+    template <typename T>
+    bool contains(Entity e) const {
+        const Pool<T>* p = find_pool<T>();
+        return p && p->contains(e);
+    }
+    // Marks the component changed at the current tick and returns it for writing.
+    template <typename T>
+    T& patch(Entity e) {
+        Pool<T>* p = find_pool<T>();
+        std::uint32_t pos = p ? p->find(e) : PoolBase::absent;
+        LANTERN_ASSERT(pos != PoolBase::absent, "patch of a component the entity does not have");
+        p->mark_changed(pos, tick_);
+        return p->at(pos);
+    }
+    template <typename T>
+    void clear() {
+        if (Pool<T>* p = find_pool<T>()) p->clear(tick_);
+    }
+    template <typename T>
+    std::uint32_t count() const {
+        const Pool<T>* p = find_pool<T>();
+        return p ? p->size() : 0;
+    }
+
+    template <typename T>
+    Pool<T>& assure() {
+        TypeId id = component_id<T>();
+        if (id >= pools_.size()) pools_.resize(id + 1);
+        if (!pools_[id]) pools_[id] = std::make_unique<Pool<T>>();
+        return static_cast<Pool<T>&>(*pools_[id]);
+    }
+    template <typename T>
+    Pool<T>* find_pool() {
+        TypeId id = component_id<T>();
+        return id < pools_.size() ? static_cast<Pool<T>*>(pools_[id].get()) : nullptr;
+    }
+    template <typename T>
+    const Pool<T>* find_pool() const {
+        return const_cast<World*>(this)->find_pool<T>();
+    }
+    PoolBase* pool_by_id(TypeId id) { return id < pools_.size() ? pools_[id].get() : nullptr; }
+
+    // ---- views
+    template <typename... T, typename... X>
+    View<Include<T...>, Exclude<X...>> view(Exclude<X...> = {});
+
+    // ---- resources (one value per type)
+    template <typename T, typename... Args>
+    T& set_resource(Args&&... args);
+    template <typename T>
+    T& resource() {
+        T* r = try_resource<T>();
+        LANTERN_ASSERT(r != nullptr, "resource not set");
+        return *r;
+    }
+    template <typename T>
+    T* try_resource() {
+        TypeId id = resource_id<T>();
+        if (id >= resources_.size() || !resources_[id]) return nullptr;
+        return static_cast<T*>(resources_[id]->get());
+    }
+    template <typename T>
+    bool has_resource() const {
+        TypeId id = resource_id<T>();
+        return id < resources_.size() && resources_[id];
+    }
+    template <typename T>
+    void remove_resource() {
+        TypeId id = resource_id<T>();
+        if (id < resources_.size()) resources_[id].reset();
+    }
+
+    // ---- ticks
+    Tick tick() const { return tick_; }
+    Tick advance_tick() { return ++tick_; }
+
+    // Generation of the slot at `index` (views build handles from dense indices with it).
+    std::uint32_t generation_at(std::uint32_t index) const { return slots_[index]; }
+
+  private:
+    struct ResourceBase {
+        virtual ~ResourceBase() = default;
+        virtual void* get() = 0;
+    };
+    template <typename T>
+    struct Resource final : ResourceBase {
+        template <typename... Args>
+        explicit Resource(Args&&... args) : value(std::forward<Args>(args)...) {}
+        void* get() override { return &value; }
+        T value;
+    };
+
+    bool is_free(std::uint32_t index) const { return (free_bits_[index >> 6] >> (index & 63)) & 1; }
+    void set_free(std::uint32_t index, bool free);
+
+    std::vector<std::uint32_t> slots_;     // generation per slot
+    std::vector<std::uint64_t> free_bits_; // 1 = slot not alive
+    std::vector<std::uint32_t> free_list_; // reusable slots, LIFO
+    std::atomic<std::uint32_t> reserved_{0};
+    std::uint32_t alive_count_ = 0;
+    std::vector<std::unique_ptr<PoolBase>> pools_;
+    std::vector<std::unique_ptr<ResourceBase>> resources_;
+    Tick tick_ = 1;
+};
+
+template <typename T, typename... Args>
+T& World::emplace_or_replace(Entity e, Args&&... args) {
+    LANTERN_ASSERT(alive(e), "emplace_or_replace on a dead or stale entity");
+    Pool<T>& p = assure<T>();
+    std::uint32_t pos = p.find(e);
+    if (pos == PoolBase::absent) return p.emplace(e, tick_, std::forward<Args>(args)...);
+    if constexpr (!Pool<T>::is_tag) {
+        if constexpr (std::is_aggregate_v<T>)
+            p.at(pos) = T{std::forward<Args>(args)...};
+        else
+            p.at(pos) = T(std::forward<Args>(args)...);
+    }
+    p.mark_changed(pos, tick_);
+    return p.at(pos);
+}
+
+template <typename T, typename... Args>
+T& World::set_resource(Args&&... args) {
+    TypeId id = resource_id<T>();
+    if (id >= resources_.size()) resources_.resize(id + 1);
+    resources_[id] = std::make_unique<Resource<T>>(std::forward<Args>(args)...);
+    return static_cast<Resource<T>&>(*resources_[id]).value;
+}
+
+template <typename F>
+void World::each_entity(F&& f) const {
+    for (std::uint32_t i = 0; i < slots_.size(); ++i)
+        if (!is_free(i)) f(Entity{i, slots_[i]});
+}
+
+} // namespace lantern::ecs
+
+#include "lantern/ecs/view.hpp"

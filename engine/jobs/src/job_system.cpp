@@ -1,0 +1,338 @@
+#include "lantern/jobs/job_system.hpp"
+
+#include "lantern/core/assert.hpp"
+#include "lantern/core/clock.hpp"
+#include "lantern/profile/profiler.hpp"
+
+#include <algorithm>
+#include <mutex>
+#include <string>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define LANTERN_CPU_PAUSE() _mm_pause()
+#else
+#define LANTERN_CPU_PAUSE() std::this_thread::yield()
+#endif
+
+namespace lantern::jobs {
+
+// Per-thread state: two deques (one per priority), a local free list of jobs, counters.
+struct JobSystem::ThreadState {
+    WorkStealingDeque<Job> deques[2];
+    Job* free_list = nullptr;
+    std::uint32_t free_count = 0;
+    std::uint32_t index = 0;
+    std::uint32_t steal_cursor = 0;
+    JobSystem* system = nullptr;
+    std::atomic<std::uint64_t> jobs_run{0};
+    std::atomic<std::uint64_t> steals{0};
+    std::atomic<std::uint64_t> overflows{0};
+};
+
+// Jobs move between threads (spawned on one, freed on another), so free lists rebalance
+// through this pool in batches: one lock per `batch` jobs, never per job.
+struct JobSystem::SharedPool {
+    static constexpr std::uint32_t batch = 64;
+    static constexpr std::uint32_t block = 256;
+    static constexpr std::uint32_t initial_jobs = 4096; // 512 KiB
+    std::mutex mutex;
+    std::vector<Job*> free;
+    std::vector<std::unique_ptr<Job[]>> blocks;
+};
+
+// Main-thread jobs: a locked vector; they are few (window, GPU submission).
+struct JobSystem::MainQueue {
+    std::mutex mutex;
+    std::vector<Job*> jobs;
+    std::atomic<std::uint32_t> size{0};
+};
+
+namespace {
+
+struct ThreadBinding {
+    JobSystem* system = nullptr;
+    void* state = nullptr;
+};
+thread_local ThreadBinding tls_binding;
+
+} // namespace
+
+JobSystem::JobSystem() : JobSystem(Config{}) {}
+
+JobSystem::JobSystem(Config config) : config_(config), pool_(new SharedPool), main_queue_(new MainQueue) {
+    static_assert(sizeof(Job) <= 128, "a job is two cache lines at most");
+    int workers = config.worker_threads;
+    if (workers < 0) workers = std::max(0, int(std::thread::hardware_concurrency()) - 1);
+    LANTERN_ASSERT(tls_binding.system == nullptr, "a thread may be the main thread of one JobSystem only");
+    main_queue_->jobs.reserve(256);
+    // Pre-allocate the job pool so that typical frames never grow it.
+    pool_->free.reserve(SharedPool::initial_jobs * 2);
+    for (std::uint32_t i = 0; i < SharedPool::initial_jobs / SharedPool::block; ++i) grow_pool();
+    for (int i = 0; i <= workers; ++i) {
+        auto t = std::make_unique<ThreadState>();
+        t->index = static_cast<std::uint32_t>(i);
+        t->steal_cursor = static_cast<std::uint32_t>(i);
+        t->system = this;
+        threads_.push_back(std::move(t));
+    }
+    tls_binding = {this, threads_[0].get()};
+    profile::set_thread_name("main");
+    for (int i = 1; i <= workers; ++i) os_threads_.emplace_back([this, i] { worker_main(static_cast<std::uint32_t>(i)); });
+    // Return only once every worker has set itself up (its allocations happen now, not
+    // during the first frame).
+    for (std::uint32_t n; (n = started_.load(std::memory_order_acquire)) != std::uint32_t(workers);)
+        started_.wait(n, std::memory_order_acquire);
+}
+
+JobSystem::~JobSystem() {
+    LANTERN_ASSERT(tls_binding.system == this, "destroy a JobSystem on its main thread");
+    // Finish whatever is still queued, then stop the workers.
+    ThreadState& t = *threads_[0];
+    while (Job* job = find_job(t)) execute(job, t);
+    running_.store(false, std::memory_order_seq_cst);
+    epoch_.fetch_add(1, std::memory_order_seq_cst);
+    epoch_.notify_all();
+    for (auto& th : os_threads_) th.join();
+    tls_binding = {};
+}
+
+std::uint32_t JobSystem::current_worker() const {
+    if (tls_binding.system != this) return not_a_worker;
+    return static_cast<ThreadState*>(tls_binding.state)->index;
+}
+
+JobSystem::ThreadState& JobSystem::this_thread() {
+    LANTERN_ASSERT(tls_binding.system == this,
+                   "JobSystem used from a thread that is neither its main thread nor one of its workers");
+    return *static_cast<ThreadState*>(tls_binding.state);
+}
+
+JobSystem::Job* JobSystem::allocate_job(ThreadState& t) {
+    if (!t.free_list) {
+        std::lock_guard lock(pool_->mutex);
+        if (pool_->free.empty()) grow_pool();
+        std::uint32_t n = std::min<std::uint32_t>(SharedPool::batch, std::uint32_t(pool_->free.size()));
+        for (std::uint32_t i = 0; i < n; ++i) {
+            Job* j = pool_->free.back();
+            pool_->free.pop_back();
+            j->next = t.free_list;
+            t.free_list = j;
+        }
+        t.free_count += n;
+    }
+    Job* job = t.free_list;
+    t.free_list = job->next;
+    --t.free_count;
+    return job;
+}
+
+void JobSystem::grow_pool() {
+    auto block = std::make_unique<Job[]>(SharedPool::block);
+    for (std::uint32_t i = 0; i < SharedPool::block; ++i) pool_->free.push_back(&block[i]);
+    pool_->blocks.push_back(std::move(block));
+}
+
+void JobSystem::free_job(Job* job, ThreadState& t) {
+    job->next = t.free_list;
+    t.free_list = job;
+    if (++t.free_count > 4 * SharedPool::batch) {
+        std::lock_guard lock(pool_->mutex);
+        for (std::uint32_t i = 0; i < 2 * SharedPool::batch; ++i) {
+            Job* j = t.free_list;
+            t.free_list = j->next;
+            pool_->free.push_back(j);
+        }
+        t.free_count -= 2 * SharedPool::batch;
+    }
+}
+
+void JobSystem::spawn(JobFn fn, void* payload, Counter* counter, const JobOptions& options) {
+    ThreadState& t = this_thread();
+    Job* job = allocate_job(t);
+    job->fn = fn;
+    job->payload = payload;
+    job->counter = counter;
+    job->name = options.name;
+    job->priority = options.priority;
+    job->main_thread = options.main_thread;
+    if (counter) counter->value_.fetch_add(1, std::memory_order_relaxed);
+    submit(job, t);
+}
+
+void JobSystem::submit(Job* job, ThreadState& t) {
+    if (job->main_thread) {
+        {
+            std::lock_guard lock(main_queue_->mutex);
+            main_queue_->jobs.push_back(job);
+            main_queue_->size.store(std::uint32_t(main_queue_->jobs.size()), std::memory_order_release);
+        }
+        signal(true); // only the main thread can run it: wake everyone rather than guess
+        return;
+    }
+    if (!t.deques[std::size_t(job->priority)].push(job)) {
+        t.overflows.fetch_add(1, std::memory_order_relaxed);
+        execute(job, t); // deque full: run inline, memory stays bounded
+        return;
+    }
+    // The RMW on epoch_ orders the push before the read of sleepers_ (see idle_sleep).
+    epoch_.fetch_add(1, std::memory_order_seq_cst);
+    if (sleepers_.load(std::memory_order_seq_cst) != 0) epoch_.notify_one();
+}
+
+void JobSystem::signal(bool all) {
+    epoch_.fetch_add(1, std::memory_order_seq_cst);
+    if (sleepers_.load(std::memory_order_seq_cst) != 0) {
+        if (all)
+            epoch_.notify_all();
+        else
+            epoch_.notify_one();
+    }
+}
+
+JobSystem::Job* JobSystem::find_job(ThreadState& t) {
+    if (t.index == 0 && main_queue_->size.load(std::memory_order_acquire) != 0) {
+        std::lock_guard lock(main_queue_->mutex);
+        if (!main_queue_->jobs.empty()) {
+            Job* job = main_queue_->jobs.front();
+            main_queue_->jobs.erase(main_queue_->jobs.begin()); // FIFO; the queue is short
+            main_queue_->size.store(std::uint32_t(main_queue_->jobs.size()), std::memory_order_release);
+            return job;
+        }
+    }
+    const std::uint32_t n = thread_count();
+    for (std::size_t p = 0; p < 2; ++p) {
+        if (Job* job = t.deques[p].pop()) return job;
+        // Start at the last successful victim (it likely has more), visit every other thread.
+        for (std::uint32_t k = 0; k < n; ++k) {
+            std::uint32_t victim = (t.steal_cursor + k) % n;
+            if (victim == t.index) continue;
+            if (Job* job = threads_[victim]->deques[p].steal()) {
+                t.steal_cursor = victim;
+                t.steals.fetch_add(1, std::memory_order_relaxed);
+                return job;
+            }
+        }
+    }
+    return nullptr;
+}
+
+bool JobSystem::has_visible_work(const ThreadState& t) const {
+    if (t.index == 0 && main_queue_->size.load(std::memory_order_acquire) != 0) return true;
+    for (const auto& other : threads_)
+        for (const auto& d : other->deques)
+            if (!d.empty_hint()) return true;
+    return false;
+}
+
+void JobSystem::execute(Job* job, ThreadState& t) {
+    const bool profiled = profile::enabled();
+    std::int64_t start = profiled ? now_ns() : 0;
+    job->fn(job->payload, t.index);
+    if (profiled) profile::record(job->name, start, now_ns(), profile::EventKind::job);
+    Counter* counter = job->counter;
+    free_job(job, t); // before the decrement: a waiter may tear everything down after it
+    t.jobs_run.fetch_add(1, std::memory_order_relaxed);
+    if (counter && counter->value_.fetch_sub(1, std::memory_order_acq_rel) == 1) signal(true);
+}
+
+// Sleeps until the epoch moves. Lost wake-ups are impossible: the sleeper announces itself
+// (sleepers_ RMW) before reading the epoch and re-checking for work; a spawner bumps the
+// epoch (RMW) after publishing its job and before reading sleepers_. In the seq_cst order
+// either the sleeper sees the job, or the spawner sees the sleeper and the futex sees the
+// new epoch.
+void JobSystem::idle_sleep(ThreadState& t, const Counter* counter) {
+    sleepers_.fetch_add(1, std::memory_order_seq_cst);
+    std::uint32_t epoch = epoch_.load(std::memory_order_seq_cst);
+    bool wake = !running_.load(std::memory_order_seq_cst) || has_visible_work(t) || (counter && counter->done());
+    if (!wake) epoch_.wait(epoch, std::memory_order_seq_cst);
+    sleepers_.fetch_sub(1, std::memory_order_seq_cst);
+}
+
+void JobSystem::wait(Counter& counter) {
+    ThreadState& t = this_thread();
+    std::uint32_t idle = 0;
+    while (!counter.done()) {
+        if (Job* job = find_job(t)) {
+            execute(job, t);
+            idle = 0;
+            continue;
+        }
+        if (++idle < config_.spin_iterations) {
+            LANTERN_CPU_PAUSE();
+            continue;
+        }
+        idle_sleep(t, &counter);
+        idle = config_.spin_iterations / 2; // spin a little after each wake-up
+    }
+}
+
+std::uint32_t JobSystem::run_main_thread_jobs() {
+    ThreadState& t = this_thread();
+    LANTERN_ASSERT(t.index == 0, "run_main_thread_jobs() off the main thread");
+    std::uint32_t ran = 0;
+    while (main_queue_->size.load(std::memory_order_acquire) != 0) {
+        Job* job = nullptr;
+        {
+            std::lock_guard lock(main_queue_->mutex);
+            if (main_queue_->jobs.empty()) break;
+            job = main_queue_->jobs.front();
+            main_queue_->jobs.erase(main_queue_->jobs.begin());
+            main_queue_->size.store(std::uint32_t(main_queue_->jobs.size()), std::memory_order_release);
+        }
+        execute(job, t);
+        ++ran;
+    }
+    return ran;
+}
+
+void JobSystem::worker_main(std::uint32_t index) {
+    ThreadState& t = *threads_[index];
+    tls_binding = {this, &t};
+    std::string name = "worker " + std::to_string(index);
+    profile::set_thread_name(profile::intern(name));
+    started_.fetch_add(1, std::memory_order_release);
+    started_.notify_all();
+    std::uint32_t idle = 0;
+    while (running_.load(std::memory_order_acquire)) {
+        if (Job* job = find_job(t)) {
+            execute(job, t);
+            idle = 0;
+            continue;
+        }
+        if (++idle < config_.spin_iterations) {
+            LANTERN_CPU_PAUSE();
+            continue;
+        }
+        idle_sleep(t, nullptr);
+        idle = config_.spin_iterations / 2;
+    }
+    // Drain our own deques so no job is lost at shutdown (the destructor drained before
+    // stopping, so only jobs spawned by jobs in flight can remain).
+    while (Job* job = find_job(t)) execute(job, t);
+    tls_binding = {};
+}
+
+void JobSystem::run_for_loop(void* raw, std::uint32_t worker) {
+    auto& s = *static_cast<detail::ForLoopState*>(raw);
+    for (;;) {
+        std::uint32_t b = s.next.fetch_add(s.grain, std::memory_order_relaxed);
+        if (b >= s.last || b < s.first) break; // second test: wrapped past UINT32_MAX
+        std::uint32_t e = (s.last - b > s.grain) ? b + s.grain : s.last;
+        s.call(s.fn, b, e, worker);
+    }
+}
+
+JobSystem::Stats JobSystem::stats() const {
+    Stats s;
+    for (const auto& t : threads_) {
+        s.jobs_run += t->jobs_run.load(std::memory_order_relaxed);
+        s.steals += t->steals.load(std::memory_order_relaxed);
+        s.inline_overflows += t->overflows.load(std::memory_order_relaxed);
+    }
+    std::lock_guard lock(pool_->mutex);
+    s.pool_blocks = pool_->blocks.size();
+    return s;
+}
+
+} // namespace lantern::jobs

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# README command (b): install what is needed, build, and run every test.
+#
+# 1. The full suite (every module, GPU tests on lavapipe) in build/.
+# 2. The engine's CPU suites again under ASan+UBSan (build-asan/) and TSan (build-tsan/).
+#    Skip step 2 with LANTERN_TEST_SANITIZERS=0.
+#
+# Environment: LANTERN_TEST_JOBS (parallel tests, default: cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+start=$(date +%s)
+jobs="${LANTERN_TEST_JOBS:-$(nproc)}"
+
+bash scripts/setup.sh
+
+echo "== build + test: full suite (build/)"
+bash scripts/build.sh build -DLANTERN_BUILD_TESTS=ON
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+if [ "${LANTERN_TEST_SANITIZERS:-1}" != "0" ]; then
+    # The CPU engine suites; see docs/testing.md for why GPU suites are not included.
+    labels='core|profile|jobs|ecs'
+    echo "== build + test: ASan+UBSan (build-asan/, labels $labels)"
+    bash scripts/build.sh build-asan -DLANTERN_SANITIZE=address -DLANTERN_BUILD_BENCHMARKS=OFF
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        ctest --test-dir build-asan --output-on-failure -j "$jobs" -L "$labels"
+    echo "== build + test: TSan (build-tsan/, labels $labels)"
+    bash scripts/build.sh build-tsan -DLANTERN_SANITIZE=thread -DLANTERN_BUILD_BENCHMARKS=OFF
+    TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+        ctest --test-dir build-tsan --output-on-failure -j "$jobs" -L "$labels"
+fi
+echo "== all tests passed in $(( $(date +%s) - start )) s"
