@@ -104,3 +104,34 @@ TEST(View, EmptyAndMissingPools) {
     EXPECT_EQ(n, 0);
     EXPECT_EQ(w.view<Position>().size_hint(), 0u);
 }
+
+TEST(View, PatchEachMarksEveryVisitedComponent) {
+    lantern::jobs::JobSystem::Config config;
+    config.worker_threads = 1;
+    lantern::jobs::JobSystem jobs(config);
+    World w;
+    for (int i = 0; i < 5000; ++i) {
+        Entity e = w.create();
+        w.emplace<Position>(e);
+        if (i % 2) w.emplace<Velocity>(e);
+    }
+    auto t0 = w.tick();
+    w.advance_tick();
+    w.view<Position, Velocity>().patch_each<Position>([](Position& p, Velocity&) { p.x = 1; });
+    int changed = 0;
+    w.view<Position>().each_changed<Position>(t0, [&](Position& p) {
+        EXPECT_EQ(p.x, 1.0f);
+        ++changed;
+    });
+    EXPECT_EQ(changed, 2500);
+    EXPECT_EQ(w.find_pool<Position>()->last_changed(), w.tick());
+    auto t1 = w.tick();
+    w.advance_tick();
+    w.view<Velocity>().par_patch_each<Velocity>(jobs, 64, [](Velocity& v) { v.dx = 2; });
+    int changed_v = 0;
+    w.view<Velocity>().each_changed<Velocity>(t1, [&](Velocity&) { ++changed_v; });
+    EXPECT_EQ(changed_v, 2500);
+    int changed_p = 0;
+    w.view<Position>().each_changed<Position>(t1, [&](Position&) { ++changed_p; });
+    EXPECT_EQ(changed_p, 0);
+}

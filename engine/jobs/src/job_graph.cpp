@@ -1,6 +1,10 @@
 #include "lantern/jobs/job_graph.hpp"
 
 #include "lantern/core/assert.hpp"
+#include "lantern/core/clock.hpp"
+#include "lantern/profile/profiler.hpp"
+
+#include <algorithm>
 
 namespace lantern::jobs {
 
@@ -56,18 +60,53 @@ void JobGraph::finalize() {
 
 void JobGraph::launch(NodeId id) {
     const Node& node = nodes_[id];
+    // Unnamed job: run_chain records each node it runs under the node's own name.
     system_->spawn(&JobGraph::run_node, &payloads_[id], counter_,
-                   JobOptions{node.name, node.priority, node.main_thread});
+                   JobOptions{nullptr, node.priority, node.main_thread});
+}
+
+void JobGraph::run_chain(NodeId id, std::uint32_t worker) {
+    const bool profiled = profile::enabled();
+    for (;;) {
+        Node& node = nodes_[id];
+        std::int64_t start = profiled ? now_ns() : 0;
+        node.work(worker);
+        if (profiled) profile::record(node.name, start, now_ns(), profile::EventKind::job);
+        // The last predecessor to finish releases a successor. Keep the first one that may
+        // run here and continue with it; launch the others as jobs for other threads.
+        NodeId next = ~0u;
+        for (NodeId s : node.successors) {
+            if (pending_[s].fetch_sub(1, std::memory_order_acq_rel) != 1) continue;
+            if (next == ~0u && can_run_inline(s, worker))
+                next = s;
+            else
+                launch(s);
+        }
+        if (next == ~0u) return;
+        id = next;
+    }
 }
 
 void JobGraph::run_node(void* raw, std::uint32_t worker) {
     auto* p = static_cast<Payload*>(raw);
-    JobGraph& g = *p->graph;
-    Node& node = g.nodes_[p->node];
-    node.work(worker);
-    // Release our writes to the successors; the last predecessor to finish launches them.
-    for (NodeId s : node.successors)
-        if (g.pending_[s].fetch_sub(1, std::memory_order_acq_rel) == 1) g.launch(s);
+    p->graph->run_chain(p->node, worker);
+}
+
+void JobGraph::run_roots(void* raw, std::uint32_t worker) {
+    auto& g = *static_cast<JobGraph*>(raw);
+    const std::uint32_t n = static_cast<std::uint32_t>(g.roots_.size());
+    for (;;) {
+        std::uint32_t begin = g.root_cursor_.fetch_add(g.root_grain_, std::memory_order_relaxed);
+        if (begin >= n) return;
+        std::uint32_t end = std::min(n, begin + g.root_grain_);
+        for (std::uint32_t i = begin; i < end; ++i) {
+            NodeId r = g.roots_[i];
+            if (g.can_run_inline(r, worker))
+                g.run_chain(r, worker);
+            else
+                g.launch(r);
+        }
+    }
 }
 
 void JobGraph::run(JobSystem& jobs) {
@@ -78,7 +117,15 @@ void JobGraph::run(JobSystem& jobs) {
     Counter counter;
     system_ = &jobs;
     counter_ = &counter;
-    for (NodeId r : roots_) launch(r);
+    root_cursor_.store(0, std::memory_order_relaxed);
+    const std::uint32_t roots = static_cast<std::uint32_t>(roots_.size());
+    const std::uint32_t threads = jobs.thread_count();
+    // Claim roots in chunks: small enough to balance, big enough to keep the cursor cool.
+    root_grain_ = std::clamp<std::uint32_t>(roots / (threads * 8), 1, 64);
+    const std::uint32_t helpers = std::min(roots, threads) - 1;
+    for (std::uint32_t i = 0; i < helpers; ++i)
+        jobs.spawn(&JobGraph::run_roots, this, &counter, JobOptions{nullptr, Priority::high, false});
+    run_roots(this, jobs.current_worker());
     jobs.wait(counter);
     counter_ = nullptr;
 }

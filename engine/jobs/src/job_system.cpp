@@ -50,6 +50,16 @@ struct JobSystem::MainQueue {
 
 namespace {
 
+// Pauses between failed searches for work: 1 pause for the first few, then 64 (a few us):
+// an idle thread polls other deques less often, so a thread that spawns a job and then
+// waits for it usually runs it itself instead of losing it to a thief for a cross-core
+// round trip. Returns the pauses spent, counted against the spin budget.
+std::uint32_t backoff(std::uint32_t spent) {
+    std::uint32_t n = spent < 4 ? 1 : 64;
+    for (std::uint32_t i = 0; i < n; ++i) LANTERN_CPU_PAUSE();
+    return n;
+}
+
 struct ThreadBinding {
     JobSystem* system = nullptr;
     void* state = nullptr;
@@ -175,9 +185,11 @@ void JobSystem::submit(Job* job, ThreadState& t) {
         execute(job, t); // deque full: run inline, memory stays bounded
         return;
     }
-    // The RMW on epoch_ orders the push before the read of sleepers_ (see idle_sleep).
-    epoch_.fetch_add(1, std::memory_order_seq_cst);
-    if (sleepers_.load(std::memory_order_seq_cst) != 0) epoch_.notify_one();
+    // The push's seq_cst store of bottom precedes this seq_cst load (see idle_sleep).
+    if (sleepers_.load(std::memory_order_seq_cst) != 0) {
+        epoch_.fetch_add(1, std::memory_order_seq_cst);
+        epoch_.notify_one();
+    }
 }
 
 void JobSystem::signal(bool all) {
@@ -200,14 +212,19 @@ JobSystem::Job* JobSystem::find_job(ThreadState& t) {
             return job;
         }
     }
+    // Own deques first (cheap, cache-hot, and the spawner of a job usually waits for it),
+    // then steal, high priority first.
+    for (auto& d : t.deques)
+        if (Job* job = d.pop()) return job;
     const std::uint32_t n = thread_count();
     for (std::size_t p = 0; p < 2; ++p) {
-        if (Job* job = t.deques[p].pop()) return job;
         // Start at the last successful victim (it likely has more), visit every other thread.
         for (std::uint32_t k = 0; k < n; ++k) {
             std::uint32_t victim = (t.steal_cursor + k) % n;
             if (victim == t.index) continue;
-            if (Job* job = threads_[victim]->deques[p].steal()) {
+            auto& deque = threads_[victim]->deques[p];
+            if (deque.empty_hint()) continue;
+            if (Job* job = deque.steal()) {
                 t.steal_cursor = victim;
                 t.steals.fetch_add(1, std::memory_order_relaxed);
                 return job;
@@ -226,7 +243,7 @@ bool JobSystem::has_visible_work(const ThreadState& t) const {
 }
 
 void JobSystem::execute(Job* job, ThreadState& t) {
-    const bool profiled = profile::enabled();
+    const bool profiled = job->name && profile::enabled(); // unnamed jobs record themselves
     std::int64_t start = profiled ? now_ns() : 0;
     job->fn(job->payload, t.index);
     if (profiled) profile::record(job->name, start, now_ns(), profile::EventKind::job);
@@ -236,11 +253,14 @@ void JobSystem::execute(Job* job, ThreadState& t) {
     if (counter && counter->value_.fetch_sub(1, std::memory_order_acq_rel) == 1) signal(true);
 }
 
-// Sleeps until the epoch moves. Lost wake-ups are impossible: the sleeper announces itself
-// (sleepers_ RMW) before reading the epoch and re-checking for work; a spawner bumps the
-// epoch (RMW) after publishing its job and before reading sleepers_. In the seq_cst order
-// either the sleeper sees the job, or the spawner sees the sleeper and the futex sees the
-// new epoch.
+// Sleeps until the epoch moves. Lost wake-ups are impossible. The sleeper announces itself
+// (sleepers_ RMW), reads the epoch, then re-checks every deque (seq_cst loads). A spawner
+// publishes its job (seq_cst store of the deque's bottom), then reads sleepers_ (seq_cst).
+// In the single total order of seq_cst operations, either the spawner's read comes before
+// the sleeper's announcement (so the sleeper's re-check comes after the publish and sees
+// the job), or it sees the sleeper and bumps the epoch, which the futex wait compares
+// against the value read before the re-check. Counter completion and main-thread jobs
+// always bump the epoch (signal).
 void JobSystem::idle_sleep(ThreadState& t, const Counter* counter) {
     sleepers_.fetch_add(1, std::memory_order_seq_cst);
     std::uint32_t epoch = epoch_.load(std::memory_order_seq_cst);
@@ -258,8 +278,8 @@ void JobSystem::wait(Counter& counter) {
             idle = 0;
             continue;
         }
-        if (++idle < config_.spin_iterations) {
-            LANTERN_CPU_PAUSE();
+        if (idle < config_.spin_iterations) {
+            idle += backoff(idle);
             continue;
         }
         idle_sleep(t, &counter);
@@ -300,8 +320,8 @@ void JobSystem::worker_main(std::uint32_t index) {
             idle = 0;
             continue;
         }
-        if (++idle < config_.spin_iterations) {
-            LANTERN_CPU_PAUSE();
+        if (idle < config_.spin_iterations) {
+            idle += backoff(idle);
             continue;
         }
         idle_sleep(t, nullptr);

@@ -23,16 +23,25 @@ class WorkStealingDeque {
         for (auto& s : slots_) s.store(nullptr, std::memory_order_relaxed);
     }
 
+    // The store of bottom is seq_cst: it doubles as the store half of the job system's
+    // sleep/wake handshake (JobSystem::submit reads the sleeper count right after it).
     bool push(T* item) {
         std::int64_t b = bottom_.load(std::memory_order_relaxed);
-        std::int64_t t = top_.load(std::memory_order_acquire);
-        if (b - t >= std::int64_t(Capacity)) return false;
+        // top only grows, so a stale copy can only make the deque look fuller than it is:
+        // re-read the shared top (a line thieves write) only when the copy says full.
+        if (b - top_cache_ >= std::int64_t(Capacity)) {
+            top_cache_ = top_.load(std::memory_order_acquire);
+            if (b - top_cache_ >= std::int64_t(Capacity)) return false;
+        }
         slots_[std::size_t(b) & (Capacity - 1)].store(item, std::memory_order_relaxed);
-        bottom_.store(b + 1, std::memory_order_release);
+        bottom_.store(b + 1, std::memory_order_seq_cst);
         return true;
     }
 
     T* pop() {
+        // Cheap exit when empty, without writing `bottom_` (a line thieves read): bottom is
+        // exact for the owner and top only grows, so b <= an old top means empty now.
+        if (bottom_.load(std::memory_order_relaxed) <= top_.load(std::memory_order_relaxed)) return nullptr;
         std::int64_t b = bottom_.load(std::memory_order_relaxed) - 1;
         bottom_.store(b, std::memory_order_seq_cst);
         std::int64_t t = top_.load(std::memory_order_seq_cst);
@@ -59,14 +68,16 @@ class WorkStealingDeque {
         return item;
     }
 
-    // A racy size estimate, for idle checks only.
+    // Whether the deque looked empty at some instant during the call. The loads are seq_cst
+    // so that a thread about to sleep cannot miss a push it must see (JobSystem::idle_sleep).
     bool empty_hint() const {
-        return bottom_.load(std::memory_order_relaxed) <= top_.load(std::memory_order_relaxed);
+        return bottom_.load(std::memory_order_seq_cst) <= top_.load(std::memory_order_seq_cst);
     }
 
   private:
     alignas(64) std::atomic<std::int64_t> top_{0};
     alignas(64) std::atomic<std::int64_t> bottom_{0};
+    std::int64_t top_cache_ = 0; // owner's copy of top_
     alignas(64) std::array<std::atomic<T*>, Capacity> slots_;
 };
 

@@ -1,5 +1,11 @@
 // A DAG of jobs, built once and run many times (per frame) without allocating.
 //
+// Execution: every thread claims root nodes through a shared cursor (no job per root), and a
+// thread that finishes a node's last predecessor runs that node next itself instead of
+// spawning it (continuation passing); further ready successors become jobs that other
+// threads steal. Each node is recorded in the profiler under its name, on the thread that
+// ran it. Priorities apply to nodes launched as jobs; roots run in claim order.
+//
 // Build: add() nodes, precede(a, b) edges, then run(). The first run() after a change
 // validates the graph (a cycle is a programmer error and asserts) and computes the
 // topology; later runs only reset per-node counters. Nodes marked main_thread run on the
@@ -57,7 +63,12 @@ class JobGraph {
         NodeId node;
     };
     static void run_node(void* payload, std::uint32_t worker);
+    static void run_roots(void* graph, std::uint32_t worker);
+    void run_chain(NodeId id, std::uint32_t worker);
     void launch(NodeId id);
+    bool can_run_inline(NodeId id, std::uint32_t worker) const {
+        return !nodes_[id].main_thread || worker == 0;
+    }
 
     std::vector<Node> nodes_;
     std::vector<NodeId> roots_;
@@ -67,6 +78,8 @@ class JobGraph {
     bool dirty_ = true;
     JobSystem* system_ = nullptr;
     Counter* counter_ = nullptr;
+    alignas(64) std::atomic<std::uint32_t> root_cursor_{0};
+    std::uint32_t root_grain_ = 1;
 };
 
 } // namespace lantern::jobs

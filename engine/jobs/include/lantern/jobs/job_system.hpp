@@ -53,7 +53,8 @@ class Counter {
 using JobFn = void (*)(void* payload, std::uint32_t worker);
 
 struct JobOptions {
-    const char* name = "job"; // for the profiler; must outlive the job (literal or interned)
+    // For the profiler; must outlive the job (literal or interned). nullptr: not recorded.
+    const char* name = "job";
     Priority priority = Priority::normal;
     bool main_thread = false;
 };
