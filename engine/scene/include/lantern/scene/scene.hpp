@@ -1,0 +1,135 @@
+// A lit grid world as a scene file describes it (../shared/SCENES.md, docs/scenes.md):
+// the wall grid, the GI window (orthographic view or perspective camera), the GI settings,
+// and the lights and shadow proxies. Plain data; loading and validation live in loader.hpp.
+//
+// Conventions (identical in every GI pass): world positions are (x, z); one grid cell is
+// one world unit; the tile of a position is floor(pos); grid cell (col, row) of WallGrid
+// is the world tile (origin.x + col, origin.z + row); tiles outside the grid are air.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace lantern::scene {
+
+enum class HeatScale : std::uint8_t { full = 1, half = 2, quarter = 4 };
+enum class ToneMap : std::uint8_t { none, reinhard, reinhard_white, aces };
+
+struct AoSettings {
+    bool enabled = true;
+    float radius = 1.5f;   // world units
+    float power = 1.0f;    // distance-weight exponent
+    float strength = 0.6f; // 0 = no darkening, 1 = full
+    bool dither = false;   // 4x4 Bayer dither before 8-bit quantisation
+};
+
+// Every key of a scene's "gi" object; the defaults are the documented defaults.
+struct GiSettings {
+    int resolution = 8; // GI texels per world unit, 1..32
+    float padding = 1.4f;
+    int heat_rounds = 20;
+    HeatScale heat_scale = HeatScale::full;
+    float diffusion_rate = 1.0f;
+    float diffusion_distance = 1.0f; // world units
+    float emission_strength = 1.0f;
+    float range_boost = 0.0f;
+    float intensity_multiplier = 1.0f;
+    bool per_channel = true;
+    bool segment_check = true;
+    float light_softness = 1.0f; // falloff exponent
+    AoSettings ao;
+    bool blur = true;
+    ToneMap tone_map = ToneMap::aces;
+    float white_point = 4.0f;              // reinhard_white
+    float directional_angle_scale = 0.0f;  // 0 = full sun-angle modulation, 1 = none
+    int max_lights = 256;                  // point lights kept per frame (emissives bypass it)
+    int max_shadow_proxies = 64;
+};
+
+struct PointLight {
+    glm::vec2 position{0.0f}; // world x, z
+    float height = 1.0f;      // above the ground (used by later height-aware passes)
+    glm::vec3 color{1.0f};    // linear RGB
+    float intensity = 1.0f;   // multiplies color
+    float radius = 8.0f;      // world units, > 0
+};
+
+struct EmissiveLight {
+    glm::vec2 position{0.0f};
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float radius = 4.0f;
+};
+
+struct DirectionalLight {
+    glm::vec3 direction{0.0f, -1.0f, 0.0f}; // direction the light travels, normalised on load
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float base_shadow_distance = 4.0f; // world units, scaled by 1 / max(|direction.y|, 0.02)
+    float bounce_intensity = 0.5f;
+};
+
+enum class ProxyShape : std::uint8_t { box = 0, circle = 1 };
+enum class WidthMode : std::uint8_t { projected = 0, max_axis = 1 };
+enum class PenumbraMode : std::uint8_t { inward = 0, outward = 1, both = 2 };
+
+struct ShadowProxy {
+    glm::vec2 position{0.0f};
+    ProxyShape shape = ProxyShape::circle;
+    glm::vec2 size{0.5f}; // half extents (box) or radius in x (circle)
+    float max_length = 3.0f;
+    float end_cap_blend = 0.5f;
+    float penumbra_width = 0.3f;
+    float penumbra_length = 1.0f;
+    float penumbra_power = 1.0f;
+    WidthMode width_mode = WidthMode::projected;
+    PenumbraMode penumbra_mode = PenumbraMode::both;
+};
+
+struct WallGrid {
+    int width = 0;
+    int height = 0;
+    glm::ivec2 origin{0};            // world tile of cell (0, 0)
+    std::vector<std::uint8_t> cells; // row-major, cells[col + row * width], 1 = wall
+
+    bool is_wall_tile(int x, int z) const {
+        int c = x - origin.x, r = z - origin.y;
+        if (c < 0 || r < 0 || c >= width || r >= height) return false; // out of bounds is air
+        return cells[std::size_t(c) + std::size_t(r) * std::size_t(width)] != 0;
+    }
+};
+
+// Top-down orthographic GI window: centre and size in world units, before padding.
+struct OrthoView {
+    glm::vec2 center{0.0f};
+    glm::vec2 size{30.0f, 16.875f};
+};
+
+// Perspective camera whose viewport is projected on the ground plane y = 0.
+struct PerspectiveCamera {
+    glm::vec3 position{0.0f, 20.0f, 0.0f};
+    glm::vec3 target{0.0f};
+    float fov_deg = 40.0f; // vertical field of view
+    float aspect = 16.0f / 9.0f;
+};
+
+using ViewSpec = std::variant<OrthoView, PerspectiveCamera>;
+
+struct Scene {
+    std::string source; // file the scene came from (for messages); empty if built in code
+    WallGrid walls;
+    float wall_height = 2.0f;
+    ViewSpec view = OrthoView{};
+    GiSettings gi;
+    std::vector<PointLight> point_lights;
+    std::vector<EmissiveLight> emissive_lights;
+    std::vector<DirectionalLight> directional_lights;
+    std::vector<ShadowProxy> shadow_proxies;
+};
+
+} // namespace lantern::scene
