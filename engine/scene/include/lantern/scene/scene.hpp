@@ -1,6 +1,7 @@
 // A lit grid world as a scene file describes it (../shared/SCENES.md, docs/scenes.md):
 // the wall grid, the GI window (orthographic view or perspective camera), the GI settings,
 // and the lights and shadow proxies. Plain data; loading and validation live in loader.hpp.
+// Every type compares member-wise with == (floats exactly).
 //
 // Conventions (identical in every GI pass): world positions are (x, z); one grid cell is
 // one world unit; the tile of a position is floor(pos); grid cell (col, row) of WallGrid
@@ -26,6 +27,8 @@ struct AoSettings {
     float power = 1.0f;    // distance-weight exponent
     float strength = 0.6f; // 0 = no darkening, 1 = full
     bool dither = false;   // 4x4 Bayer dither before 8-bit quantisation
+
+    friend bool operator==(const AoSettings&, const AoSettings&) = default;
 };
 
 // Every key of a scene's "gi" object; the defaults are the documented defaults.
@@ -49,6 +52,8 @@ struct GiSettings {
     float directional_angle_scale = 0.0f;  // 0 = full sun-angle modulation, 1 = none
     int max_lights = 256;                  // point lights kept per frame (emissives bypass it)
     int max_shadow_proxies = 64;
+
+    friend bool operator==(const GiSettings&, const GiSettings&) = default;
 };
 
 struct PointLight {
@@ -57,6 +62,8 @@ struct PointLight {
     glm::vec3 color{1.0f};    // linear RGB
     float intensity = 1.0f;   // multiplies color
     float radius = 8.0f;      // world units, > 0
+
+    friend bool operator==(const PointLight&, const PointLight&) = default;
 };
 
 struct EmissiveLight {
@@ -64,6 +71,8 @@ struct EmissiveLight {
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
     float radius = 4.0f;
+
+    friend bool operator==(const EmissiveLight&, const EmissiveLight&) = default;
 };
 
 struct DirectionalLight {
@@ -72,6 +81,8 @@ struct DirectionalLight {
     float intensity = 1.0f;
     float base_shadow_distance = 4.0f; // world units, scaled by 1 / max(|direction.y|, 0.02)
     float bounce_intensity = 0.5f;
+
+    friend bool operator==(const DirectionalLight&, const DirectionalLight&) = default;
 };
 
 enum class ProxyShape : std::uint8_t { box = 0, circle = 1 };
@@ -89,6 +100,8 @@ struct ShadowProxy {
     float penumbra_power = 1.0f;
     WidthMode width_mode = WidthMode::projected;
     PenumbraMode penumbra_mode = PenumbraMode::both;
+
+    friend bool operator==(const ShadowProxy&, const ShadowProxy&) = default;
 };
 
 struct WallGrid {
@@ -102,12 +115,16 @@ struct WallGrid {
         if (c < 0 || r < 0 || c >= width || r >= height) return false; // out of bounds is air
         return cells[std::size_t(c) + std::size_t(r) * std::size_t(width)] != 0;
     }
+
+    friend bool operator==(const WallGrid&, const WallGrid&) = default;
 };
 
 // Top-down orthographic GI window: centre and size in world units, before padding.
 struct OrthoView {
     glm::vec2 center{0.0f};
     glm::vec2 size{30.0f, 16.875f};
+
+    friend bool operator==(const OrthoView&, const OrthoView&) = default;
 };
 
 // Perspective camera whose viewport is projected on the ground plane y = 0.
@@ -116,6 +133,8 @@ struct PerspectiveCamera {
     glm::vec3 target{0.0f};
     float fov_deg = 40.0f; // vertical field of view
     float aspect = 16.0f / 9.0f;
+
+    friend bool operator==(const PerspectiveCamera&, const PerspectiveCamera&) = default;
 };
 
 using ViewSpec = std::variant<OrthoView, PerspectiveCamera>;
@@ -130,6 +149,8 @@ struct Scene {
     std::vector<EmissiveLight> emissive_lights;
     std::vector<DirectionalLight> directional_lights;
     std::vector<ShadowProxy> shadow_proxies;
+
+    friend bool operator==(const Scene&, const Scene&) = default;
 };
 
 } // namespace lantern::scene

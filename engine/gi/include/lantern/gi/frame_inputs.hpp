@@ -1,0 +1,77 @@
+// Everything one GI frame reads, in the layout the GPU passes read it: the window, the wall
+// grid, the gathered (culled and capped) lights and shadow proxies, and the settings.
+//
+// The light and proxy structs are mirrored in shaders/include/lantern/gi_types.glsl
+// (std140 / std430-compatible: vec4 members only), hence alignas(16) and static_asserts.
+#pragma once
+
+#include "lantern/gi/window.hpp"
+#include "lantern/scene/scene.hpp"
+
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace lantern::gi {
+
+struct alignas(16) GpuPointLight {
+    glm::vec4 position_radius; // xy: world x, z; z: radius; w: unused
+    glm::vec4 color;           // rgb: colour * intensity; a: unused
+};
+static_assert(sizeof(GpuPointLight) == 32);
+
+struct alignas(16) GpuDirectionalLight {
+    glm::vec4 direction_base;  // xyz: normalised travel direction; w: base shadow distance
+    glm::vec4 color_multiplier; // rgb: colour * intensity; w: 1 / max(|direction.y|, 0.02)
+    glm::vec4 bounce;           // x: bounce intensity; yzw: unused
+};
+static_assert(sizeof(GpuDirectionalLight) == 48);
+
+struct alignas(16) GpuShadowProxy {
+    glm::vec4 position_size; // xy: world x, z; zw: half extents (box) or radius in z (circle)
+    glm::vec4 lengths;       // x: max length, y: end-cap blend, z: penumbra width, w: penumbra length
+    glm::vec4 modes;         // x: penumbra power, y: shape (0 box, 1 circle), z: width mode, w: penumbra mode
+};
+static_assert(sizeof(GpuShadowProxy) == 48);
+
+// The wall grid as the passes index it: tile (x, z) is cell (x + offset.x, z + offset.y),
+// row-major; cells outside [0, width) x [0, height) are air.
+struct WallView {
+    const scene::WallGrid* grid = nullptr;
+    glm::ivec2 offset{0}; // = -grid->origin
+
+    bool is_wall(int x, int z) const {
+        const int c = x + offset.x, r = z + offset.y;
+        if (c < 0 || r < 0 || c >= grid->width || r >= grid->height) return false;
+        return grid->cells[std::size_t(c) + std::size_t(r) * std::size_t(grid->width)] != 0;
+    }
+};
+
+struct FrameInputs {
+    GiWindow window;
+    WallView walls;
+    float wall_height = 2.0f;
+    scene::GiSettings settings;
+    std::vector<GpuPointLight> point_lights; // culled to the window, capped at max_lights
+    std::vector<GpuPointLight> emissive_lights; // culled, not capped
+    std::vector<GpuDirectionalLight> directional_lights;
+    std::vector<GpuShadowProxy> proxies; // culled by reach, closest max_shadow_proxies kept
+    // Scene indices of what was kept, in the order above (tests and the HUD use them).
+    std::vector<std::uint32_t> point_light_ids, emissive_ids, proxy_ids;
+};
+
+// Distance from p to the window's world rectangle (0 inside).
+float distance_to_window(const GiWindow& window, glm::vec2 p);
+
+// Culls and packs a scene's lights and proxies for a window. Point lights and emissives are
+// kept when their radius reaches the window (even if they stand outside it); point lights
+// beyond max_lights are dropped by a stable priority (distance to the window centre, then
+// scene order). Proxies are kept when their reach, max(size) + max_length +
+// max(penumbra_width, penumbra_length), touches the window; the closest
+// max_shadow_proxies to the window centre are kept.
+FrameInputs gather_frame_inputs(const scene::Scene& scene, const GiWindow& window);
+
+GpuDirectionalLight pack_directional(const scene::DirectionalLight& light);
+
+} // namespace lantern::gi

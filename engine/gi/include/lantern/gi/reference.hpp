@@ -1,0 +1,60 @@
+// The scalar C++ reference of every GI pass: the specification the Vulkan passes are
+// compared with texel by texel. Written for clarity, one texel at a time, in the order of
+// operations the shaders use, compiled with -ffp-contract=off. The passes follow seed 000
+// (../shared/seeds/000_8b759f34ccb2f1d7.txt); docs/gi.md lists where Lantern had to decide
+// something the seed leaves open (proxy width and penumbra curves, directional proxies).
+//
+// Outputs are quantised to their storage formats as the GPU stores them (texture.hpp).
+// Rows may run in parallel on a JobSystem (pass one in RefOptions); the result is the same.
+#pragma once
+
+#include "lantern/gi/frame_inputs.hpp"
+#include "lantern/gi/texture.hpp"
+
+#include <array>
+#include <span>
+
+namespace lantern::jobs {
+class JobSystem;
+}
+
+namespace lantern::gi {
+
+enum Face : int { face_pos_x = 0, face_neg_x = 1, face_pos_z = 2, face_neg_z = 3 };
+inline constexpr const char* face_suffix[4] = {"px", "nx", "pz", "nz"};
+
+struct DirectTextures {
+    Texture direct; // rgba16f: ground direct light (point + emissive + directional)
+    Texture shadow; // rg8: R = max point-light visibility, G = max directional visibility
+    std::array<Texture, 4> wall_direct; // rgba16f per face (+X, -X, +Z, -Z), wall texels only
+};
+
+struct RefOptions {
+    jobs::JobSystem* jobs = nullptr; // rows in parallel when set
+};
+
+Texture reference_conduction(const FrameInputs& in, const RefOptions& options = {});
+Texture reference_ao(const FrameInputs& in, const RefOptions& options = {});
+// Point and emissive lights (the seed's "DDA" pass).
+DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options = {});
+// Adds the directional lights into `textures` (the seed's "DDA_Directional" pass).
+void reference_directional(const FrameInputs& in, DirectTextures& textures, const RefOptions& options = {});
+
+// ---- building blocks, exposed for the edge-case tests
+
+// Amanatides-Woo traversal from the light to the pixel against the wall grid: 0 when a
+// wall cell (or a diagonal step between two wall cells) blocks the segment, else 1.
+float shadow_dda(const WallView& walls, glm::vec2 light, glm::vec2 pixel, float radius);
+// Traversal from the pixel towards the sun with the wall-height test: 0 when blocked.
+float directional_shadow_dda(const WallView& walls, glm::vec2 pixel, glm::vec3 light_dir, float max_distance,
+                             float wall_height);
+float penumbra_factor(float distance, float edge, float width, float power, int mode);
+float proxy_width(const GpuShadowProxy& proxy, glm::vec2 perp);
+float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 light, glm::vec2 pixel);
+float directional_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 pixel, glm::vec3 light_dir);
+float light_falloff(float distance, float radius, float softness);
+glm::vec4 wall_face_mask(const WallView& walls, glm::ivec2 cell);
+glm::vec4 wall_facing(glm::vec2 dir_to_light);
+float bayer4(int x, int y); // (M[y%4][x%4] + 0.5) / 16
+
+} // namespace lantern::gi

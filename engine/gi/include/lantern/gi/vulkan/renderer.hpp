@@ -1,0 +1,141 @@
+// The Vulkan GI backend: persistent GI textures on a gpu::Device and one recording function
+// per pass. The frame systems (and lantern-render) decide which passes to record; the
+// renderer records them with timestamps and keeps the results for the next frame.
+//
+// Storage (docs/gi.md, "Memory layout"): every GI texture is a buffer of pitch x height
+// texels (pitch = width rounded up to 4) written by the shaders as 32/64-bit words and read
+// back through uniform texel buffer views. Each invocation computes a block of 4 x block_h
+// texels. Chosen by measurement on lavapipe: see docs/gi.md and lantern-bench-gi.
+//
+// Threads: a Renderer belongs to the submission thread of its Device.
+#pragma once
+
+#include "lantern/core/result.hpp"
+#include "lantern/gi/passes.hpp"
+#include "lantern/gi/texture.hpp"
+#include "lantern/gpu/device.hpp"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lantern::gi::vk {
+
+enum class Tex : std::uint8_t {
+    conduction,
+    ao,
+    direct,
+    shadow,
+    wall_direct_px,
+    wall_direct_nx,
+    wall_direct_pz,
+    wall_direct_nz,
+    emission,
+    heat_a,
+    heat_b,
+    indirect,
+    blur_temp,
+    wall_indirect_px,
+    wall_indirect_nx,
+    wall_indirect_pz,
+    wall_indirect_nz,
+    lit, // rgba8 sRGB, one 32-bit word per texel
+    count
+};
+inline constexpr int tex_count = int(Tex::count);
+const char* tex_name(Tex t); // the --dump file stem ("wall_direct_px", ...)
+
+struct RendererOptions {
+    std::uint32_t block_h = 0;      // texel rows per invocation; 0 = by device type
+    std::uint32_t group_x = 0;      // workgroup size in blocks; 0 = by device type
+    std::uint32_t group_y = 0;
+};
+
+struct PassTiming {
+    Pass pass;
+    double gpu_ms = 0.0;
+    gpu::TimestampRegion region; // raw and CPU-clock times (for the profiler's GPU lane)
+};
+
+class Renderer {
+  public:
+    static Result<std::unique_ptr<Renderer>> create(gpu::Device& device, const RendererOptions& options = {});
+    ~Renderer();
+
+    gpu::Device& device() { return device_; }
+
+    // (Re)allocates the textures a frame with this window and plan needs (same size: kept).
+    // An error when the window does not fit the device's buffer limits.
+    Result<void> prepare(const FrameInputs& in, const PassPlan& plan);
+    // Uploads the wall grid (whole) and the light/proxy data of `in`, recorded into `cmd`.
+    void upload_walls(gpu::CommandList& cmd, const scene::WallGrid& grid);
+    void upload_lights(gpu::CommandList& cmd, const FrameInputs& in);
+
+    // Records one pass (with its timestamps and the barriers it needs after it).
+    void record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, const PassPlan& plan);
+    // Records every pass of `plan` in pipeline order; passes left out clear what they own
+    // when later passes read it.
+    void record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
+
+    // Timestamps: begin/end a frame's query set around record calls.
+    void begin_frame(gpu::CommandList& cmd);
+    // Pass durations of the newest completed frame (non-blocking); empty when none yet.
+    std::vector<PassTiming> completed_timings();
+    // Blocks until the frame begun last completed, then returns its pass durations (tools).
+    std::vector<PassTiming> wait_timings();
+
+    bool has(Tex t) const { return bool(textures_[int(t)].buffer); }
+    // Blocking read back into the C++ texture representation (tests and tools).
+    Texture read_back(Tex t);
+    Texture read_back(Tex t, const char* name);
+    // The lit image as RGB8 (after Pass::lit ran).
+    std::vector<std::uint8_t> read_back_lit_rgb();
+
+    std::uint32_t block_h() const { return block_h_; }
+
+  private:
+    struct GpuTexture {
+        gpu::Buffer buffer;
+        gpu::BufferView view;
+        TexFormat format = TexFormat::rgba16f;
+        int width = 0, height = 0, pitch = 0;
+        bool rgba8 = false;
+    };
+    struct Pipelines;
+    struct QuerySet;
+    explicit Renderer(gpu::Device& device);
+
+    void ensure_texture(Tex t, TexFormat format, int width, int height, bool rgba8 = false);
+    void drop_texture(Tex t);
+    void clear(gpu::CommandList& cmd, Tex t);
+    struct PassParams;
+    PassParams params(const FrameInputs& in, int width, int height, int resolution) const;
+    void dispatch_blocks(gpu::CommandList& cmd, int width, int height);
+
+    std::vector<PassTiming> collect_timings(const QuerySet& set, const gpu::TimestampResult& result);
+    void record_conduction(gpu::CommandList& cmd, const FrameInputs& in);
+    void record_ao(gpu::CommandList& cmd, const FrameInputs& in);
+    void record_direct(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
+    void record_directional(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
+    void record_emission(gpu::CommandList& cmd, const FrameInputs& in);
+    void record_heat(gpu::CommandList& cmd, const FrameInputs& in);
+    void record_blur(gpu::CommandList& cmd, const FrameInputs& in);
+    void record_wall_indirect(gpu::CommandList& cmd, const FrameInputs& in);
+    void record_lit(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
+
+    gpu::Device& device_;
+    std::unique_ptr<Pipelines> pipelines_;
+    std::array<GpuTexture, tex_count> textures_;
+    gpu::Buffer walls_;
+    gpu::BufferView walls_view_;
+    int grid_width_ = 0, grid_height_ = 0;
+    gpu::Buffer lights_, proxies_, suns_; // uniform buffers (upload memory)
+    std::vector<QuerySet> queries_;
+    std::vector<PassTiming> latest_timings_;
+    int frame_slot_ = -1;
+    std::uint32_t block_h_ = 4, group_x_ = 8, group_y_ = 8;
+};
+
+} // namespace lantern::gi::vk

@@ -1,0 +1,56 @@
+// The GI window: the world rectangle the GI textures cover, phase-locked to whole tiles.
+//
+// Conventions (every pass, C++ and GLSL): CameraView = (min_x, min_z, width, height) in
+// world units; texel (i, j) covers [min_x + i/res, min_x + (i+1)/res) x [min_z + j/res, ...);
+// its centre is (floor(p * res) + 0.5) / res for any p inside it; row 0 is at min_z.
+// min_x and min_z are whole tiles (phase lock), and width/height are the texture size
+// divided by res, so the texel grid lines up with tile boundaries exactly.
+#pragma once
+
+#include "lantern/scene/scene.hpp"
+
+#include <glm/vec2.hpp>
+
+#include <optional>
+#include <string>
+
+namespace lantern::gi {
+
+struct CameraView {
+    float min_x = 0.0f, min_z = 0.0f, width = 0.0f, height = 0.0f;
+    friend bool operator==(const CameraView&, const CameraView&) = default;
+};
+
+struct GiWindow {
+    CameraView view;
+    int resolution = 1; // texels per world unit
+    int width = 0;      // texels
+    int height = 0;
+
+    glm::vec2 texel_center(int i, int j) const {
+        return {view.min_x + (float(i) + 0.5f) / float(resolution), view.min_z + (float(j) + 0.5f) / float(resolution)};
+    }
+    glm::vec2 center() const { return {view.min_x + view.width * 0.5f, view.min_z + view.height * 0.5f}; }
+    friend bool operator==(const GiWindow&, const GiWindow&) = default;
+};
+
+inline constexpr int min_texture_size = 64;
+
+// The visible ground rectangle (min corner and size, world units) before padding, or
+// nullopt when it cannot be computed: a corner ray parallel to the ground (|dir.y| < 1e-4),
+// hitting it behind the camera, or any non-finite value. `reason` says which.
+struct VisibleArea {
+    glm::vec2 min{0.0f};
+    glm::vec2 size{0.0f};
+};
+std::optional<VisibleArea> visible_area(const scene::ViewSpec& view, std::string* reason = nullptr);
+
+// Pads the visible area around its centre, phase-locks the origin to whole tiles and sizes
+// the textures: ceil(size * res), snapped up to a multiple of res, at least 64 texels.
+// nullopt (no GI this frame, never a crash) when the visible area is unavailable or the
+// result is not finite. Texture sizes above max_texels per side are reported through
+// `reason` too (the caller decides whether that is an error).
+std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float padding, int resolution,
+                                       std::string* reason = nullptr, int max_texels = 1 << 16);
+
+} // namespace lantern::gi

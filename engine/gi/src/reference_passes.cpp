@@ -1,0 +1,240 @@
+// The reference passes: one function per texel, run over every texel of the window.
+#include "lantern/gi/reference.hpp"
+
+#include "lantern/jobs/job_system.hpp"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lantern::gi {
+namespace {
+
+float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
+
+template <typename F>
+void for_each_row(const GiWindow& w, const RefOptions& options, F&& row) {
+    if (options.jobs) {
+        options.jobs->parallel_for("gi.reference", 0, std::uint32_t(w.height), 8,
+                                   [&](std::uint32_t b, std::uint32_t e, std::uint32_t) {
+                                       for (std::uint32_t y = b; y < e; ++y) row(int(y));
+                                   });
+    } else {
+        for (int y = 0; y < w.height; ++y) row(y);
+    }
+}
+
+glm::ivec2 tile_of(glm::vec2 p) { return {int(std::floor(p.x)), int(std::floor(p.y))}; }
+
+// Where a wall face's shadow ray ends (or starts, for the sun): just outside the face, at
+// the texel's position along it.
+glm::vec2 face_position(int face, glm::ivec2 cell, glm::vec2 p) {
+    constexpr float face_eps = 1e-3f;
+    switch (face) {
+    case face_pos_x: return {float(cell.x) + 1.0f + face_eps, p.y};
+    case face_neg_x: return {float(cell.x) - face_eps, p.y};
+    case face_pos_z: return {p.x, float(cell.y) + 1.0f + face_eps};
+    default: return {p.x, float(cell.y) - face_eps};
+    }
+}
+
+std::span<const GpuShadowProxy> proxies_of(const FrameInputs& in) { return in.proxies; }
+
+struct TexelLight {
+    glm::vec3 color{0.0f};
+    float shadow = 0.0f;
+    glm::vec3 face[4] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+};
+
+// Point and emissive lights at one wall texel: per-face light, each face shadowed by its
+// own traversal to just outside it.
+void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
+    const glm::vec4 mask = wall_face_mask(in.walls, cell);
+    const float softness = in.settings.light_softness;
+    auto face_weights = [&](glm::vec2 light_pos) {
+        glm::vec2 to_light = light_pos - p;
+        const float inv_len = 1.0f / std::sqrt(std::max(glm::dot(to_light, to_light), 1e-6f));
+        return mask * wall_facing(to_light * inv_len);
+    };
+    for (const GpuPointLight& l : in.point_lights) {
+        const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
+        const float radius = l.position_radius.z;
+        const float dist = glm::distance(p, pos);
+        if (dist > radius) continue;
+        const glm::vec4 weight = face_weights(pos);
+        if (weight == glm::vec4(0.0f)) continue;
+        const glm::vec3 contribution = glm::vec3(l.color) * light_falloff(dist, radius, softness);
+        for (int f = 0; f < 4; ++f) {
+            if (!(weight[f] > 0.0f)) continue;
+            const glm::vec2 target = face_position(f, cell, p);
+            const float shadow = std::min(shadow_dda(in.walls, pos, target, radius),
+                                          point_proxy_shadow(proxies_of(in), pos, target));
+            out.face[f] += contribution * (weight[f] * shadow);
+        }
+    }
+    for (const GpuPointLight& l : in.emissive_lights) {
+        const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
+        const float radius = l.position_radius.z;
+        const float dist = glm::distance(p, pos);
+        if (dist > radius) continue;
+        const glm::vec3 contribution = glm::vec3(l.color) * light_falloff(dist, radius, softness);
+        const glm::vec4 weight = face_weights(pos);
+        for (int f = 0; f < 4; ++f) out.face[f] += contribution * weight[f];
+    }
+}
+
+void ground_texel(const FrameInputs& in, glm::vec2 p, TexelLight& out) {
+    const float softness = in.settings.light_softness;
+    for (const GpuPointLight& l : in.point_lights) {
+        const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
+        const float radius = l.position_radius.z;
+        const float dist = glm::distance(p, pos);
+        if (dist > radius) continue;
+        const float shadow =
+            std::min(shadow_dda(in.walls, pos, p, radius), point_proxy_shadow(proxies_of(in), pos, p));
+        out.shadow = std::max(out.shadow, shadow);
+        out.color += glm::vec3(l.color) * light_falloff(dist, radius, softness) * shadow;
+    }
+    for (const GpuPointLight& l : in.emissive_lights) {
+        const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
+        const float radius = l.position_radius.z;
+        const float dist = glm::distance(p, pos);
+        if (dist > radius) continue;
+        out.color += glm::vec3(l.color) * light_falloff(dist, radius, softness);
+    }
+}
+
+float sun_angle(const GpuDirectionalLight& sun, float angle_scale) {
+    return glm::mix(saturate(-sun.direction_base.y * 2.0f), 1.0f, angle_scale);
+}
+
+float sun_visibility(const FrameInputs& in, const GpuDirectionalLight& sun, glm::vec2 from) {
+    const glm::vec3 dir(sun.direction_base);
+    if (dir.y >= 0.0f) return 0.0f; // below the horizon
+    const float max_distance = sun.direction_base.w * sun.color_multiplier.w;
+    const float grid = directional_shadow_dda(in.walls, from, dir, max_distance, in.wall_height);
+    return std::min(grid, directional_proxy_shadow(proxies_of(in), from, dir));
+}
+
+void directional_texel(const FrameInputs& in, bool wall, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
+    const glm::vec4 mask = wall ? wall_face_mask(in.walls, cell) : glm::vec4(0.0f);
+    for (const GpuDirectionalLight& sun : in.directional_lights) {
+        const glm::vec3 color = glm::vec3(sun.color_multiplier) * sun_angle(sun, in.settings.directional_angle_scale);
+        if (!wall) {
+            const float visibility = sun_visibility(in, sun, p);
+            out.shadow = std::max(out.shadow, visibility);
+            out.color += color * visibility;
+            continue;
+        }
+        const glm::vec2 to_sun(-sun.direction_base.x, -sun.direction_base.z);
+        const float len = std::sqrt(to_sun.x * to_sun.x + to_sun.y * to_sun.y);
+        if (len < 1e-4f) continue; // overhead sun: no face faces it
+        const glm::vec4 weight = mask * wall_facing(to_sun / len);
+        for (int f = 0; f < 4; ++f) {
+            if (!(weight[f] > 0.0f)) continue;
+            out.face[f] += color * (weight[f] * sun_visibility(in, sun, face_position(f, cell, p)));
+        }
+    }
+}
+
+void store_rgb(Texture& t, int x, int y, glm::vec3 rgb, float a) {
+    const float v[4] = {rgb.r, rgb.g, rgb.b, a};
+    t.store(x, y, v);
+}
+
+} // namespace
+
+Texture reference_conduction(const FrameInputs& in, const RefOptions& options) {
+    const GiWindow& w = in.window;
+    Texture t("conduction", TexFormat::r8, w.width, w.height);
+    for_each_row(w, options, [&](int y) {
+        for (int x = 0; x < w.width; ++x) {
+            const glm::ivec2 tile = tile_of(w.texel_center(x, y));
+            const float v = in.walls.is_wall(tile.x, tile.y) ? 0.0f : 1.0f;
+            t.store(x, y, &v);
+        }
+    });
+    return t;
+}
+
+Texture reference_ao(const FrameInputs& in, const RefOptions& options) {
+    const GiWindow& w = in.window;
+    const scene::AoSettings& ao = in.settings.ao;
+    Texture t("ao", TexFormat::r8, w.width, w.height);
+    const float radius = std::max(ao.radius, 0.01f);
+    const int range = int(std::ceil(radius));
+    const float power = std::max(ao.power, 0.01f);
+    for_each_row(w, options, [&](int y) {
+        for (int x = 0; x < w.width; ++x) {
+            const glm::vec2 p = w.texel_center(x, y);
+            const glm::ivec2 base = tile_of(p);
+            float occluded = 0.0f, total = 0.0f;
+            for (int dy = -range; dy <= range; ++dy) {
+                for (int dx = -range; dx <= range; ++dx) {
+                    const glm::vec2 center(float(base.x + dx) + 0.5f, float(base.y + dy) + 0.5f);
+                    const float dist = glm::distance(p, center);
+                    if (dist > radius) continue;
+                    const float weight = std::pow(1.0f - saturate(dist / radius), power);
+                    total += weight;
+                    if (in.walls.is_wall(base.x + dx, base.y + dy)) occluded += weight;
+                }
+            }
+            const float occlusion = total > 0.0f ? occluded / total : 0.0f;
+            float value = 1.0f - saturate(ao.strength) * occlusion;
+            if (ao.dither) value += (bayer4(x, y) - 0.5f) / 255.0f;
+            t.store(x, y, &value);
+        }
+    });
+    return t;
+}
+
+DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options) {
+    const GiWindow& w = in.window;
+    DirectTextures out{Texture("direct", TexFormat::rgba16f, w.width, w.height),
+                       Texture("shadow", TexFormat::rg8, w.width, w.height),
+                       {}};
+    for (int f = 0; f < 4; ++f)
+        out.wall_direct[f] = Texture(std::string("wall_direct_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
+    for_each_row(w, options, [&](int y) {
+        for (int x = 0; x < w.width; ++x) {
+            const glm::vec2 p = w.texel_center(x, y);
+            const glm::ivec2 cell = tile_of(p);
+            const bool wall = in.walls.is_wall(cell.x, cell.y);
+            TexelLight light;
+            if (wall)
+                wall_texel(in, cell, p, light);
+            else
+                ground_texel(in, p, light);
+            store_rgb(out.direct, x, y, light.color, 0.0f);
+            const float shadow[2] = {wall ? 0.0f : light.shadow, 0.0f};
+            out.shadow.store(x, y, shadow);
+            for (int f = 0; f < 4; ++f) store_rgb(out.wall_direct[f], x, y, light.face[f], 1.0f);
+        }
+    });
+    return out;
+}
+
+void reference_directional(const FrameInputs& in, DirectTextures& t, const RefOptions& options) {
+    const GiWindow& w = in.window;
+    for_each_row(w, options, [&](int y) {
+        for (int x = 0; x < w.width; ++x) {
+            const glm::vec2 p = w.texel_center(x, y);
+            const glm::ivec2 cell = tile_of(p);
+            const bool wall = in.walls.is_wall(cell.x, cell.y);
+            TexelLight sun;
+            directional_texel(in, wall, cell, p, sun);
+            const float* d = t.direct.at(x, y);
+            store_rgb(t.direct, x, y, glm::vec3(d[0], d[1], d[2]) + sun.color, d[3]);
+            const float shadow[2] = {t.shadow.at(x, y)[0], wall ? 0.0f : sun.shadow};
+            t.shadow.store(x, y, shadow);
+            for (int f = 0; f < 4; ++f) {
+                const float* face = t.wall_direct[f].at(x, y);
+                store_rgb(t.wall_direct[f], x, y, glm::vec3(face[0], face[1], face[2]) + sun.face[f], face[3]);
+            }
+        }
+    });
+}
+
+} // namespace lantern::gi

@@ -1,0 +1,213 @@
+// Shadow building blocks of the reference: grid traversals, shadow proxies, falloff and
+// wall-face weights. Constants and control flow follow seed 000 exactly.
+#include "lantern/gi/reference.hpp"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lantern::gi {
+namespace {
+
+constexpr float ray_bias = 1e-4f;    // keeps floor() stable on grid lines
+constexpr float dir_eps = 1e-6f;     // near-zero direction component
+constexpr float corner_eps = 1e-5f;  // "both boundaries at once" tolerance
+constexpr float big = 1e30f;
+
+float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
+
+// Distance along the ray to the first x (or z) cell boundary.
+float first_boundary(float start, float dir, int step) {
+    if (std::abs(dir) < dir_eps) return big;
+    const float cell = std::floor(start);
+    return step > 0 ? (cell + 1.0f - start) / dir : (start - cell) / -dir;
+}
+
+float boundary_step(float dir) { return std::abs(dir) < dir_eps ? big : std::abs(1.0f / dir); }
+
+int sign_of(float v) { return v > 0.0f ? 1 : v < 0.0f ? -1 : 0; }
+
+} // namespace
+
+float shadow_dda(const WallView& walls, glm::vec2 light, glm::vec2 pixel, float radius) {
+    const glm::vec2 ray = pixel - light;
+    float ray_length = std::sqrt(ray.x * ray.x + ray.y * ray.y);
+    if (ray_length < 1e-4f) return 1.0f;
+    const glm::vec2 dir = ray / ray_length;
+    const glm::vec2 start = light + dir * ray_bias;
+    const glm::vec2 end = pixel - dir * ray_bias;
+    ray_length = std::max(ray_length - 2.0f * ray_bias, 0.0f);
+
+    glm::ivec2 cell(int(std::floor(start.x)), int(std::floor(start.y)));
+    const glm::ivec2 end_cell(int(std::floor(end.x)), int(std::floor(end.y)));
+    const glm::ivec2 step(sign_of(dir.x), sign_of(dir.y));
+    glm::vec2 t_max(first_boundary(start.x, dir.x, step.x), first_boundary(start.y, dir.y, step.y));
+    const glm::vec2 t_delta(boundary_step(dir.x), boundary_step(dir.y));
+    const int max_steps = std::max(1, int(std::ceil(radius * 2.0f)) + 2);
+
+    for (int i = 0; i < max_steps; ++i) {
+        if (walls.is_wall(cell.x, cell.y)) return 0.0f;
+        if (cell == end_cell) return 1.0f;
+        float traveled;
+        if (t_max.x < t_max.y - corner_eps) {
+            traveled = t_max.x;
+            t_max.x += t_delta.x;
+            cell.x += step.x;
+        } else if (t_max.y < t_max.x - corner_eps) {
+            traveled = t_max.y;
+            t_max.y += t_delta.y;
+            cell.y += step.y;
+        } else {
+            // Through a grid corner: blocked only if both side cells are walls.
+            traveled = t_max.x;
+            if (walls.is_wall(cell.x + step.x, cell.y) && walls.is_wall(cell.x, cell.y + step.y)) return 0.0f;
+            t_max += t_delta;
+            cell += step;
+        }
+        if (traveled > ray_length) return 1.0f;
+    }
+    return 1.0f;
+}
+
+namespace {
+
+bool blocks_directional_cell(const WallView& walls, glm::ivec2 cell, glm::vec2 start, glm::vec3 to_sun,
+                             float to_sun_xz_length, float wall_height) {
+    if (!walls.is_wall(cell.x, cell.y)) return false;
+    const glm::vec2 d = glm::vec2(cell) + 0.5f - start;
+    const float distance_to_wall = std::sqrt(d.x * d.x + d.y * d.y);
+    if (std::abs(to_sun.y) > 0.001f && to_sun_xz_length > 1e-4f) {
+        const float vertical_rate = to_sun.y / to_sun_xz_length;
+        return distance_to_wall * vertical_rate < wall_height;
+    }
+    return true;
+}
+
+bool in_grid(const WallView& walls, glm::ivec2 cell) {
+    const int c = cell.x + walls.offset.x, r = cell.y + walls.offset.y;
+    return c >= 0 && r >= 0 && c < walls.grid->width && r < walls.grid->height;
+}
+
+} // namespace
+
+float directional_shadow_dda(const WallView& walls, glm::vec2 pixel, glm::vec3 light_dir, float max_distance,
+                             float wall_height) {
+    const glm::vec3 to_sun = -light_dir;
+    const float xz_length = std::sqrt(to_sun.x * to_sun.x + to_sun.z * to_sun.z);
+    if (xz_length < 1e-4f) return 1.0f; // sun overhead: nothing casts a grid shadow
+    const glm::vec2 dir(to_sun.x / xz_length, to_sun.z / xz_length);
+    const glm::vec2 start = pixel + dir * ray_bias;
+    glm::ivec2 cell(int(std::floor(start.x)), int(std::floor(start.y)));
+    const glm::ivec2 step(sign_of(dir.x), sign_of(dir.y));
+    glm::vec2 t_max(first_boundary(start.x, dir.x, step.x), first_boundary(start.y, dir.y, step.y));
+    const glm::vec2 t_delta(boundary_step(dir.x), boundary_step(dir.y));
+    const int max_steps = 2 * (walls.grid->width + walls.grid->height);
+
+    for (int i = 0; i < max_steps; ++i) {
+        if (blocks_directional_cell(walls, cell, start, to_sun, xz_length, wall_height)) return 0.0f;
+        if (t_max.x < t_max.y) {
+            t_max.x += t_delta.x;
+            cell.x += step.x;
+        } else {
+            t_max.y += t_delta.y;
+            cell.y += step.y;
+        }
+        if (std::min(t_max.x, t_max.y) > max_distance) return 1.0f;
+        if (!in_grid(walls, cell)) return 1.0f;
+    }
+    return 1.0f;
+}
+
+float penumbra_factor(float distance, float edge, float width, float power, int mode) {
+    if (!(width > 0.0f)) return distance <= edge ? 1.0f : 0.0f;
+    // The soft band [lo, lo + width] runs from full occlusion to none.
+    const float lo = mode == 0 ? edge - width : mode == 1 ? edge : edge - 0.5f * width;
+    const float t = saturate((lo + width - distance) / width);
+    return std::pow(t, power);
+}
+
+float proxy_width(const GpuShadowProxy& p, glm::vec2 perp) {
+    const bool circle = p.modes.y > 0.5f;
+    if (circle) return p.position_size.z;
+    const glm::vec2 half(p.position_size.z, p.position_size.w);
+    if (p.modes.z > 0.5f) return std::max(half.x, half.y); // max axis
+    return std::abs(perp.x) * half.x + std::abs(perp.y) * half.y; // projected
+}
+
+namespace {
+
+// Occlusion of one proxy for light travelling along `dir_shadow` past it.
+float proxy_occlusion(const GpuShadowProxy& p, glm::vec2 pixel, glm::vec2 dir_shadow) {
+    const glm::vec2 perp(-dir_shadow.y, dir_shadow.x);
+    const glm::vec2 position(p.position_size.x, p.position_size.y);
+    const glm::vec2 to_pixel = pixel - position;
+    const float along = glm::dot(to_pixel, dir_shadow);
+    if (along <= 0.0f) return 0.0f;
+    const float max_length = p.lengths.x, pen_width = p.lengths.z, pen_length = p.lengths.w;
+    if (along > max_length + pen_length) return 0.0f;
+    const float perp_dist = std::abs(glm::dot(to_pixel, perp));
+    const float power = p.modes.x;
+    const int mode = int(p.modes.w + 0.5f);
+    const float edge = penumbra_factor(perp_dist, proxy_width(p, perp), pen_width, power, mode);
+    const float len = penumbra_factor(along, max_length, pen_length, power, mode);
+    return edge * len;
+}
+
+} // namespace
+
+float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 light, glm::vec2 pixel) {
+    if (proxies.empty()) return 1.0f;
+    const glm::vec2 ray = pixel - light;
+    const float ray_len = std::sqrt(ray.x * ray.x + ray.y * ray.y);
+    if (ray_len < 1e-4f) return 1.0f;
+    const glm::vec2 dir = ray / ray_len;
+    float shadow = 1.0f;
+    for (const GpuShadowProxy& p : proxies) {
+        const glm::vec2 to_proxy = glm::vec2(p.position_size.x, p.position_size.y) - light;
+        const float proxy_dist = std::sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
+        if (proxy_dist < 1e-4f) continue;
+        const glm::vec2 dir_flat = to_proxy / proxy_dist;
+        // End-cap blend: rotate the shadow axis from the pixel ray towards the proxy axis.
+        const glm::vec2 blended = glm::mix(dir, dir_flat, saturate(p.lengths.y));
+        const float blended_len = std::sqrt(blended.x * blended.x + blended.y * blended.y);
+        const glm::vec2 dir_shadow = blended_len > 1e-6f ? blended / blended_len : dir_flat;
+        if (glm::dot(to_proxy, dir_shadow) <= 0.0f) continue; // proxy behind the light
+        shadow = std::min(shadow, 1.0f - proxy_occlusion(p, pixel, dir_shadow));
+        if (shadow <= 0.001f) break;
+    }
+    return shadow;
+}
+
+float directional_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 pixel, glm::vec3 light_dir) {
+    const float xz_length = std::sqrt(light_dir.x * light_dir.x + light_dir.z * light_dir.z);
+    if (proxies.empty() || xz_length < 1e-4f) return 1.0f;
+    const glm::vec2 travel(light_dir.x / xz_length, light_dir.z / xz_length);
+    float shadow = 1.0f;
+    for (const GpuShadowProxy& p : proxies) {
+        shadow = std::min(shadow, 1.0f - proxy_occlusion(p, pixel, travel));
+        if (shadow <= 0.001f) break;
+    }
+    return shadow;
+}
+
+float light_falloff(float distance, float radius, float softness) {
+    return std::pow(1.0f - saturate(distance / radius), softness);
+}
+
+glm::vec4 wall_face_mask(const WallView& walls, glm::ivec2 c) {
+    return glm::vec4(walls.is_wall(c.x + 1, c.y) ? 0.0f : 1.0f, walls.is_wall(c.x - 1, c.y) ? 0.0f : 1.0f,
+                     walls.is_wall(c.x, c.y + 1) ? 0.0f : 1.0f, walls.is_wall(c.x, c.y - 1) ? 0.0f : 1.0f);
+}
+
+glm::vec4 wall_facing(glm::vec2 d) {
+    return glm::vec4(saturate(d.x), saturate(-d.x), saturate(d.y), saturate(-d.y));
+}
+
+float bayer4(int x, int y) {
+    static constexpr int m[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+    return (float(m[y & 3][x & 3]) + 0.5f) / 16.0f;
+}
+
+} // namespace lantern::gi

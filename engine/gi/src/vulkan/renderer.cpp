@@ -1,0 +1,595 @@
+#include "lantern/gi/vulkan/renderer.hpp"
+
+#include "lantern/gi/reference_indirect.hpp"
+#include "lantern_gi_shaders.hpp"
+#include "vulkan/pass_params.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <span>
+#include <tuple>
+
+namespace lantern::gi::vk {
+namespace {
+
+using gpu::BindingType;
+
+constexpr int num_query_sets = 3; // frames in flight + one being recorded
+
+int pitch_of(int width) { return (width + 3) & ~3; }
+
+VkFormat view_format(TexFormat f, bool rgba8) {
+    if (rgba8) return VK_FORMAT_R8G8B8A8_UNORM;
+    switch (f) {
+    case TexFormat::r8: return VK_FORMAT_R8_UNORM;
+    case TexFormat::rg8: return VK_FORMAT_R8G8_UNORM;
+    case TexFormat::rgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    }
+    return VK_FORMAT_UNDEFINED;
+}
+
+// Binding lists of the shaders (set 0, dense).
+const std::vector<BindingType>& bindings_of(const char* shader) {
+    using B = BindingType;
+    static const std::map<std::string, std::vector<BindingType>> table = {
+        {"gi_conduction.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::storage_buffer}},
+        {"gi_ao.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::storage_buffer}},
+        {"gi_direct.comp",
+         {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::storage_buffer, B::storage_buffer,
+          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer}},
+        {"gi_directional.comp",
+         {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::uniform_texel_buffer,
+          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
+          B::uniform_texel_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
+          B::storage_buffer, B::storage_buffer}},
+        {"gi_emission.comp", {B::uniform_texel_buffer, B::storage_buffer}},
+        {"gi_heat_seed.comp", {B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
+        {"gi_heat.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
+        {"gi_upsample.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
+        {"gi_blur.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
+        {"gi_wall_indirect.comp",
+         {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer, B::storage_buffer,
+          B::storage_buffer, B::storage_buffer}},
+        {"gi_lit.comp",
+         {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::uniform_texel_buffer,
+          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
+          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
+          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
+        {"gi_copy.comp", {B::uniform_texel_buffer, B::storage_buffer}},
+    };
+    return table.at(shader);
+}
+
+std::span<const std::byte> bytes_of(const void* data, std::size_t size) {
+    return {static_cast<const std::byte*>(data), size};
+}
+
+} // namespace
+
+const char* tex_name(Tex t) {
+    static constexpr const char* names[tex_count] = {
+        "conduction",       "ao",           "direct",           "shadow",           "wall_direct_px",
+        "wall_direct_nx",   "wall_direct_pz", "wall_direct_nz", "emission",         "heat_a",
+        "heat_b",           "indirect",     "blur_temp",        "wall_indirect_px", "wall_indirect_nx",
+        "wall_indirect_pz", "wall_indirect_nz", "lit"};
+    return names[int(t)];
+}
+
+// Pipelines by (shader, specialisation), created on first use and kept.
+struct Renderer::Pipelines {
+    gpu::Device* device = nullptr;
+    std::map<std::tuple<std::string, bool, bool, bool, bool>, gpu::ComputePipeline> cache;
+
+    const gpu::ComputePipeline& get(const char* shader, std::uint32_t block_h, std::uint32_t gx, std::uint32_t gy,
+                                    bool proxies = true, bool walls = true, bool per_channel = true,
+                                    bool segment_check = true) {
+        auto key = std::make_tuple(std::string(shader), proxies, walls, per_channel, segment_check);
+        auto it = cache.find(key);
+        if (it != cache.end()) return it->second;
+        gpu::ComputePipelineDesc desc;
+        desc.spirv = lantern_gi_shaders_spirv(shader);
+        LANTERN_VERIFY(!desc.spirv.empty(), "GI shader missing from lantern_gi_shaders");
+        desc.bindings = bindings_of(shader);
+        desc.specialization = {{spec_block_h, block_h},       {spec_group_x, gx},
+                               {spec_group_y, gy},            {spec_has_proxies, proxies ? 1u : 0u},
+                               {spec_has_walls, walls ? 1u : 0u}, {spec_per_channel, per_channel ? 1u : 0u},
+                               {spec_segment_check, segment_check ? 1u : 0u}};
+        if (std::string(shader) == "gi_direct.comp") desc.specialization.push_back({spec_max_lights, max_gpu_lights});
+        desc.push_constant_size = sizeof(GiPassParams);
+        desc.name = shader;
+        return cache.emplace(key, device->create_compute_pipeline(desc)).first->second;
+    }
+};
+
+struct Renderer::QuerySet {
+    gpu::TimestampQueries queries;
+    std::vector<Pass> passes; // region i measured passes[i]
+    bool pending = false;     // recorded, not yet read
+};
+
+struct Renderer::PassParams : GiPassParams {};
+
+Renderer::Renderer(gpu::Device& device) : device_(device), pipelines_(new Pipelines) { pipelines_->device = &device; }
+Renderer::~Renderer() = default;
+
+Result<std::unique_ptr<Renderer>> Renderer::create(gpu::Device& device, const RendererOptions& options) {
+    if (!device.supports_buffer_format(VK_FORMAT_R8_UINT, VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
+        return make_error("GI backend: " + device.name() + " cannot read R8_UINT uniform texel buffers", 1);
+    std::unique_ptr<Renderer> r(new Renderer(device));
+    // Defaults measured on lavapipe (docs/gi.md): CPU drivers like a block of 4x4 texels
+    // per invocation; GPUs get one row of 4 and wider groups.
+    const bool cpu = device.type() == gpu::DeviceType::cpu;
+    r->block_h_ = options.block_h ? options.block_h : (cpu ? 4u : 1u);
+    r->group_x_ = options.group_x ? options.group_x : (cpu ? 8u : 16u);
+    r->group_y_ = options.group_y ? options.group_y : (cpu ? 8u : 8u);
+    if (device.capabilities().timestamps) {
+        for (int i = 0; i < num_query_sets; ++i) {
+            auto q = device.create_timestamp_queries(pass_count + 8, "gi passes");
+            if (!q) return q.error();
+            r->queries_.push_back(QuerySet{std::move(q.value()), {}, false});
+        }
+    }
+    gpu::BufferDesc ubo;
+    ubo.usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+    ubo.size = sizeof(GpuPointLight) * max_gpu_lights;
+    ubo.name = "gi lights";
+    r->lights_ = device.create_buffer(ubo);
+    ubo.size = sizeof(GpuShadowProxy) * max_gpu_proxies;
+    ubo.name = "gi proxies";
+    r->proxies_ = device.create_buffer(ubo);
+    ubo.size = sizeof(GpuDirectionalLight) * max_gpu_suns;
+    ubo.name = "gi suns";
+    r->suns_ = device.create_buffer(ubo);
+    return r;
+}
+
+void Renderer::ensure_texture(Tex t, TexFormat format, int width, int height, bool rgba8) {
+    GpuTexture& g = textures_[int(t)];
+    if (g.buffer && g.width == width && g.height == height && g.format == format) return;
+    g = GpuTexture{};
+    g.format = format;
+    g.rgba8 = rgba8;
+    g.width = width;
+    g.height = height;
+    g.pitch = pitch_of(width);
+    const VkDeviceSize texel_bytes = rgba8 ? 4 : VkDeviceSize(bytes_per_texel(format));
+    gpu::BufferDesc desc;
+    desc.size = std::max<VkDeviceSize>(16, (VkDeviceSize(g.pitch) * VkDeviceSize(height) * texel_bytes + 15) & ~VkDeviceSize(15));
+    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    desc.name = tex_name(t);
+    g.buffer = device_.create_buffer(desc);
+    g.view = device_.create_buffer_view(g.buffer, view_format(format, rgba8), 0, VK_WHOLE_SIZE, tex_name(t));
+}
+
+void Renderer::drop_texture(Tex t) { textures_[int(t)] = GpuTexture{}; }
+
+Result<void> Renderer::prepare(const FrameInputs& in, const PassPlan& plan) {
+    const GiWindow& w = in.window;
+    const auto& caps = device_.capabilities();
+    const std::uint64_t texels = std::uint64_t(pitch_of(w.width)) * std::uint64_t(w.height);
+    if (texels > caps.max_texel_buffer_elements || texels * 8 > caps.max_storage_buffer_range)
+        return make_error("GI window of " + std::to_string(w.width) + " x " + std::to_string(w.height) +
+                              " texels does not fit the device (" + device_.name() + ": at most " +
+                              std::to_string(std::min<std::uint64_t>(caps.max_texel_buffer_elements,
+                                                                     caps.max_storage_buffer_range / 8)) +
+                              " texels per texture); lower gi.resolution or gi.padding",
+                          1);
+    const std::uint64_t groups_x = (std::uint64_t(pitch_of(w.width)) / 4 + group_x_ - 1) / group_x_;
+    const std::uint64_t groups_y = (std::uint64_t(w.height) + block_h_ * group_y_ - 1) / (block_h_ * group_y_);
+    if (groups_x > caps.max_compute_workgroup_count[0] || groups_y > caps.max_compute_workgroup_count[1])
+        return make_error("GI window of " + std::to_string(w.width) + " x " + std::to_string(w.height) +
+                              " texels needs more workgroups than the device allows", 1);
+    if (in.point_lights.size() + in.emissive_lights.size() > std::size_t(max_gpu_lights))
+        return make_error("GI backend: " + std::to_string(in.point_lights.size() + in.emissive_lights.size()) +
+                              " point and emissive lights in the window; one pass takes at most " +
+                              std::to_string(max_gpu_lights), 2);
+    if (in.directional_lights.size() > std::size_t(max_gpu_suns))
+        return make_error("GI backend: at most " + std::to_string(max_gpu_suns) + " directional lights", 2);
+    if (in.proxies.size() > std::size_t(max_gpu_proxies))
+        return make_error("GI backend: at most " + std::to_string(max_gpu_proxies) + " shadow proxies", 2);
+
+    const int W = w.width, H = w.height;
+    auto need = [&](Pass p) { return plan.run.has(p); };
+    ensure_texture(Tex::conduction, TexFormat::r8, W, H);
+    if (need(Pass::ao)) ensure_texture(Tex::ao, TexFormat::r8, W, H);
+    else drop_texture(Tex::ao);
+    ensure_texture(Tex::direct, TexFormat::rgba16f, W, H);
+    ensure_texture(Tex::shadow, TexFormat::rg8, W, H);
+    for (int f = 0; f < 4; ++f) ensure_texture(Tex(int(Tex::wall_direct_px) + f), TexFormat::rgba16f, W, H);
+    const bool indirect = need(Pass::emission) || need(Pass::heat);
+    if (indirect) {
+        const HeatGrid g = heat_grid(w, in.settings.heat_scale);
+        ensure_texture(Tex::emission, TexFormat::rgba16f, W, H);
+        ensure_texture(Tex::heat_a, TexFormat::rgba16f, g.width, g.height);
+        ensure_texture(Tex::heat_b, TexFormat::rgba16f, g.width, g.height);
+        ensure_texture(Tex::indirect, TexFormat::rgba16f, W, H);
+    } else {
+        for (Tex t : {Tex::emission, Tex::heat_a, Tex::heat_b, Tex::indirect}) drop_texture(t);
+    }
+    if (need(Pass::blur)) ensure_texture(Tex::blur_temp, TexFormat::rgba16f, W, H);
+    else drop_texture(Tex::blur_temp);
+    for (int f = 0; f < 4; ++f) {
+        Tex t = Tex(int(Tex::wall_indirect_px) + f);
+        if (need(Pass::wall_indirect)) ensure_texture(t, TexFormat::rgba16f, W, H);
+        else drop_texture(t);
+    }
+    if (need(Pass::lit)) ensure_texture(Tex::lit, TexFormat::r8, W, H, true);
+    else drop_texture(Tex::lit);
+    return {};
+}
+
+void Renderer::upload_walls(gpu::CommandList& cmd, const scene::WallGrid& grid) {
+    const VkDeviceSize size = std::max<VkDeviceSize>(16, (VkDeviceSize(grid.cells.size()) + 15) & ~VkDeviceSize(15));
+    if (!walls_ || walls_.size() != size) {
+        gpu::BufferDesc desc;
+        desc.size = size;
+        desc.usage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+        desc.name = "gi walls";
+        walls_ = device_.create_buffer(desc);
+        walls_view_ = device_.create_buffer_view(walls_, VK_FORMAT_R8_UINT, 0, VK_WHOLE_SIZE, "gi walls");
+    }
+    grid_width_ = grid.width;
+    grid_height_ = grid.height;
+    if (!grid.cells.empty()) cmd.upload(walls_, 0, bytes_of(grid.cells.data(), grid.cells.size()));
+    cmd.barrier_transfer_to_compute();
+}
+
+void Renderer::upload_lights(gpu::CommandList& cmd, const FrameInputs& in) {
+    std::vector<GpuPointLight> lights(in.point_lights);
+    lights.insert(lights.end(), in.emissive_lights.begin(), in.emissive_lights.end());
+    if (!lights.empty()) cmd.update_buffer(lights_, 0, bytes_of(lights.data(), lights.size() * sizeof(GpuPointLight)));
+    if (!in.proxies.empty())
+        cmd.update_buffer(proxies_, 0, bytes_of(in.proxies.data(), in.proxies.size() * sizeof(GpuShadowProxy)));
+    if (!in.directional_lights.empty())
+        cmd.update_buffer(suns_, 0,
+                          bytes_of(in.directional_lights.data(), in.directional_lights.size() * sizeof(GpuDirectionalLight)));
+    cmd.barrier_transfer_to_compute();
+}
+
+Renderer::PassParams Renderer::params(const FrameInputs& in, int width, int height, int resolution) const {
+    PassParams p{};
+    const CameraView& v = in.window.view;
+    p.camera_view = glm::vec4(v.min_x, v.min_z, v.width, v.height);
+    p.size = glm::ivec4(width, height, pitch_of(width), resolution);
+    p.grid = glm::ivec4(grid_width_, grid_height_, in.walls.offset.x, in.walls.offset.y);
+    p.counts = glm::ivec4(int(in.point_lights.size()), int(in.emissive_lights.size()),
+                          int(in.directional_lights.size()), int(in.proxies.size()));
+    return p;
+}
+
+void Renderer::dispatch_blocks(gpu::CommandList& cmd, int width, int height) {
+    const std::uint32_t blocks_x = std::uint32_t(pitch_of(width) / 4);
+    const std::uint32_t blocks_y = (std::uint32_t(height) + block_h_ - 1) / block_h_;
+    cmd.dispatch((blocks_x + group_x_ - 1) / group_x_, (blocks_y + group_y_ - 1) / group_y_);
+}
+
+void Renderer::clear(gpu::CommandList& cmd, Tex t) { cmd.fill_buffer(textures_[int(t)].buffer, 0); }
+
+void Renderer::begin_frame(gpu::CommandList& cmd) {
+    if (queries_.empty()) return;
+    frame_slot_ = (frame_slot_ + 1) % int(queries_.size());
+    QuerySet& set = queries_[std::size_t(frame_slot_)];
+    if (set.pending) {
+        // Three frames old: its submission is normally done. Read it if so (never block).
+        if (auto done = set.queries.try_resolve()) latest_timings_ = collect_timings(set, *done);
+        set.pending = false;
+    }
+    set.queries.reset(cmd);
+    set.passes.clear();
+    set.pending = true;
+}
+
+std::vector<PassTiming> Renderer::collect_timings(const QuerySet& set, const gpu::TimestampResult& result) {
+    std::vector<PassTiming> out;
+    for (std::size_t i = 0; i < result.regions.size() && i < set.passes.size(); ++i)
+        out.push_back({set.passes[i], double(result.regions[i].duration_ns) * 1e-6, result.regions[i]});
+    return out;
+}
+
+std::vector<PassTiming> Renderer::completed_timings() {
+    // The newest completed recording wins.
+    for (int k = 0; k < int(queries_.size()); ++k) {
+        const int slot = (frame_slot_ - k + int(queries_.size())) % int(queries_.size());
+        QuerySet& set = queries_[std::size_t(slot)];
+        if (!set.pending) continue;
+        if (auto done = set.queries.try_resolve()) {
+            latest_timings_ = collect_timings(set, *done);
+            set.pending = false;
+            break;
+        }
+    }
+    return latest_timings_;
+}
+
+std::vector<PassTiming> Renderer::wait_timings() {
+    if (queries_.empty() || frame_slot_ < 0) return {};
+    QuerySet& set = queries_[std::size_t(frame_slot_)];
+    if (!set.pending) return latest_timings_;
+    latest_timings_ = collect_timings(set, set.queries.resolve());
+    set.pending = false;
+    return latest_timings_;
+}
+
+void Renderer::record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, const PassPlan& plan) {
+    QuerySet* set = (!queries_.empty() && frame_slot_ >= 0) ? &queries_[std::size_t(frame_slot_)] : nullptr;
+    std::uint32_t region = 0;
+    if (set) {
+        region = set->queries.begin(cmd, pass_name(pass));
+        set->passes.push_back(pass);
+    }
+    switch (pass) {
+    case Pass::conduction: record_conduction(cmd, in); break;
+    case Pass::ao: record_ao(cmd, in); break;
+    case Pass::direct: record_direct(cmd, in, plan); break;
+    case Pass::directional: record_directional(cmd, in, plan); break;
+    case Pass::emission: record_emission(cmd, in); break;
+    case Pass::heat: record_heat(cmd, in); break;
+    case Pass::blur: record_blur(cmd, in); break;
+    case Pass::wall_indirect: record_wall_indirect(cmd, in); break;
+    case Pass::lit: record_lit(cmd, in, plan); break;
+    case Pass::count: break;
+    }
+    if (set) set->queries.end(cmd, region);
+}
+
+void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
+    bool cleared = false;
+    auto clear_direct_outputs = [&] {
+        for (Tex t : {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz,
+                      Tex::wall_direct_nz})
+            clear(cmd, t);
+        cleared = true;
+    };
+    // Faces are cleared when no wall is in view (the shaders then skip writing them).
+    if (!plan.run.has(Pass::direct) || !plan.has_walls_in_window) clear_direct_outputs();
+    if (cleared) cmd.barrier_transfer_to_compute();
+    for (int p = 0; p < pass_count; ++p)
+        if (plan.run.has(Pass(p))) record(cmd, Pass(p), in, plan);
+}
+
+// ---- issue 3 passes
+
+void Renderer::record_conduction(gpu::CommandList& cmd, const FrameInputs& in) {
+    const GiWindow& w = in.window;
+    cmd.bind(pipelines_->get("gi_conduction.comp", block_h_, group_x_, group_y_, false));
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .uniform_texel_buffer(0, walls_view_)
+                             .uniform_buffer(1, proxies_)
+                             .storage_buffer(2, textures_[int(Tex::conduction)].buffer));
+    PassParams p = params(in, w.width, w.height, w.resolution);
+    cmd.push_constants(static_cast<const GiPassParams&>(p));
+    dispatch_blocks(cmd, w.width, w.height);
+    cmd.barrier_compute_to_compute();
+}
+
+void Renderer::record_ao(gpu::CommandList& cmd, const FrameInputs& in) {
+    const GiWindow& w = in.window;
+    const scene::AoSettings& ao = in.settings.ao;
+    cmd.bind(pipelines_->get("gi_ao.comp", block_h_, group_x_, group_y_, false));
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .uniform_texel_buffer(0, walls_view_)
+                             .uniform_buffer(1, proxies_)
+                             .storage_buffer(2, textures_[int(Tex::ao)].buffer));
+    PassParams p = params(in, w.width, w.height, w.resolution);
+    p.params0 = glm::vec4(ao.radius, ao.power, ao.strength, ao.dither ? 1.0f : 0.0f);
+    cmd.push_constants(static_cast<const GiPassParams&>(p));
+    dispatch_blocks(cmd, w.width, w.height);
+    cmd.barrier_compute_to_compute();
+}
+
+void Renderer::record_direct(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
+    const GiWindow& w = in.window;
+    auto tex = [&](Tex t) -> const gpu::Buffer& { return textures_[int(t)].buffer; };
+    cmd.bind(pipelines_->get("gi_direct.comp", block_h_, group_x_, group_y_, !in.proxies.empty(),
+                             plan.has_walls_in_window));
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .uniform_texel_buffer(0, walls_view_)
+                             .uniform_buffer(1, proxies_)
+                             .uniform_buffer(2, lights_)
+                             .storage_buffer(3, tex(Tex::direct))
+                             .storage_buffer(4, tex(Tex::shadow))
+                             .storage_buffer(5, tex(Tex::wall_direct_px))
+                             .storage_buffer(6, tex(Tex::wall_direct_nx))
+                             .storage_buffer(7, tex(Tex::wall_direct_pz))
+                             .storage_buffer(8, tex(Tex::wall_direct_nz)));
+    PassParams p = params(in, w.width, w.height, w.resolution);
+    p.params0.x = in.settings.light_softness;
+    cmd.push_constants(static_cast<const GiPassParams&>(p));
+    dispatch_blocks(cmd, w.width, w.height);
+    cmd.barrier_compute_to_compute();
+}
+
+void Renderer::record_directional(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
+    const GiWindow& w = in.window;
+    auto tex = [&](Tex t) -> const GpuTexture& { return textures_[int(t)]; };
+    cmd.bind(pipelines_->get("gi_directional.comp", block_h_, group_x_, group_y_, !in.proxies.empty(),
+                             plan.has_walls_in_window));
+    gpu::DescriptorWrites writes;
+    writes.uniform_texel_buffer(0, walls_view_).uniform_buffer(1, proxies_).uniform_buffer(2, suns_);
+    const Tex outputs[6] = {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz,
+                            Tex::wall_direct_nz};
+    for (int i = 0; i < 6; ++i) writes.uniform_texel_buffer(std::uint32_t(3 + i), tex(outputs[i]).view);
+    for (int i = 0; i < 6; ++i) writes.storage_buffer(std::uint32_t(9 + i), tex(outputs[i]).buffer);
+    cmd.push_descriptors(writes);
+    PassParams p = params(in, w.width, w.height, w.resolution);
+    p.params0 = glm::vec4(in.wall_height, in.settings.directional_angle_scale, 0.0f, 0.0f);
+    cmd.push_constants(static_cast<const GiPassParams&>(p));
+    dispatch_blocks(cmd, w.width, w.height);
+    cmd.barrier_compute_to_compute();
+}
+
+// ---- issue 4 passes
+
+void Renderer::record_emission(gpu::CommandList& cmd, const FrameInputs& in) {
+    const GiWindow& w = in.window;
+    cmd.bind(pipelines_->get("gi_emission.comp", block_h_, group_x_, group_y_, false));
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .uniform_texel_buffer(0, textures_[int(Tex::direct)].view)
+                             .storage_buffer(1, textures_[int(Tex::emission)].buffer));
+    PassParams p = params(in, w.width, w.height, w.resolution);
+    p.params0.x = in.settings.emission_strength;
+    cmd.push_constants(static_cast<const GiPassParams&>(p));
+    dispatch_blocks(cmd, w.width, w.height);
+    cmd.barrier_compute_to_compute();
+}
+
+void Renderer::record_heat(gpu::CommandList& cmd, const FrameInputs& in) {
+    const GiWindow& w = in.window;
+    const scene::GiSettings& s = in.settings;
+    const HeatGrid g = heat_grid(w, s.heat_scale);
+    // Seed.
+    cmd.bind(pipelines_->get("gi_heat_seed.comp", block_h_, group_x_, group_y_, false));
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .uniform_texel_buffer(0, textures_[int(Tex::emission)].view)
+                             .uniform_texel_buffer(1, textures_[int(Tex::shadow)].view)
+                             .storage_buffer(2, textures_[int(Tex::heat_a)].buffer));
+    PassParams seed = params(in, g.width, g.height, w.resolution);
+    seed.params1 = glm::vec4(float(w.width), float(w.height), float(pitch_of(w.width)), float(g.scale));
+    cmd.push_constants(static_cast<const GiPassParams&>(seed));
+    dispatch_blocks(cmd, g.width, g.height);
+    cmd.barrier_compute_to_compute();
+    // Rounds, ping-pong.
+    const auto& round_pipeline =
+        pipelines_->get("gi_heat.comp", block_h_, group_x_, group_y_, false, true, s.per_channel, s.segment_check);
+    PassParams round = params(in, g.width, g.height, w.resolution);
+    round.params0 = glm::vec4(g.texels_per_unit, s.diffusion_distance * g.texels_per_unit, s.diffusion_rate, s.range_boost);
+    round.params1 = glm::vec4(s.intensity_multiplier, s.diffusion_distance * 2.0f + 2.0f, 0.0f, 0.0f);
+    Tex src = Tex::heat_a, dst = Tex::heat_b;
+    for (int r = 0; r < s.heat_rounds; ++r) {
+        cmd.bind(round_pipeline);
+        cmd.push_descriptors(gpu::DescriptorWrites()
+                                 .uniform_texel_buffer(0, walls_view_)
+                                 .uniform_buffer(1, proxies_)
+                                 .uniform_texel_buffer(2, textures_[int(src)].view)
+                                 .storage_buffer(3, textures_[int(dst)].buffer));
+        cmd.push_constants(static_cast<const GiPassParams&>(round));
+        dispatch_blocks(cmd, g.width, g.height);
+        cmd.barrier_compute_to_compute();
+        std::swap(src, dst);
+    }
+    // Upsample (or copy) into the indirect texture.
+    cmd.bind(pipelines_->get("gi_upsample.comp", block_h_, group_x_, group_y_, false));
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .uniform_texel_buffer(0, walls_view_)
+                             .uniform_buffer(1, proxies_)
+                             .uniform_texel_buffer(2, textures_[int(src)].view)
+                             .storage_buffer(3, textures_[int(Tex::indirect)].buffer));
+    PassParams up = params(in, w.width, w.height, w.resolution);
+    up.params0 = glm::vec4(float(g.width), float(g.height), float(pitch_of(g.width)), g.texels_per_unit);
+    up.params1.x = float(g.scale);
+    cmd.push_constants(static_cast<const GiPassParams&>(up));
+    dispatch_blocks(cmd, w.width, w.height);
+    cmd.barrier_compute_to_compute();
+}
+
+void Renderer::record_blur(gpu::CommandList& cmd, const FrameInputs& in) {
+    const GiWindow& w = in.window;
+    const auto& pipeline = pipelines_->get("gi_blur.comp", block_h_, group_x_, group_y_, false);
+    auto blur_pass = [&](Tex src, Tex dst, glm::vec2 axis) {
+        cmd.bind(pipeline);
+        cmd.push_descriptors(gpu::DescriptorWrites()
+                                 .uniform_texel_buffer(0, walls_view_)
+                                 .uniform_buffer(1, proxies_)
+                                 .uniform_texel_buffer(2, textures_[int(src)].view)
+                                 .storage_buffer(3, textures_[int(dst)].buffer));
+        PassParams p = params(in, w.width, w.height, w.resolution);
+        p.params0 = glm::vec4(axis, 0.0f, 0.0f);
+        cmd.push_constants(static_cast<const GiPassParams&>(p));
+        dispatch_blocks(cmd, w.width, w.height);
+        cmd.barrier_compute_to_compute();
+    };
+    blur_pass(Tex::indirect, Tex::blur_temp, {1.0f, 0.0f});
+    blur_pass(Tex::blur_temp, Tex::indirect, {0.0f, 1.0f});
+}
+
+void Renderer::record_wall_indirect(gpu::CommandList& cmd, const FrameInputs& in) {
+    const GiWindow& w = in.window;
+    cmd.bind(pipelines_->get("gi_wall_indirect.comp", block_h_, group_x_, group_y_, false));
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .uniform_texel_buffer(0, walls_view_)
+                             .uniform_buffer(1, proxies_)
+                             .uniform_texel_buffer(2, textures_[int(Tex::indirect)].view)
+                             .storage_buffer(3, textures_[int(Tex::wall_indirect_px)].buffer)
+                             .storage_buffer(4, textures_[int(Tex::wall_indirect_nx)].buffer)
+                             .storage_buffer(5, textures_[int(Tex::wall_indirect_pz)].buffer)
+                             .storage_buffer(6, textures_[int(Tex::wall_indirect_nz)].buffer));
+    PassParams p = params(in, w.width, w.height, w.resolution);
+    cmd.push_constants(static_cast<const GiPassParams&>(p));
+    dispatch_blocks(cmd, w.width, w.height);
+    cmd.barrier_compute_to_compute();
+}
+
+void Renderer::record_lit(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
+    const GiWindow& w = in.window;
+    // Absent textures are bound as the direct texture (any valid view) and flagged absent.
+    auto view_or = [&](Tex t, std::uint32_t bit, std::uint32_t& present) -> const gpu::BufferView& {
+        if (has(t)) {
+            present |= 1u << bit;
+            return textures_[int(t)].view;
+        }
+        return textures_[int(Tex::direct)].view;
+    };
+    std::uint32_t present = 0;
+    gpu::DescriptorWrites writes;
+    writes.uniform_texel_buffer(0, walls_view_).uniform_buffer(1, proxies_).uniform_buffer(2, suns_);
+    writes.uniform_texel_buffer(3, view_or(Tex::direct, 0, present));
+    writes.uniform_texel_buffer(4, view_or(Tex::indirect, 1, present));
+    writes.uniform_texel_buffer(5, view_or(Tex::ao, 2, present));
+    writes.uniform_texel_buffer(6, view_or(Tex::shadow, 3, present));
+    for (int f = 0; f < 4; ++f) writes.uniform_texel_buffer(std::uint32_t(7 + f), view_or(Tex(int(Tex::wall_direct_px) + f), 4u + f, present));
+    for (int f = 0; f < 4; ++f)
+        writes.uniform_texel_buffer(std::uint32_t(11 + f), view_or(Tex(int(Tex::wall_indirect_px) + f), 8u + f, present));
+    writes.storage_buffer(15, textures_[int(Tex::lit)].buffer);
+    cmd.bind(pipelines_->get("gi_lit.comp", block_h_, group_x_, group_y_, false, plan.has_walls_in_window));
+    cmd.push_descriptors(writes);
+    PassParams p = params(in, w.width, w.height, w.resolution);
+    p.params0 = glm::vec4(in.wall_height, float(present), 0.0f, 0.0f);
+    p.params1 = glm::vec4(float(int(in.settings.tone_map)), in.settings.white_point, in.settings.directional_angle_scale, 0.0f);
+    cmd.push_constants(static_cast<const GiPassParams&>(p));
+    dispatch_blocks(cmd, w.width, w.height);
+    cmd.barrier_compute_to_compute();
+}
+
+// ---- read back
+
+Texture Renderer::read_back(Tex t) { return read_back(t, tex_name(t)); }
+
+Texture Renderer::read_back(Tex t, const char* name) {
+    const GpuTexture& g = textures_[int(t)];
+    LANTERN_ASSERT(bool(g.buffer), "read_back of a texture this frame did not allocate");
+    Texture out(name, g.format, g.width, g.height);
+    const auto bytes = device_.read_back(g.buffer);
+    const int bpt = bytes_per_texel(g.format);
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x) {
+            const std::byte* src = bytes.data() + (std::size_t(y) * std::size_t(g.pitch) + std::size_t(x)) * std::size_t(bpt);
+            float* dst = out.at(x, y);
+            if (g.format == TexFormat::rgba16f) {
+                for (int c = 0; c < 4; ++c) {
+                    std::uint16_t h;
+                    std::memcpy(&h, src + 2 * c, 2);
+                    dst[c] = half_to_float(h);
+                }
+            } else {
+                for (int c = 0; c < bpt; ++c) dst[c] = unorm8_to_float(std::uint8_t(src[c]));
+            }
+        }
+    return out;
+}
+
+std::vector<std::uint8_t> Renderer::read_back_lit_rgb() {
+    const GpuTexture& g = textures_[int(Tex::lit)];
+    LANTERN_ASSERT(bool(g.buffer), "read_back_lit_rgb without a lit pass");
+    const auto bytes = device_.read_back(g.buffer);
+    std::vector<std::uint8_t> rgb(std::size_t(g.width) * std::size_t(g.height) * 3);
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                rgb[(std::size_t(y) * std::size_t(g.width) + std::size_t(x)) * 3 + std::size_t(c)] =
+                    std::uint8_t(bytes[(std::size_t(y) * std::size_t(g.pitch) + std::size_t(x)) * 4 + std::size_t(c)]);
+    return rgb;
+}
+
+} // namespace lantern::gi::vk

@@ -1,0 +1,117 @@
+#include "lantern/gi/window.hpp"
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+namespace lantern::gi {
+namespace {
+
+bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+void set_reason(std::string* reason, const char* text) {
+    if (reason) *reason = text;
+}
+
+std::optional<VisibleArea> ortho_area(const scene::OrthoView& v, std::string* reason) {
+    if (!finite(v.center) || !finite(v.size) || v.size.x <= 0.0f || v.size.y <= 0.0f) {
+        set_reason(reason, "view centre or size is not finite and positive");
+        return std::nullopt;
+    }
+    return VisibleArea{v.center - v.size * 0.5f, v.size};
+}
+
+// Projects the four viewport corners on the ground plane y = 0 (the seed's
+// CalculateCameraVisibleArea), in double precision.
+std::optional<VisibleArea> camera_area(const scene::PerspectiveCamera& c, std::string* reason) {
+    using dvec3 = glm::dvec3;
+    const dvec3 origin(c.position);
+    dvec3 forward = dvec3(c.target) - origin;
+    const double forward_len = glm::length(forward);
+    if (!(forward_len > 1e-9) || !std::isfinite(forward_len)) {
+        set_reason(reason, "camera position and target coincide or are not finite");
+        return std::nullopt;
+    }
+    forward /= forward_len;
+    // Screen up follows world +y; a camera looking straight down uses +z instead (only the
+    // footprint's bounding box matters, so the choice does not change the window).
+    dvec3 up_hint = std::abs(forward.y) > 0.999 ? dvec3(0, 0, 1) : dvec3(0, 1, 0);
+    dvec3 right = glm::normalize(glm::cross(forward, up_hint));
+    dvec3 up = glm::cross(right, forward);
+    const double half_h = std::tan(double(c.fov_deg) * 0.5 * 3.14159265358979323846 / 180.0);
+    const double half_w = half_h * double(c.aspect);
+    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    for (int corner = 0; corner < 4; ++corner) {
+        double sx = (corner & 1) ? 1.0 : -1.0, sy = (corner & 2) ? 1.0 : -1.0;
+        dvec3 dir = glm::normalize(forward + right * (sx * half_w) + up * (sy * half_h));
+        if (std::abs(dir.y) < 1e-4) {
+            set_reason(reason, "a viewport corner ray is parallel to the ground");
+            return std::nullopt;
+        }
+        double t = -origin.y / dir.y;
+        if (!(t > 0.0) || !std::isfinite(t)) {
+            set_reason(reason, "a viewport corner ray does not hit the ground in front of the camera");
+            return std::nullopt;
+        }
+        dvec3 hit = origin + dir * t;
+        lo = glm::min(lo, glm::dvec2(hit.x, hit.z));
+        hi = glm::max(hi, glm::dvec2(hit.x, hit.z));
+    }
+    VisibleArea area{glm::vec2(lo), glm::vec2(hi - lo)};
+    if (!finite(area.min) || !finite(area.size)) {
+        set_reason(reason, "the camera footprint is not finite");
+        return std::nullopt;
+    }
+    return area;
+}
+
+} // namespace
+
+std::optional<VisibleArea> visible_area(const scene::ViewSpec& view, std::string* reason) {
+    return std::visit(
+        [&](const auto& v) -> std::optional<VisibleArea> {
+            if constexpr (std::is_same_v<std::decay_t<decltype(v)>, scene::OrthoView>)
+                return ortho_area(v, reason);
+            else
+                return camera_area(v, reason);
+        },
+        view);
+}
+
+std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float padding, int resolution,
+                                       std::string* reason, int max_texels) {
+    auto area = visible_area(view, reason);
+    if (!area) return std::nullopt;
+    const int res = std::max(1, resolution);
+    const double center_x = double(area->min.x) + double(area->size.x) * 0.5;
+    const double center_z = double(area->min.y) + double(area->size.y) * 0.5;
+    const double size_x = double(area->size.x) * double(padding);
+    const double size_z = double(area->size.y) * double(padding);
+    const double min_x = center_x - size_x * 0.5, min_z = center_z - size_z * 0.5;
+    // Phase lock: the origin snaps down to a whole tile (res texels).
+    const double tex_x = std::floor(min_x * res), tex_z = std::floor(min_z * res);
+    const double snapped_x = std::floor(tex_x / res) * res, snapped_z = std::floor(tex_z / res) * res;
+    // Size: whole texels, then whole tiles, then the 64-texel minimum.
+    double w = std::ceil(size_x * res), h = std::ceil(size_z * res);
+    w = std::max(std::ceil(w / res) * res, double(min_texture_size));
+    h = std::max(std::ceil(h / res) * res, double(min_texture_size));
+    if (!std::isfinite(snapped_x) || !std::isfinite(snapped_z) || !std::isfinite(w) || !std::isfinite(h)) {
+        set_reason(reason, "the GI window is not finite");
+        return std::nullopt;
+    }
+    if (w > max_texels || h > max_texels) {
+        set_reason(reason, "the GI window is larger than the texture size limit");
+        return std::nullopt;
+    }
+    GiWindow win;
+    win.resolution = res;
+    win.width = int(w);
+    win.height = int(h);
+    win.view = CameraView{float(snapped_x / res), float(snapped_z / res), float(w / res), float(h / res)};
+    return win;
+}
+
+} // namespace lantern::gi

@@ -1,0 +1,91 @@
+// Implementation state of lantern::gpu::Device shared by the files of engine/gpu/src.
+#pragma once
+
+#include "lantern/gpu/device.hpp"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <mutex>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace lantern::gpu {
+
+// A zeroed Vulkan info struct with its sType set (brace-initialising only sType would
+// trip -Wmissing-field-initializers).
+template <typename T>
+T vk_struct(VkStructureType type) {
+    T value{};
+    value.sType = type;
+    return value;
+}
+
+// Extension entry points, loaded once per device (nullptr when the extension is absent).
+struct Device::Dispatch {
+    PFN_vkCmdPushDescriptorSetKHR cmd_push_descriptor_set = nullptr;
+    PFN_vkGetCalibratedTimestampsEXT get_calibrated_timestamps = nullptr;
+    PFN_vkSetDebugUtilsObjectNameEXT set_object_name = nullptr;
+    PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label = nullptr;
+    PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label = nullptr;
+    PFN_vkDestroyDebugUtilsMessengerEXT destroy_messenger = nullptr;
+};
+
+// Messages of the debug-utils messenger. The callback runs on whatever thread the layer or
+// driver reports from, hence the mutex.
+struct Device::Validation {
+    // Texts kept beyond this are dropped (still counted), so a runaway loop cannot eat memory.
+    static constexpr std::size_t max_kept = 1000;
+
+    mutable std::mutex mutex;
+    std::vector<std::string> messages;
+    std::uint64_t count = 0;
+    bool log = true;
+    bool abort_on_error = false;
+
+    static VKAPI_ATTR VkBool32 VKAPI_CALL callback(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+};
+
+// The Vulkan objects of one destroyed resource (unused fields stay VK_NULL_HANDLE).
+struct Device::Retired {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkBufferView view = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    VkQueryPool query_pool = VK_NULL_HANDLE;
+};
+
+// Deferred destruction. An entry is "sealed" with the serial after which it may be freed.
+// Destroyed while no CommandList is open: sealed at once with the last submitted serial.
+// Destroyed while lists are open: those lists may still record uses, so the entry is
+// sealed when the last of them (ids <= newest_open_list) is submitted or discarded, with
+// the serial submitted last at that moment.
+struct Device::Deletions {
+    struct Entry {
+        Retired objects;
+        std::uint64_t serial = 0;
+        std::uint64_t newest_open_list = 0;
+        bool sealed = false;
+    };
+
+    mutable std::mutex mutex;
+    std::vector<Entry> entries;
+    std::set<std::uint64_t> open_lists; // ids of CommandLists being recorded
+    std::uint64_t last_submitted = 0;   // mirror of Device::last_submitted_ for retire()
+    std::size_t live_objects = 0;       // created and not yet destroyed
+};
+
+// One submission's command pool, command buffer and fence. Recycled when the fence signals.
+struct Device::Context {
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    std::uint64_t serial = 0;
+};
+
+} // namespace lantern::gpu

@@ -1,0 +1,158 @@
+// Compute pipelines with push-descriptor set layouts and specialization constants.
+#include "device_internal.hpp"
+
+#include "lantern/gpu/vk_check.hpp"
+
+#include <utility>
+#include <vector>
+
+namespace lantern::gpu {
+
+namespace {
+
+VkDescriptorType descriptor_type(BindingType type) {
+    switch (type) {
+    case BindingType::storage_buffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case BindingType::uniform_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case BindingType::uniform_texel_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    case BindingType::storage_texel_buffer: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+    }
+    return VK_DESCRIPTOR_TYPE_MAX_ENUM;
+}
+
+VkDescriptorSetLayout create_set_layout(VkDevice device, const std::vector<BindingType>& bindings) {
+    std::vector<VkDescriptorSetLayoutBinding> vk_bindings;
+    for (std::uint32_t i = 0; i < bindings.size(); ++i) {
+        VkDescriptorSetLayoutBinding b{};
+        b.binding = i;
+        b.descriptorType = descriptor_type(bindings[i]);
+        b.descriptorCount = 1;
+        b.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+        vk_bindings.push_back(b);
+    }
+    auto info = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+    info.bindingCount = static_cast<std::uint32_t>(vk_bindings.size());
+    info.pBindings = vk_bindings.data();
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, &layout));
+    return layout;
+}
+
+VkPipelineLayout create_pipeline_layout(VkDevice device, VkDescriptorSetLayout set_layout,
+                                        std::uint32_t push_constant_size) {
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_size};
+    auto info = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    info.setLayoutCount = set_layout ? 1 : 0;
+    info.pSetLayouts = &set_layout;
+    info.pushConstantRangeCount = push_constant_size > 0 ? 1 : 0;
+    info.pPushConstantRanges = &range;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VK_CHECK(vkCreatePipelineLayout(device, &info, nullptr, &layout));
+    return layout;
+}
+
+VkShaderModule create_shader_module(VkDevice device, std::span<const std::uint32_t> spirv) {
+    auto info = vk_struct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+    info.codeSize = spirv.size_bytes();
+    info.pCode = spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateShaderModule(device, &info, nullptr, &module));
+    return module;
+}
+
+} // namespace
+
+const char* to_string(BindingType type) {
+    switch (type) {
+    case BindingType::storage_buffer: return "storage_buffer";
+    case BindingType::uniform_buffer: return "uniform_buffer";
+    case BindingType::uniform_texel_buffer: return "uniform_texel_buffer";
+    case BindingType::storage_texel_buffer: return "storage_texel_buffer";
+    }
+    return "?";
+}
+
+ComputePipeline Device::create_compute_pipeline(const ComputePipelineDesc& desc) {
+    LANTERN_ASSERT(desc.spirv.size() >= 5 && desc.spirv[0] == 0x07230203u,
+                   "gpu: compute pipeline needs SPIR-V words (empty lookup result?)");
+    LANTERN_ASSERT(desc.bindings.size() <= ComputePipeline::max_bindings,
+                   "gpu: more bindings than ComputePipeline::max_bindings");
+    LANTERN_ASSERT(desc.push_constant_size % 4 == 0 &&
+                       desc.push_constant_size <= caps_.max_push_constants_size,
+                   "gpu: push-constant size must be a multiple of 4 within maxPushConstantsSize");
+
+    ComputePipeline p;
+    p.device_ = this;
+    p.binding_count_ = static_cast<std::uint32_t>(desc.bindings.size());
+    std::copy(desc.bindings.begin(), desc.bindings.end(), p.bindings_.begin());
+    p.push_constant_size_ = desc.push_constant_size;
+    if (!desc.bindings.empty()) p.set_layout_ = create_set_layout(device_, desc.bindings);
+    p.layout_ = create_pipeline_layout(device_, p.set_layout_, desc.push_constant_size);
+
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<std::uint32_t> values;
+    for (const SpecConstant& c : desc.specialization) {
+        entries.push_back({c.id, static_cast<std::uint32_t>(values.size() * sizeof(std::uint32_t)),
+                           sizeof(std::uint32_t)});
+        values.push_back(c.value);
+    }
+    VkSpecializationInfo specialization{};
+    specialization.mapEntryCount = static_cast<std::uint32_t>(entries.size());
+    specialization.pMapEntries = entries.data();
+    specialization.dataSize = values.size() * sizeof(std::uint32_t);
+    specialization.pData = values.data();
+
+    const VkShaderModule module = create_shader_module(device_, desc.spirv);
+    auto info = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
+    info.layout = p.layout_;
+    VK_CHECK(vkCreateComputePipelines(device_, pipeline_cache_, 1, &info, nullptr, &p.pipeline_));
+    // The pipeline keeps what it needs; the module may go at once.
+    vkDestroyShaderModule(device_, module, nullptr);
+
+    set_object_name(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<std::uint64_t>(p.pipeline_), desc.name);
+    set_object_name(VK_OBJECT_TYPE_PIPELINE_LAYOUT, reinterpret_cast<std::uint64_t>(p.layout_), desc.name);
+    std::lock_guard lock(deletions_->mutex);
+    ++deletions_->live_objects;
+    return p;
+}
+
+ComputePipeline::ComputePipeline(ComputePipeline&& other) noexcept
+    : device_(std::exchange(other.device_, nullptr)),
+      pipeline_(std::exchange(other.pipeline_, VK_NULL_HANDLE)),
+      layout_(std::exchange(other.layout_, VK_NULL_HANDLE)),
+      set_layout_(std::exchange(other.set_layout_, VK_NULL_HANDLE)), bindings_(other.bindings_),
+      binding_count_(std::exchange(other.binding_count_, 0)),
+      push_constant_size_(std::exchange(other.push_constant_size_, 0)) {}
+
+ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
+    if (this != &other) {
+        reset();
+        device_ = std::exchange(other.device_, nullptr);
+        pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
+        layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
+        set_layout_ = std::exchange(other.set_layout_, VK_NULL_HANDLE);
+        bindings_ = other.bindings_;
+        binding_count_ = std::exchange(other.binding_count_, 0);
+        push_constant_size_ = std::exchange(other.push_constant_size_, 0);
+    }
+    return *this;
+}
+
+void ComputePipeline::reset() {
+    if (!pipeline_) return;
+    Device::Retired retired;
+    retired.pipeline = std::exchange(pipeline_, VK_NULL_HANDLE);
+    retired.layout = std::exchange(layout_, VK_NULL_HANDLE);
+    retired.set_layout = std::exchange(set_layout_, VK_NULL_HANDLE);
+    binding_count_ = 0;
+    push_constant_size_ = 0;
+    std::exchange(device_, nullptr)->retire(retired);
+}
+
+} // namespace lantern::gpu

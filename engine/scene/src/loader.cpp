@@ -1,0 +1,405 @@
+#include "lantern/scene/loader.hpp"
+
+#include "gi_settings.hpp"
+#include "json_reader.hpp"
+#include "lantern/core/file.hpp"
+#include "lantern/core/json.hpp"
+#include "moving_ai_map.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace lantern::scene {
+namespace {
+
+using detail::any_number;
+using detail::at_least;
+using detail::between;
+using detail::EnumName;
+using detail::Fields;
+using detail::greater_than;
+using detail::IntRange;
+using detail::Reader;
+
+constexpr int supported_version = 1;
+// World positions are floats, which hold whole tiles exactly only up to 2^24.
+constexpr int max_origin = 1 << 24;
+constexpr float tree_proxy_radius = 0.4f;
+constexpr float tree_proxy_max_length = 3.0f;
+
+constexpr std::array<EnumName<TreeMode>, 2> tree_modes{{
+    {"wall", TreeMode::wall},
+    {"proxy", TreeMode::proxy},
+}};
+constexpr std::array<EnumName<ProxyShape>, 2> proxy_shapes{{
+    {"box", ProxyShape::box},
+    {"circle", ProxyShape::circle},
+}};
+constexpr std::array<EnumName<WidthMode>, 2> width_modes{{
+    {"projected", WidthMode::projected},
+    {"max_axis", WidthMode::max_axis},
+}};
+constexpr std::array<EnumName<PenumbraMode>, 3> penumbra_modes{{
+    {"inward", PenumbraMode::inward},
+    {"outward", PenumbraMode::outward},
+    {"both", PenumbraMode::both},
+}};
+
+// What "world" says about a map file; the import runs once the whole scene has been read.
+struct MapSpec {
+    std::string path;        // as written, relative to the scene's folder; empty for "rows"
+    json::Position position; // of the "map" value
+    MapImportOptions options;
+};
+
+Error file_error(const std::string& file, const detail::Issue& issue) {
+    const std::string path = issue.path.empty() ? "" : issue.path + ": ";
+    return make_error(file + ":" + std::to_string(issue.where.line) + ":" +
+                      std::to_string(issue.where.column) + ": " + path + issue.what);
+}
+
+std::string grid_size_text(std::size_t width, std::size_t height) {
+    return std::to_string(width) + " x " + std::to_string(height);
+}
+
+// Checks the size of a "rows" grid from its first row, before any cell is stored.
+bool check_rows_size(Reader& reader, const json::Value& rows, std::size_t width,
+                     std::size_t height) {
+    const json::Value& first = rows.as_array()[0];
+    if (width == 0) return reader.fail(first.position(), "world.rows[0]", "row is empty");
+    if (width > std::size_t(max_grid_side))
+        return reader.fail(first.position(), "world.rows[0]",
+                           "row has " + std::to_string(width) + " cells, above the limit of " +
+                               std::to_string(max_grid_side));
+    if (height > std::size_t(max_grid_side) || std::int64_t(width * height) > max_grid_cells)
+        return reader.fail(rows.position(), "world.rows",
+                           "a grid of " + grid_size_text(width, height) +
+                               " cells is above the limits (" + std::to_string(max_grid_side) +
+                               " per side, " + std::to_string(max_grid_cells) + " in all)");
+    return true;
+}
+
+// One row string: '#' wall, '.' floor. A bad character is reported at its own column
+// (exact as long as the '#' and '.' before it are not spelled as \u escapes).
+bool read_row(Reader& reader, const json::Value& row, const std::string& path, std::size_t width,
+              std::vector<std::uint8_t>& cells) {
+    if (!reader.expect(row, path, json::Type::string)) return false;
+    const std::string& text = row.as_string();
+    if (text.size() != width)
+        return reader.fail(row.position(), path,
+                           "row has " + std::to_string(text.size()) + " cells, row 0 has " +
+                               std::to_string(width));
+    for (std::size_t col = 0; col < text.size(); ++col) {
+        if (text[col] != '#' && text[col] != '.') {
+            const json::Position at{row.position().line, row.position().column + 1 + int(col)};
+            return reader.fail(at, path,
+                               "unknown cell character " + detail::quote_char(text[col]) +
+                                   " (rows use '#' for wall and '.' for floor)");
+        }
+        cells.push_back(text[col] == '#' ? 1 : 0);
+    }
+    return true;
+}
+
+// Fills the size and cells of `grid` (not its origin) from "rows".
+void read_rows(Reader& reader, const json::Value& rows, WallGrid& grid) {
+    if (!reader.expect(rows, "world.rows", json::Type::array)) return;
+    const json::Value::Array& items = rows.as_array();
+    if (items.empty()) {
+        reader.fail(rows.position(), "world.rows", "needs at least one row");
+        return;
+    }
+    if (!reader.expect(items[0], "world.rows[0]", json::Type::string)) return;
+    const std::size_t width = items[0].as_string().size();
+    if (!check_rows_size(reader, rows, width, items.size())) return;
+    // No reserve from the first row's size: the other rows may be empty, and memory must
+    // follow the input's size, not what it claims.
+    std::vector<std::uint8_t> cells;
+    for (std::size_t row = 0; row < items.size(); ++row)
+        if (!read_row(reader, items[row], detail::index_path("world.rows", row), width, cells))
+            return;
+    grid.width = int(width);
+    grid.height = int(items.size());
+    grid.cells = std::move(cells);
+}
+
+void read_map_spec(Reader& reader, Fields& world, MapSpec& map) {
+    world.required("map", map.path)
+        .optional("trees", map.options.trees, tree_modes)
+        .optional("extra_floor_chars", map.options.extra_floor_chars);
+    if (!reader.ok()) return;
+    map.position = world.find("map")->position();
+    if (map.path.empty()) world.fail("map", "must name a map file");
+    if (auto problem = detail::extra_floor_chars_problem(map.options.extra_floor_chars))
+        world.fail("extra_floor_chars", *problem);
+}
+
+void read_world(Reader& reader, const json::Value& value, Scene& scene, MapSpec& map) {
+    Fields world(reader, value, "world",
+                 {"map", "rows", "origin", "wall_height", "trees", "extra_floor_chars"});
+    world.optional("origin", scene.walls.origin, IntRange{-max_origin, max_origin})
+        .optional("wall_height", scene.wall_height, greater_than(0.0));
+    const std::string_view source = world.one_of("map", "rows");
+    if (source == "map") {
+        read_map_spec(reader, world, map);
+    } else if (source == "rows") {
+        for (std::string_view key : {"trees", "extra_floor_chars"})
+            if (world.find(key)) world.fail(key, "applies to \"map\" worlds only");
+        if (reader.ok()) read_rows(reader, *world.find("rows"), scene.walls);
+    }
+}
+
+void read_camera(Reader& reader, const json::Value& value, PerspectiveCamera& camera) {
+    constexpr detail::Range fov_range{.min = 0.0, .max = 180.0, .min_open = true, .max_open = true};
+    Fields fields(reader, value, "camera", {"position", "target", "fov_deg", "aspect"});
+    fields.required("position", camera.position, any_number)
+        .required("target", camera.target, any_number)
+        .optional("fov_deg", camera.fov_deg, fov_range)
+        .optional("aspect", camera.aspect, greater_than(0.0));
+    if (fields.ok() && camera.position == camera.target)
+        fields.fail("target", "must differ from camera.position");
+}
+
+void read_view(Reader& reader, Fields& top, ViewSpec& view) {
+    const std::string_view kind = top.one_of("view", "camera");
+    if (kind == "view") {
+        OrthoView ortho;
+        Fields(reader, *top.find("view"), "view", {"center", "size"})
+            .required("center", ortho.center, any_number)
+            .optional("size", ortho.size, greater_than(0.0));
+        view = ortho;
+    } else if (kind == "camera") {
+        PerspectiveCamera camera;
+        read_camera(reader, *top.find("camera"), camera);
+        view = camera;
+    }
+}
+
+// What is wrong with the GI texture size of a top-down view, if anything. The window of a
+// perspective camera depends on the frame and is checked by the GI code.
+std::optional<std::string> gi_window_problem(const ViewSpec& view, const GiSettings& gi) {
+    const OrthoView* ortho = std::get_if<OrthoView>(&view);
+    if (!ortho) return std::nullopt;
+    const double texels_per_unit = double(gi.padding) * gi.resolution;
+    const double width = double(ortho->size.x) * texels_per_unit;
+    const double height = double(ortho->size.y) * texels_per_unit;
+    if (width <= max_gi_texels_per_side && height <= max_gi_texels_per_side) return std::nullopt;
+    return "the GI texture would be " + detail::format_number(std::ceil(width)) + " x " +
+           detail::format_number(std::ceil(height)) +
+           " texels (view.size x gi.padding x gi.resolution), above the limit of " +
+           detail::format_number(max_gi_texels_per_side) + " per side";
+}
+
+void check_gi_window(Reader& reader, const Fields& top, const Scene& scene) {
+    if (!reader.ok()) return;
+    const std::optional<std::string> problem = gi_window_problem(scene.view, scene.gi);
+    if (!problem) return;
+    const json::Value& view = *top.find("view");
+    if (const json::Value* size = view.find("size"))
+        reader.fail(size->position(), "view.size", *problem);
+    else
+        reader.fail(view.position(), "view", *problem);
+}
+
+void read_point_light(Reader& reader, const json::Value& value, const std::string& path,
+                      PointLight& light) {
+    Fields(reader, value, path, {"position", "height", "color", "intensity", "radius"})
+        .required("position", light.position, any_number)
+        .optional("height", light.height, at_least(0.0))
+        .optional("color", light.color, at_least(0.0))
+        .optional("intensity", light.intensity, at_least(0.0))
+        .optional("radius", light.radius, greater_than(0.0));
+}
+
+void read_emissive_light(Reader& reader, const json::Value& value, const std::string& path,
+                         EmissiveLight& light) {
+    Fields(reader, value, path, {"position", "color", "intensity", "radius"})
+        .required("position", light.position, any_number)
+        .optional("color", light.color, at_least(0.0))
+        .optional("intensity", light.intensity, at_least(0.0))
+        .optional("radius", light.radius, greater_than(0.0));
+}
+
+void read_directional_light(Reader& reader, const json::Value& value, const std::string& path,
+                            DirectionalLight& light) {
+    Fields fields(reader, value, path,
+                  {"direction", "color", "intensity", "base_shadow_distance", "bounce_intensity"});
+    fields.required("direction", light.direction, any_number)
+        .optional("color", light.color, at_least(0.0))
+        .optional("intensity", light.intensity, at_least(0.0))
+        .optional("base_shadow_distance", light.base_shadow_distance, at_least(0.0))
+        .optional("bounce_intensity", light.bounce_intensity, at_least(0.0));
+    if (!fields.ok()) return;
+    // In double: the squares of tiny float components would underflow to 0 in float.
+    const glm::dvec3 direction(light.direction);
+    const double length = glm::length(direction);
+    if (length == 0.0)
+        fields.fail("direction", "must not be zero");
+    else
+        light.direction = glm::vec3(direction / length);
+}
+
+void read_shadow_proxy(Reader& reader, const json::Value& value, const std::string& path,
+                       ShadowProxy& proxy) {
+    Fields(reader, value, path,
+           {"position", "shape", "size", "max_length", "end_cap_blend", "penumbra_width",
+            "penumbra_length", "penumbra_power", "width_mode", "penumbra_mode"})
+        .required("position", proxy.position, any_number)
+        .optional("shape", proxy.shape, proxy_shapes)
+        .optional("size", proxy.size, greater_than(0.0))
+        .optional("max_length", proxy.max_length, at_least(0.0))
+        .optional("end_cap_blend", proxy.end_cap_blend, between(0.0, 1.0))
+        .optional("penumbra_width", proxy.penumbra_width, at_least(0.0))
+        .optional("penumbra_length", proxy.penumbra_length, at_least(0.0))
+        .optional("penumbra_power", proxy.penumbra_power, greater_than(0.0))
+        .optional("width_mode", proxy.width_mode, width_modes)
+        .optional("penumbra_mode", proxy.penumbra_mode, penumbra_modes);
+}
+
+template <typename T>
+using ReadItem = void (*)(Reader&, const json::Value&, const std::string&, T&);
+
+// An optional list of objects; an absent key leaves `out` empty.
+template <typename T>
+void read_list(Reader& reader, const Fields& top, std::string_view key, ReadItem<T> read_item,
+               std::vector<T>& out) {
+    const json::Value* list = top.find(key);
+    const std::string path(key);
+    if (!list || !reader.expect(*list, path, json::Type::array)) return;
+    const json::Value::Array& items = list->as_array();
+    out.reserve(items.size());
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        T item;
+        read_item(reader, items[i], detail::index_path(path, i), item);
+        if (!reader.ok()) return;
+        out.push_back(item);
+    }
+}
+
+void read_version(Reader& reader, Fields& top) {
+    int version = 0;
+    top.required("lantern_scene", version, IntRange{});
+    if (reader.ok() && version != supported_version)
+        top.fail("lantern_scene", "version " + std::to_string(version) +
+                                      " is not supported; this build reads version " +
+                                      std::to_string(supported_version));
+}
+
+// Everything but the map import, in a fixed order; the first problem is kept.
+void read_scene(Reader& reader, const json::Value& root, Scene& scene, MapSpec& map) {
+    Fields top(reader, root, "",
+               {"lantern_scene", "world", "view", "camera", "gi", "point_lights", "emissive_lights",
+                "directional_lights", "shadow_proxies"});
+    read_version(reader, top);
+    if (const json::Value* world = top.find_required("world"))
+        read_world(reader, *world, scene, map);
+    read_view(reader, top, scene.view);
+    if (const json::Value* gi = top.find("gi")) detail::read_gi_settings(reader, *gi, scene.gi);
+    check_gi_window(reader, top, scene);
+    read_list<PointLight>(reader, top, "point_lights", read_point_light, scene.point_lights);
+    read_list<EmissiveLight>(reader, top, "emissive_lights", read_emissive_light,
+                             scene.emissive_lights);
+    read_list<DirectionalLight>(reader, top, "directional_lights", read_directional_light,
+                                scene.directional_lights);
+    read_list<ShadowProxy>(reader, top, "shadow_proxies", read_shadow_proxy, scene.shadow_proxies);
+}
+
+ShadowProxy tree_proxy(glm::ivec2 tile) {
+    ShadowProxy proxy;
+    proxy.position = glm::vec2(tile) + 0.5f;
+    proxy.shape = ProxyShape::circle;
+    proxy.size = glm::vec2(tree_proxy_radius);
+    proxy.max_length = tree_proxy_max_length;
+    return proxy;
+}
+
+// Reads the map file into scene.walls (keeping the origin the scene set) and, for
+// "trees": "proxy", appends a shadow proxy per tree.
+Result<void> import_map(const MapSpec& spec, const std::string& scene_file,
+                        const std::string& base_dir, Scene& scene) {
+    const std::string path = (std::filesystem::path(base_dir) / spec.path).string();
+    auto text = read_text_file(path);
+    if (!text) return file_error(scene_file, {spec.position, "world.map", text.error().message});
+    auto map = parse_moving_ai_map(*text, path, spec.options);
+    if (!map) return map.error();
+    const glm::ivec2 origin = scene.walls.origin;
+    scene.walls = std::move(map->walls);
+    scene.walls.origin = origin;
+    if (spec.options.trees == TreeMode::proxy) {
+        scene.shadow_proxies.reserve(scene.shadow_proxies.size() + map->trees.size());
+        for (glm::ivec2 cell : map->trees)
+            scene.shadow_proxies.push_back(tree_proxy(origin + cell));
+    }
+    return {};
+}
+
+bool is_bare_word(std::string_view text) {
+    auto is_letter = [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+    };
+    auto is_digit = [](char c) { return c >= '0' && c <= '9'; };
+    if (text.empty() || !is_letter(text[0])) return false;
+    return std::all_of(text.begin(), text.end(),
+                       [&](char c) { return is_letter(c) || is_digit(c); });
+}
+
+// VALUE of --set: a JSON value, or a bare word taken as a string.
+std::optional<json::Value> parse_override_value(std::string_view text) {
+    if (auto value = json::parse(text, "--set")) return std::move(*value);
+    if (is_bare_word(text)) return json::Value(std::string(text), {});
+    return std::nullopt;
+}
+
+} // namespace
+
+Result<Scene> parse_scene(std::string_view json_text, const std::string& file_name_for_messages,
+                          const std::string& base_dir) {
+    const std::string& file = file_name_for_messages;
+    auto root = json::parse(json_text, file);
+    if (!root) return root.error();
+    Scene scene;
+    scene.source = file;
+    MapSpec map;
+    Reader reader;
+    read_scene(reader, *root, scene, map);
+    if (!reader.ok()) return file_error(file, reader.issue());
+    if (!map.path.empty())
+        if (auto imported = import_map(map, file, base_dir, scene); !imported)
+            return imported.error();
+    return scene;
+}
+
+Result<Scene> load_scene(const std::string& path) {
+    auto text = read_text_file(path);
+    if (!text) return make_error(text.error().message); // exit code 2: a bad input path
+    return parse_scene(*text, path, std::filesystem::path(path).parent_path().string());
+}
+
+Result<void> apply_override(Scene& scene, std::string_view assignment) {
+    const std::size_t equals = assignment.find('=');
+    const std::string name(assignment.substr(0, equals));
+    const std::string prefix = "--set " + name + ": ";
+    if (!name.starts_with("gi."))
+        return make_error(prefix + "only gi keys can be set (--set gi.KEY=VALUE)");
+    if (equals == std::string_view::npos) return make_error(prefix + "expected gi.KEY=VALUE");
+    const std::string_view text = assignment.substr(equals + 1);
+    const std::optional<json::Value> value = parse_override_value(text);
+    if (!value)
+        return make_error(prefix + "'" + detail::shorten(text) +
+                          "' is neither a JSON value nor a bare word (such as aces)");
+    GiSettings gi = scene.gi;
+    Reader reader;
+    if (!detail::read_gi_key(reader, std::string_view(name).substr(3), *value, gi))
+        return make_error(prefix + reader.issue().what);
+    if (auto problem = gi_window_problem(scene.view, gi)) return make_error(prefix + *problem);
+    scene.gi = gi;
+    return {};
+}
+
+} // namespace lantern::scene

@@ -1,0 +1,126 @@
+// Direct light from point lights (DDA-shadowed, proxy-shadowed) and emissives (no
+// shadows, no cap): ground colour (rgba16f), shadow map R (rg8), and per-face wall light
+// (4 x rgba16f) on wall texels. params0.x = light softness.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "lantern/gi_common.glsl"
+
+layout(constant_id = 4) const int MAX_LIGHTS = 2048; // point lights + emissives (64 KiB UBO)
+
+layout(binding = 0) uniform usamplerBuffer u_walls;
+layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
+layout(std140, binding = 2) uniform LightBlock { GpuPointLight lights[MAX_LIGHTS]; } u_lights;
+layout(std430, binding = 3) writeonly buffer DirectOut { uvec2 texels[]; } o_direct;
+layout(std430, binding = 4) writeonly buffer ShadowOut { uvec2 texels[]; } o_shadow; // 4 rg8 texels each
+layout(std430, binding = 5) writeonly buffer FacePX { uvec2 texels[]; } o_face_px;
+layout(std430, binding = 6) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
+layout(std430, binding = 7) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
+layout(std430, binding = 8) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
+
+#include "lantern/gi_shadow.glsl"
+
+struct TexelLight {
+    vec3 color;
+    float shadow;
+    vec3 face[4];
+};
+
+float light_distance(vec2 p, vec2 pos) {
+    precise vec2 d = pos - p;
+    precise float dist = sqrt(d.x * d.x + d.y * d.y);
+    return dist;
+}
+
+vec4 face_weights(vec4 mask, vec2 p, vec2 light_pos) {
+    precise vec2 to_light = light_pos - p;
+    precise float inv_len = 1.0 / sqrt(max(to_light.x * to_light.x + to_light.y * to_light.y, 1e-6));
+    return mask * wall_facing(to_light * inv_len);
+}
+
+void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
+    vec4 mask = wall_face_mask(cell);
+    float softness = pc.params0.x;
+    for (int i = 0; i < pc.counts.x; ++i) {
+        GpuPointLight l = u_lights.lights[i];
+        vec2 pos = l.position_radius.xy;
+        float radius = l.position_radius.z;
+        float dist = light_distance(p, pos);
+        if (dist > radius) continue;
+        vec4 weight = face_weights(mask, p, pos);
+        if (weight == vec4(0.0)) continue;
+        vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
+        for (int f = 0; f < 4; ++f) {
+            if (!(weight[f] > 0.0)) continue;
+            vec2 target = face_position(f, cell, p);
+            float shadow = min(shadow_dda(pos, target, radius), point_proxy_shadow(pos, target));
+            t.face[f] += contribution * (weight[f] * shadow);
+        }
+    }
+    for (int i = pc.counts.x; i < pc.counts.x + pc.counts.y; ++i) {
+        GpuPointLight l = u_lights.lights[i];
+        vec2 pos = l.position_radius.xy;
+        float radius = l.position_radius.z;
+        float dist = light_distance(p, pos);
+        if (dist > radius) continue;
+        vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
+        vec4 weight = face_weights(mask, p, pos);
+        for (int f = 0; f < 4; ++f) t.face[f] += contribution * weight[f];
+    }
+}
+
+void ground_texel(vec2 p, inout TexelLight t) {
+    float softness = pc.params0.x;
+    for (int i = 0; i < pc.counts.x; ++i) {
+        GpuPointLight l = u_lights.lights[i];
+        vec2 pos = l.position_radius.xy;
+        float radius = l.position_radius.z;
+        float dist = light_distance(p, pos);
+        if (dist > radius) continue;
+        float shadow = min(shadow_dda(pos, p, radius), point_proxy_shadow(pos, p));
+        t.shadow = max(t.shadow, shadow);
+        t.color += l.color.rgb * light_falloff(dist, radius, softness) * shadow;
+    }
+    for (int i = pc.counts.x; i < pc.counts.x + pc.counts.y; ++i) {
+        GpuPointLight l = u_lights.lights[i];
+        vec2 pos = l.position_radius.xy;
+        float radius = l.position_radius.z;
+        float dist = light_distance(p, pos);
+        if (dist > radius) continue;
+        t.color += l.color.rgb * light_falloff(dist, radius, softness);
+    }
+}
+
+void main() {
+    ivec2 o = block_origin();
+    if (o.x >= pc.size.x) return;
+    for (uint r = 0; r < BLOCK_H; ++r) {
+        int y = o.y + int(r);
+        if (y >= pc.size.y) return;
+        vec2 shadow[4];
+        for (int k = 0; k < 4; ++k) {
+            int x = o.x + k;
+            TexelLight t;
+            t.color = vec3(0.0);
+            t.shadow = 0.0;
+            t.face[0] = t.face[1] = t.face[2] = t.face[3] = vec3(0.0);
+            bool wall = false;
+            if (x < pc.size.x) {
+                vec2 p = texel_center(x, y);
+                ivec2 cell = ivec2(floor(p));
+                wall = HAS_WALLS && is_wall(cell);
+                if (wall) wall_texel(cell, p, t);
+                else ground_texel(p, t);
+            }
+            int index = texel_index(x, y);
+            o_direct.texels[index] = pack_rgba16f(vec4(t.color, 0.0));
+            if (HAS_WALLS) { // otherwise the face textures are cleared once by the host
+                o_face_px.texels[index] = pack_rgba16f(vec4(t.face[0], 1.0));
+                o_face_nx.texels[index] = pack_rgba16f(vec4(t.face[1], 1.0));
+                o_face_pz.texels[index] = pack_rgba16f(vec4(t.face[2], 1.0));
+                o_face_nz.texels[index] = pack_rgba16f(vec4(t.face[3], 1.0));
+            }
+            shadow[k] = vec2(wall ? 0.0 : t.shadow, 0.0);
+        }
+        o_shadow.texels[texel_index(o.x, y) / 4] = uvec2(pack_rg8x2(shadow[0], shadow[1]), pack_rg8x2(shadow[2], shadow[3]));
+    }
+}

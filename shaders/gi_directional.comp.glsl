@@ -1,0 +1,101 @@
+// Directional lights (sun, moon): traversal towards the light with the wall-height test,
+// added into the direct colour and wall faces; writes shadow map G (max visibility).
+// params0 = (wall height, directional angle scale, -, -).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "lantern/gi_common.glsl"
+
+layout(binding = 0) uniform usamplerBuffer u_walls;
+layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
+layout(std140, binding = 2) uniform SunBlock { GpuDirectionalLight suns[8]; } u_suns;
+layout(binding = 3) uniform samplerBuffer u_direct_in; // rgba16f views of the outputs
+layout(binding = 4) uniform samplerBuffer u_shadow_in; // rg8 unorm
+layout(binding = 5) uniform samplerBuffer u_face_px_in;
+layout(binding = 6) uniform samplerBuffer u_face_nx_in;
+layout(binding = 7) uniform samplerBuffer u_face_pz_in;
+layout(binding = 8) uniform samplerBuffer u_face_nz_in;
+layout(std430, binding = 9) writeonly buffer DirectOut { uvec2 texels[]; } o_direct;
+layout(std430, binding = 10) writeonly buffer ShadowOut { uvec2 texels[]; } o_shadow;
+layout(std430, binding = 11) writeonly buffer FacePX { uvec2 texels[]; } o_face_px;
+layout(std430, binding = 12) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
+layout(std430, binding = 13) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
+layout(std430, binding = 14) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
+
+#include "lantern/gi_shadow.glsl"
+
+struct TexelLight {
+    vec3 color;
+    float shadow;
+    vec3 face[4];
+};
+
+float sun_angle(GpuDirectionalLight sun) {
+    return mix(saturate(-sun.direction_base.y * 2.0), 1.0, pc.params0.y);
+}
+
+float sun_visibility(GpuDirectionalLight sun, vec2 from) {
+    vec3 dir = sun.direction_base.xyz;
+    if (dir.y >= 0.0) return 0.0; // below the horizon
+    float max_distance = sun.direction_base.w * sun.color_multiplier.w;
+    float grid = directional_shadow_dda(from, dir, max_distance, pc.params0.x);
+    return min(grid, directional_proxy_shadow(from, dir));
+}
+
+void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
+    vec4 mask = wall ? wall_face_mask(cell) : vec4(0.0);
+    for (int i = 0; i < pc.counts.z; ++i) {
+        GpuDirectionalLight sun = u_suns.suns[i];
+        vec3 color = sun.color_multiplier.rgb * sun_angle(sun);
+        if (!wall) {
+            float visibility = sun_visibility(sun, p);
+            t.shadow = max(t.shadow, visibility);
+            t.color += color * visibility;
+            continue;
+        }
+        vec2 to_sun = vec2(-sun.direction_base.x, -sun.direction_base.z);
+        precise float len = sqrt(to_sun.x * to_sun.x + to_sun.y * to_sun.y);
+        if (len < 1e-4) continue;
+        vec4 weight = mask * wall_facing(to_sun / len);
+        for (int f = 0; f < 4; ++f) {
+            if (!(weight[f] > 0.0)) continue;
+            t.face[f] += color * (weight[f] * sun_visibility(sun, face_position(f, cell, p)));
+        }
+    }
+}
+
+void main() {
+    ivec2 o = block_origin();
+    if (o.x >= pc.size.x) return;
+    for (uint r = 0; r < BLOCK_H; ++r) {
+        int y = o.y + int(r);
+        if (y >= pc.size.y) return;
+        vec2 shadow[4];
+        for (int k = 0; k < 4; ++k) {
+            int x = o.x + k;
+            int index = texel_index(x, y);
+            TexelLight t;
+            t.color = vec3(0.0);
+            t.shadow = 0.0;
+            t.face[0] = t.face[1] = t.face[2] = t.face[3] = vec3(0.0);
+            bool wall = false;
+            if (x < pc.size.x) {
+                vec2 p = texel_center(x, y);
+                ivec2 cell = ivec2(floor(p));
+                wall = HAS_WALLS && is_wall(cell);
+                sun_texel(wall, cell, p, t);
+            }
+            vec4 direct = texelFetch(u_direct_in, index);
+            o_direct.texels[index] = pack_rgba16f(vec4(direct.rgb + t.color, direct.a));
+            if (HAS_WALLS) {
+                vec4 px = texelFetch(u_face_px_in, index), nx = texelFetch(u_face_nx_in, index);
+                vec4 pz = texelFetch(u_face_pz_in, index), nz = texelFetch(u_face_nz_in, index);
+                o_face_px.texels[index] = pack_rgba16f(vec4(px.rgb + t.face[0], px.a));
+                o_face_nx.texels[index] = pack_rgba16f(vec4(nx.rgb + t.face[1], nx.a));
+                o_face_pz.texels[index] = pack_rgba16f(vec4(pz.rgb + t.face[2], pz.a));
+                o_face_nz.texels[index] = pack_rgba16f(vec4(nz.rgb + t.face[3], nz.a));
+            }
+            shadow[k] = vec2(texelFetch(u_shadow_in, index).r, wall ? 0.0 : t.shadow);
+        }
+        o_shadow.texels[texel_index(o.x, y) / 4] = uvec2(pack_rg8x2(shadow[0], shadow[1]), pack_rg8x2(shadow[2], shadow[3]));
+    }
+}

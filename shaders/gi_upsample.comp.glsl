@@ -1,0 +1,54 @@
+// Indirect light at full resolution from the heat grid: a copy at scale 1, else bilinear
+// over the conductive heat texels around the texel centre (nearest when none conducts).
+// size = full (w, h, pitch, res); params0 = (heat w, heat h, heat pitch, heat texels per unit);
+// params1.x = scale.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "lantern/gi_common.glsl"
+
+layout(binding = 0) uniform usamplerBuffer u_walls;
+layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[1]; } u_proxies; // unused
+layout(binding = 2) uniform samplerBuffer u_heat;
+layout(std430, binding = 3) writeonly buffer Out { uvec2 texels[]; } o_indirect;
+
+#include "lantern/gi_shadow.glsl"
+
+vec3 heat_at(int i, int j) { return texelFetch(u_heat, j * int(pc.params0.z) + i).rgb; }
+
+vec3 upsample(int x, int y) {
+    int hw = int(pc.params0.x), hh = int(pc.params0.y);
+    if (int(pc.params1.x) == 1) return heat_at(x, y);
+    float tpu = pc.params0.w;
+    vec2 origin = pc.camera_view.xy;
+    vec2 u = (texel_center(x, y) - origin) * tpu - 0.5;
+    ivec2 i0 = ivec2(floor(u));
+    vec2 f = u - vec2(i0);
+    vec3 sum = vec3(0.0);
+    float wsum = 0.0;
+    for (int dy = 0; dy <= 1; ++dy)
+        for (int dx = 0; dx <= 1; ++dx) {
+            int hi = clamp(i0.x + dx, 0, hw - 1), hj = clamp(i0.y + dy, 0, hh - 1);
+            vec2 c = vec2(origin.x + (float(hi) + 0.5) / tpu, origin.y + (float(hj) + 0.5) / tpu);
+            if (is_wall(ivec2(floor(c)))) continue;
+            float wt = (dx == 1 ? f.x : 1.0 - f.x) * (dy == 1 ? f.y : 1.0 - f.y);
+            sum += heat_at(hi, hj) * wt;
+            wsum += wt;
+        }
+    if (wsum > 0.0) return sum / wsum;
+    int ni = clamp(int(floor(u.x + 0.5)), 0, hw - 1), nj = clamp(int(floor(u.y + 0.5)), 0, hh - 1);
+    return heat_at(ni, nj);
+}
+
+void main() {
+    ivec2 o = block_origin();
+    if (o.x >= pc.size.x) return;
+    for (uint r = 0; r < BLOCK_H; ++r) {
+        int y = o.y + int(r);
+        if (y >= pc.size.y) return;
+        for (int k = 0; k < 4; ++k) {
+            int x = o.x + k;
+            vec4 value = x < pc.size.x ? vec4(upsample(x, y), 1.0) : vec4(0.0);
+            o_indirect.texels[texel_index(x, y)] = pack_rgba16f(value);
+        }
+    }
+}

@@ -1,0 +1,52 @@
+// Wall indirect: each exposed face of a wall texel takes the indirect light of the texel
+// one world unit across that face (clamped to the window); ground texels stay zero.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "lantern/gi_common.glsl"
+
+layout(binding = 0) uniform usamplerBuffer u_walls;
+layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[1]; } u_proxies; // unused
+layout(binding = 2) uniform samplerBuffer u_indirect;
+layout(std430, binding = 3) writeonly buffer FacePX { uvec2 texels[]; } o_face_px;
+layout(std430, binding = 4) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
+layout(std430, binding = 5) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
+layout(std430, binding = 6) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
+
+#include "lantern/gi_shadow.glsl"
+
+const vec2 ACROSS[4] = vec2[4](vec2(1, 0), vec2(-1, 0), vec2(0, 1), vec2(0, -1));
+
+vec4 face_value(int f, vec4 mask, vec2 p) {
+    if (!(mask[f] > 0.0)) return vec4(0.0, 0.0, 0.0, 1.0);
+    vec2 q = p + ACROSS[f];
+    float res = float(pc.size.w);
+    int sx = clamp(int(floor((q.x - pc.camera_view.x) * res)), 0, pc.size.x - 1);
+    int sy = clamp(int(floor((q.y - pc.camera_view.y) * res)), 0, pc.size.y - 1);
+    return vec4(texelFetch(u_indirect, texel_index(sx, sy)).rgb, 1.0);
+}
+
+void main() {
+    ivec2 o = block_origin();
+    if (o.x >= pc.size.x) return;
+    for (uint r = 0; r < BLOCK_H; ++r) {
+        int y = o.y + int(r);
+        if (y >= pc.size.y) return;
+        for (int k = 0; k < 4; ++k) {
+            int x = o.x + k;
+            int index = texel_index(x, y);
+            vec4 v[4] = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+            if (x < pc.size.x) {
+                vec2 p = texel_center(x, y);
+                ivec2 cell = ivec2(floor(p));
+                if (is_wall(cell)) {
+                    vec4 mask = wall_face_mask(cell);
+                    for (int f = 0; f < 4; ++f) v[f] = face_value(f, mask, p);
+                }
+            }
+            o_face_px.texels[index] = pack_rgba16f(v[0]);
+            o_face_nx.texels[index] = pack_rgba16f(v[1]);
+            o_face_pz.texels[index] = pack_rgba16f(v[2]);
+            o_face_nz.texels[index] = pack_rgba16f(v[3]);
+        }
+    }
+}

@@ -1,0 +1,55 @@
+// Shared by every GI compute pass: push constants, the texel grid, and the storage
+// layout. Mirrored in C++ by engine/gi/src/vulkan/pass_params.hpp (GiPassParams).
+//
+// Layout: every GI texture is a buffer of pitch x height texels, row-major, row 0 at the
+// window's min z; pitch is the width rounded up to 4. Each invocation computes a block of
+// 4 x BLOCK_H texels, so a block row of r8 texels is one uint, of rg8 texels one uvec2, and
+// rgba16f texels are one uvec2 each (packHalf2x16, round to nearest even). Reads go through
+// uniform texel buffers (r8/rg8 UNORM, rgba16f SFLOAT views of the same buffers).
+#ifndef LANTERN_GI_COMMON_GLSL
+#define LANTERN_GI_COMMON_GLSL
+
+#include "gi_types.glsl"
+
+layout(constant_id = 0) const uint BLOCK_H = 4;        // texel rows per invocation
+layout(local_size_x_id = 1, local_size_y_id = 2) in;  // workgroup size (blocks)
+layout(constant_id = 3) const bool HAS_PROXIES = true; // false: proxy loops compiled out
+layout(constant_id = 5) const bool HAS_WALLS = true;   // false: no wall tile in the window
+
+const uint BLOCK_W = 4;
+
+layout(push_constant) uniform GiPassParams {
+    vec4 camera_view;  // min_x, min_z, width, height (world units)
+    ivec4 size;        // texture width, height, pitch (texels), resolution (texels per unit)
+    ivec4 grid;        // wall grid width, height, offset x, offset z
+    ivec4 counts;      // point lights, emissives, directional lights, proxies
+    vec4 params0;      // pass-specific
+    vec4 params1;      // pass-specific
+} pc;
+
+// The block this invocation owns: x0 is a multiple of 4.
+ivec2 block_origin() { return ivec2(gl_GlobalInvocationID.x * BLOCK_W, gl_GlobalInvocationID.y * BLOCK_H); }
+
+int texel_index(int x, int y) { return y * pc.size.z + x; }
+
+// Texel centre in world units: min + (i + 0.5) / res, exactly as the C++ reference.
+vec2 texel_center(int x, int y) {
+    float res = float(pc.size.w);
+    return vec2(pc.camera_view.x + (float(x) + 0.5) / res, pc.camera_view.y + (float(y) + 0.5) / res);
+}
+
+vec4 finite_half_range(vec4 v) {
+    v = clamp(v, vec4(-65504.0), vec4(65504.0)); // beyond the half range: stay finite
+    return mix(v, vec4(0.0), isnan(v));          // NaN never propagates
+}
+uvec2 pack_rgba16f(vec4 v) {
+    v = finite_half_range(v);
+    return uvec2(packHalf2x16(v.xy), packHalf2x16(v.zw));
+}
+vec4 unpack_rgba16f(uvec2 u) { return vec4(unpackHalf2x16(u.x), unpackHalf2x16(u.y)); }
+// floor(v * 255 + 0.5) after clamping, as the reference (GLSL round() leaves ties open).
+uint unorm8(float v) { return uint(floor(clamp(v, 0.0, 1.0) * 255.0 + 0.5)); }
+uint pack_r8x4(vec4 v) { return unorm8(v.x) | (unorm8(v.y) << 8) | (unorm8(v.z) << 16) | (unorm8(v.w) << 24); }
+uint pack_rg8x2(vec2 a, vec2 b) { return unorm8(a.x) | (unorm8(a.y) << 8) | (unorm8(b.x) << 16) | (unorm8(b.y) << 24); }
+
+#endif

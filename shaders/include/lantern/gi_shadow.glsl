@@ -1,0 +1,199 @@
+// Grid traversals, shadow proxies, falloff and wall-face weights: the GLSL side of
+// engine/gi/src/reference_shadow.cpp, operation for operation. `precise` keeps the
+// compiler from fusing multiply-adds, so cell decisions match the reference.
+//
+// Requires before inclusion: gi_common.glsl, `usamplerBuffer u_walls` (R8_UINT, 1 = wall)
+// and a `u_proxies` block with `GpuShadowProxy proxies[]` (bound even when HAS_PROXIES is
+// false; the specialisation constant lets the driver drop the proxy loops).
+#ifndef LANTERN_GI_SHADOW_GLSL
+#define LANTERN_GI_SHADOW_GLSL
+
+#include "gi_types.glsl"
+
+const float GI_RAY_BIAS = 1e-4;
+const float GI_DIR_EPS = 1e-6;
+const float GI_CORNER_EPS = 1e-5;
+const float GI_BIG = 1e30;
+const float GI_FACE_EPS = 1e-3;
+
+bool in_grid(int x, int z) {
+    int c = x + pc.grid.z, r = z + pc.grid.w;
+    return c >= 0 && r >= 0 && c < pc.grid.x && r < pc.grid.y;
+}
+bool is_wall(int x, int z) {
+    if (!in_grid(x, z)) return false; // out of bounds is air
+    return texelFetch(u_walls, (z + pc.grid.w) * pc.grid.x + (x + pc.grid.z)).r != 0u;
+}
+bool is_wall(ivec2 c) { return is_wall(c.x, c.y); }
+
+float saturate(float x) { return clamp(x, 0.0, 1.0); }
+
+float first_boundary(float start, float dir, int stp) {
+    if (abs(dir) < GI_DIR_EPS) return GI_BIG;
+    precise float cell = floor(start);
+    precise float t = stp > 0 ? (cell + 1.0 - start) / dir : (start - cell) / -dir;
+    return t;
+}
+float boundary_step(float dir) { return abs(dir) < GI_DIR_EPS ? GI_BIG : abs(1.0 / dir); }
+int sign_of(float v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
+
+float shadow_dda(vec2 light, vec2 pixel, float radius) {
+    precise vec2 ray = pixel - light;
+    precise float ray_length = sqrt(ray.x * ray.x + ray.y * ray.y);
+    if (ray_length < 1e-4) return 1.0;
+    precise vec2 dir = ray / ray_length;
+    precise vec2 start = light + dir * GI_RAY_BIAS;
+    precise vec2 end_pos = pixel - dir * GI_RAY_BIAS;
+    ray_length = max(ray_length - 2.0 * GI_RAY_BIAS, 0.0);
+
+    ivec2 cell = ivec2(floor(start));
+    ivec2 end_cell = ivec2(floor(end_pos));
+    ivec2 stp = ivec2(sign_of(dir.x), sign_of(dir.y));
+    precise vec2 t_max = vec2(first_boundary(start.x, dir.x, stp.x), first_boundary(start.y, dir.y, stp.y));
+    vec2 t_delta = vec2(boundary_step(dir.x), boundary_step(dir.y));
+    int max_steps = max(1, int(ceil(radius * 2.0)) + 2);
+
+    for (int i = 0; i < max_steps; ++i) {
+        if (is_wall(cell)) return 0.0;
+        if (cell == end_cell) return 1.0;
+        float traveled;
+        if (t_max.x < t_max.y - GI_CORNER_EPS) {
+            traveled = t_max.x;
+            t_max.x += t_delta.x;
+            cell.x += stp.x;
+        } else if (t_max.y < t_max.x - GI_CORNER_EPS) {
+            traveled = t_max.y;
+            t_max.y += t_delta.y;
+            cell.y += stp.y;
+        } else {
+            traveled = t_max.x;
+            if (is_wall(cell.x + stp.x, cell.y) && is_wall(cell.x, cell.y + stp.y)) return 0.0;
+            t_max += t_delta;
+            cell += stp;
+        }
+        if (traveled > ray_length) return 1.0;
+    }
+    return 1.0;
+}
+
+bool blocks_directional_cell(ivec2 cell, vec2 start, vec3 to_sun, float to_sun_xz_length, float wall_height) {
+    if (!is_wall(cell)) return false;
+    precise vec2 d = vec2(cell) + 0.5 - start;
+    precise float distance_to_wall = sqrt(d.x * d.x + d.y * d.y);
+    if (abs(to_sun.y) > 0.001 && to_sun_xz_length > 1e-4) {
+        precise float vertical_rate = to_sun.y / to_sun_xz_length;
+        precise float height = distance_to_wall * vertical_rate;
+        return height < wall_height;
+    }
+    return true;
+}
+
+float directional_shadow_dda(vec2 pixel, vec3 light_dir, float max_distance, float wall_height) {
+    vec3 to_sun = -light_dir;
+    precise float xz_length = sqrt(to_sun.x * to_sun.x + to_sun.z * to_sun.z);
+    if (xz_length < 1e-4) return 1.0;
+    precise vec2 dir = vec2(to_sun.x / xz_length, to_sun.z / xz_length);
+    precise vec2 start = pixel + dir * GI_RAY_BIAS;
+    ivec2 cell = ivec2(floor(start));
+    ivec2 stp = ivec2(sign_of(dir.x), sign_of(dir.y));
+    precise vec2 t_max = vec2(first_boundary(start.x, dir.x, stp.x), first_boundary(start.y, dir.y, stp.y));
+    vec2 t_delta = vec2(boundary_step(dir.x), boundary_step(dir.y));
+    int max_steps = 2 * (pc.grid.x + pc.grid.y);
+    for (int i = 0; i < max_steps; ++i) {
+        if (blocks_directional_cell(cell, start, to_sun, xz_length, wall_height)) return 0.0;
+        if (t_max.x < t_max.y) {
+            t_max.x += t_delta.x;
+            cell.x += stp.x;
+        } else {
+            t_max.y += t_delta.y;
+            cell.y += stp.y;
+        }
+        if (min(t_max.x, t_max.y) > max_distance) return 1.0;
+        if (!in_grid(cell.x, cell.y)) return 1.0;
+    }
+    return 1.0;
+}
+
+float light_falloff(float dist, float radius, float softness) {
+    return pow(1.0 - saturate(dist / radius), softness);
+}
+
+vec4 wall_face_mask(ivec2 c) {
+    return vec4(is_wall(c.x + 1, c.y) ? 0.0 : 1.0, is_wall(c.x - 1, c.y) ? 0.0 : 1.0,
+                is_wall(c.x, c.y + 1) ? 0.0 : 1.0, is_wall(c.x, c.y - 1) ? 0.0 : 1.0);
+}
+vec4 wall_facing(vec2 d) { return vec4(saturate(d.x), saturate(-d.x), saturate(d.y), saturate(-d.y)); }
+
+// Where a wall face's shadow ray ends (or starts, for the sun): just outside the face.
+vec2 face_position(int face, ivec2 cell, vec2 p) {
+    if (face == 0) return vec2(float(cell.x) + 1.0 + GI_FACE_EPS, p.y);
+    if (face == 1) return vec2(float(cell.x) - GI_FACE_EPS, p.y);
+    if (face == 2) return vec2(p.x, float(cell.y) + 1.0 + GI_FACE_EPS);
+    return vec2(p.x, float(cell.y) - GI_FACE_EPS);
+}
+
+float penumbra_factor(float dist, float edge, float width, float power, int mode) {
+    if (!(width > 0.0)) return dist <= edge ? 1.0 : 0.0;
+    float lo = mode == 0 ? edge - width : (mode == 1 ? edge : edge - 0.5 * width);
+    float t = saturate((lo + width - dist) / width);
+    return pow(t, power);
+}
+
+float proxy_width(GpuShadowProxy p, vec2 perp) {
+    if (p.modes.y > 0.5) return p.position_size.z;
+    vec2 half_size = p.position_size.zw;
+    if (p.modes.z > 0.5) return max(half_size.x, half_size.y);
+    return abs(perp.x) * half_size.x + abs(perp.y) * half_size.y;
+}
+
+float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
+    vec2 perp = vec2(-dir_shadow.y, dir_shadow.x);
+    vec2 to_pixel = pixel - p.position_size.xy;
+    float along = dot(to_pixel, dir_shadow);
+    if (along <= 0.0) return 0.0;
+    float max_length = p.lengths.x, pen_width = p.lengths.z, pen_length = p.lengths.w;
+    if (along > max_length + pen_length) return 0.0;
+    float perp_dist = abs(dot(to_pixel, perp));
+    float power = p.modes.x;
+    int mode = int(p.modes.w + 0.5);
+    float edge = penumbra_factor(perp_dist, proxy_width(p, perp), pen_width, power, mode);
+    float len = penumbra_factor(along, max_length, pen_length, power, mode);
+    return edge * len;
+}
+
+float point_proxy_shadow(vec2 light, vec2 pixel) {
+    if (!HAS_PROXIES) return 1.0;
+    vec2 ray = pixel - light;
+    float ray_len = sqrt(ray.x * ray.x + ray.y * ray.y);
+    if (ray_len < 1e-4) return 1.0;
+    vec2 dir = ray / ray_len;
+    float shadow = 1.0;
+    for (int i = 0; i < pc.counts.w; ++i) {
+        GpuShadowProxy p = u_proxies.proxies[i];
+        vec2 to_proxy = p.position_size.xy - light;
+        float proxy_dist = sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
+        if (proxy_dist < 1e-4) continue;
+        vec2 dir_flat = to_proxy / proxy_dist;
+        vec2 blended = mix(dir, dir_flat, saturate(p.lengths.y));
+        float blended_len = sqrt(blended.x * blended.x + blended.y * blended.y);
+        vec2 dir_shadow = blended_len > 1e-6 ? blended / blended_len : dir_flat;
+        if (dot(to_proxy, dir_shadow) <= 0.0) continue;
+        shadow = min(shadow, 1.0 - proxy_occlusion(p, pixel, dir_shadow));
+        if (shadow <= 0.001) break;
+    }
+    return shadow;
+}
+
+float directional_proxy_shadow(vec2 pixel, vec3 light_dir) {
+    if (!HAS_PROXIES) return 1.0;
+    float xz_length = sqrt(light_dir.x * light_dir.x + light_dir.z * light_dir.z);
+    if (xz_length < 1e-4) return 1.0;
+    vec2 travel = vec2(light_dir.x / xz_length, light_dir.z / xz_length);
+    float shadow = 1.0;
+    for (int i = 0; i < pc.counts.w; ++i) {
+        shadow = min(shadow, 1.0 - proxy_occlusion(u_proxies.proxies[i], pixel, travel));
+        if (shadow <= 0.001) break;
+    }
+    return shadow;
+}
+#endif
