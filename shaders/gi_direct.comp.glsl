@@ -114,10 +114,11 @@ void main() {
             int index = texel_index(x, y);
             o_direct.texels[index] = pack_rgba16f(vec4(t.color, 0.0));
             if (HAS_WALLS) { // otherwise the face textures are cleared once by the host
-                o_face_px.texels[index] = pack_rgba16f(vec4(t.face[0], 1.0));
-                o_face_nx.texels[index] = pack_rgba16f(vec4(t.face[1], 1.0));
-                o_face_pz.texels[index] = pack_rgba16f(vec4(t.face[2], 1.0));
-                o_face_nz.texels[index] = pack_rgba16f(vec4(t.face[3], 1.0));
+                float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
+                o_face_px.texels[index] = pack_rgba16f(vec4(t.face[0], has_faces));
+                o_face_nx.texels[index] = pack_rgba16f(vec4(t.face[1], has_faces));
+                o_face_pz.texels[index] = pack_rgba16f(vec4(t.face[2], has_faces));
+                o_face_nz.texels[index] = pack_rgba16f(vec4(t.face[3], has_faces));
             }
             shadow[k] = vec2(wall ? 0.0 : t.shadow, 0.0);
         }

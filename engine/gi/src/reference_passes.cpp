@@ -210,7 +210,8 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
             store_rgb(out.direct, x, y, light.color, 0.0f);
             const float shadow[2] = {wall ? 0.0f : light.shadow, 0.0f};
             out.shadow.store(x, y, shadow);
-            for (int f = 0; f < 4; ++f) store_rgb(out.wall_direct[f], x, y, light.face[f], 1.0f);
+            // Face alpha flags texels that hold face light (wall texels).
+            for (int f = 0; f < 4; ++f) store_rgb(out.wall_direct[f], x, y, light.face[f], wall ? 1.0f : 0.0f);
         }
     });
     return out;

@@ -1,0 +1,65 @@
+// Texel-by-texel comparison of a GPU texture with the C++ reference, with tolerances that
+// follow from the storage formats: unorm8 within one step (1/255: the reference and the
+// GPU may round a value that sits on a step boundary differently), half within two units in
+// the last place (both round to nearest even; GLSL pow/exp/division may differ from the
+// C++ library by a few float ulps, which can move a value across one half rounding
+// boundary, and sums of many lights can do that twice).
+#pragma once
+
+#include "lantern/gi/texture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace gi_test {
+
+struct TexelDiff {
+    std::size_t mismatches = 0;
+    std::size_t compared = 0;
+    float worst = 0.0f; // largest |a - b| / allowed
+    int x = -1, y = -1, channel = -1;
+    float gpu = 0.0f, ref = 0.0f;
+};
+
+inline float allowed_difference(lantern::gi::TexFormat f, float a, float b, float half_ulps) {
+    if (f != lantern::gi::TexFormat::rgba16f) return 1.0f / 255.0f + 1e-6f;
+    const float magnitude = std::max(std::abs(a), std::abs(b));
+    // One half ulp is 2^-10 of the magnitude for normal halves, 2^-24 absolute below 2^-14.
+    return half_ulps * std::max(magnitude * std::ldexp(1.0f, -10), std::ldexp(1.0f, -24));
+}
+
+inline TexelDiff compare_textures(const lantern::gi::Texture& gpu, const lantern::gi::Texture& ref,
+                                  float half_ulps = 2.0f) {
+    TexelDiff d;
+    EXPECT_EQ(gpu.width, ref.width);
+    EXPECT_EQ(gpu.height, ref.height);
+    EXPECT_EQ(gpu.format, ref.format);
+    if (gpu.width != ref.width || gpu.height != ref.height || gpu.format != ref.format) return d;
+    for (int y = 0; y < gpu.height; ++y)
+        for (int x = 0; x < gpu.width; ++x)
+            for (int c = 0; c < gpu.channels(); ++c) {
+                const float a = gpu.at(x, y)[c], b = ref.at(x, y)[c];
+                const float ratio = std::abs(a - b) / allowed_difference(gpu.format, a, b, half_ulps);
+                ++d.compared;
+                if (!(std::isfinite(a)) || ratio > 1.0f) ++d.mismatches;
+                if (!(ratio <= d.worst)) {
+                    d.worst = ratio;
+                    d.x = x, d.y = y, d.channel = c, d.gpu = a, d.ref = b;
+                }
+            }
+    return d;
+}
+
+inline std::string describe(const std::string& what, const TexelDiff& d) {
+    std::ostringstream s;
+    s << what << ": " << d.mismatches << " of " << d.compared << " values outside tolerance; worst at (" << d.x
+      << ", " << d.y << ") channel " << d.channel << ": gpu " << d.gpu << " reference " << d.ref << " ("
+      << d.worst << " x the allowed difference)";
+    return s.str();
+}
+
+} // namespace gi_test

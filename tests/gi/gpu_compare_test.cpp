@@ -1,0 +1,109 @@
+// Every GI pass on Vulkan (lavapipe in CI) against the C++ reference, texel by texel, on
+// the comparison scenes and two real maps (tolerances: gi_compare.hpp).
+#include "gi_compare.hpp"
+#include "test_scenes.hpp"
+
+#include "gpu_test_support.hpp"
+#include "lantern/gi/frame_runner.hpp"
+#include "lantern/gi/vulkan/renderer.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace lantern::gi;
+using gi_test::NamedScene;
+
+namespace {
+
+vk::Renderer& shared_renderer(lantern::gpu::Device& device) {
+    static std::unique_ptr<vk::Renderer> renderer;
+    if (!renderer) {
+        auto r = vk::Renderer::create(device);
+        EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
+        renderer = std::move(r.value());
+    }
+    return *renderer;
+}
+
+class GiGpuCompare : public lantern::test::GpuTest {
+  protected:
+    // Runs the scene's frame (through `through`) on both backends and compares every texture
+    // and the lit image.
+    void compare_scene(const NamedScene& named, Pass through, bool lit) {
+        const lantern::scene::Scene& s = named.scene;
+        std::string why;
+        auto window = compute_window(s.view, s.gi.padding, s.gi.resolution, &why);
+        ASSERT_TRUE(window) << why;
+        FrameInputs in = gather_frame_inputs(s, *window);
+        PassPlan plan = plan_passes(in, lit, through);
+        auto gpu = run_vulkan_frame(shared_renderer(device()), in, plan);
+        ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+        FrameResult ref = run_reference_frame(in, plan);
+        ASSERT_EQ(gpu->textures.size(), ref.textures.size()) << named.name;
+        for (const auto& [name, reference] : ref.textures) {
+            auto it = gpu->textures.find(name);
+            ASSERT_NE(it, gpu->textures.end()) << named.name << ": GPU did not produce " << name;
+            const float ulps = (name == "indirect" || name.rfind("wall_indirect", 0) == 0) ? 4.0f : 2.0f;
+            auto diff = gi_test::compare_textures(it->second, reference, ulps);
+            EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(named.name + " " + name, diff);
+        }
+        if (lit) {
+            ASSERT_TRUE(gpu->lit && ref.lit);
+            int worst = 0;
+            std::size_t off = 0;
+            for (std::size_t i = 0; i < ref.lit->rgb.size(); ++i) {
+                int d = std::abs(int(gpu->lit->rgb[i]) - int(ref.lit->rgb[i]));
+                worst = std::max(worst, d);
+                off += d > 1;
+            }
+            EXPECT_EQ(off, 0u) << named.name << " lit image: " << off << " channels differ by more than one step (worst "
+                               << worst << ")";
+        }
+    }
+};
+
+class GiGpuScenes : public GiGpuCompare, public ::testing::WithParamInterface<int> {};
+
+} // namespace
+
+TEST_P(GiGpuScenes, DirectPassesMatchReference) {
+    auto scenes = gi_test::comparison_scenes();
+    compare_scene(scenes[std::size_t(GetParam())], Pass::directional, false);
+}
+
+TEST_P(GiGpuScenes, WholePipelineMatchesReference) {
+    auto scenes = gi_test::comparison_scenes();
+    compare_scene(scenes[std::size_t(GetParam())], Pass::lit, true);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GiGpuScenes, ::testing::Range(0, 10), [](const auto& p) {
+    return gi_test::comparison_scenes()[std::size_t(p.param)].name;
+});
+
+TEST_F(GiGpuCompare, RealMapDen312d) {
+    auto s = gi_test::map_scene("den312d.map", {32.0f, 40.0f}, 1);
+    if (!s) GTEST_SKIP() << "../shared/maps not available";
+    compare_scene(*s, Pass::lit, true);
+}
+
+TEST_F(GiGpuCompare, RealMapLak303d) {
+    auto s = gi_test::map_scene("lak303d.map", {100.0f, 100.0f}, 2);
+    if (!s) GTEST_SKIP() << "../shared/maps not available";
+    compare_scene(*s, Pass::lit, true);
+}
+
+TEST_F(GiGpuCompare, HeatScalesAndModes) {
+    auto scenes = gi_test::comparison_scenes();
+    NamedScene base = scenes[1]; // rooms
+    for (auto scale : {lantern::scene::HeatScale::full, lantern::scene::HeatScale::half, lantern::scene::HeatScale::quarter})
+        for (bool per_channel : {true, false})
+            for (float distance : {1.0f, 2.5f}) {
+                NamedScene s = base;
+                s.scene.gi.heat_scale = scale;
+                s.scene.gi.per_channel = per_channel;
+                s.scene.gi.diffusion_distance = distance;
+                s.scene.gi.range_boost = 0.5f;
+                s.name = "rooms scale " + std::to_string(int(scale)) + (per_channel ? " per-channel" : " physical") +
+                         " distance " + std::to_string(distance);
+                compare_scene(s, Pass::wall_indirect, false);
+            }
+}
