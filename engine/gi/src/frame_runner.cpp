@@ -96,7 +96,8 @@ Result<FrameResult> run_vulkan_frame(vk::Renderer& renderer, const FrameInputs& 
     using vk::Tex;
     for (int t = 0; t < vk::tex_count; ++t) {
         const Tex tex = Tex(t);
-        if (tex == Tex::heat_a || tex == Tex::heat_b || tex == Tex::blur_temp || tex == Tex::lit) continue;
+        if (tex == Tex::heat_a || tex == Tex::heat_b || tex == Tex::heat_mask || tex == Tex::blur_temp || tex == Tex::lit)
+            continue;
         if (!renderer.has(tex)) continue;
         if (tex == Tex::emission && !plan.run.has(Pass::emission)) continue;
         if (tex == Tex::indirect && !plan.run.has(Pass::heat)) continue;

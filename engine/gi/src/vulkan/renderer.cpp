@@ -21,7 +21,7 @@ constexpr int num_query_sets = 3; // frames in flight + one being recorded
 int pitch_of(int width) { return (width + 3) & ~3; }
 
 VkFormat view_format(TexFormat f, bool rgba8) {
-    if (rgba8) return VK_FORMAT_R8G8B8A8_UNORM;
+    if (rgba8) return VK_FORMAT_R8G8B8A8_UNORM; // also the 32-bit heat tap masks (read as R32_UINT)
     switch (f) {
     case TexFormat::r8: return VK_FORMAT_R8_UNORM;
     case TexFormat::rg8: return VK_FORMAT_R8G8_UNORM;
@@ -46,7 +46,8 @@ const std::vector<BindingType>& bindings_of(const char* shader) {
           B::storage_buffer, B::storage_buffer}},
         {"gi_emission.comp", {B::uniform_texel_buffer, B::storage_buffer}},
         {"gi_heat_seed.comp", {B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_heat.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
+        {"gi_heat_mask.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::storage_buffer}},
+        {"gi_heat.comp", {B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
         {"gi_upsample.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
         {"gi_blur.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
         {"gi_wall_indirect.comp",
@@ -72,7 +73,7 @@ const char* tex_name(Tex t) {
     static constexpr const char* names[tex_count] = {
         "conduction",       "ao",           "direct",           "shadow",           "wall_direct_px",
         "wall_direct_nx",   "wall_direct_pz", "wall_direct_nz", "emission",         "heat_a",
-        "heat_b",           "indirect",     "blur_temp",        "wall_indirect_px", "wall_indirect_nx",
+        "heat_b",           "heat_mask",    "indirect",     "blur_temp",        "wall_indirect_px", "wall_indirect_nx",
         "wall_indirect_pz", "wall_indirect_nz", "lit"};
     return names[int(t)];
 }
@@ -161,6 +162,7 @@ void Renderer::ensure_texture(Tex t, TexFormat format, int width, int height, bo
     desc.name = tex_name(t);
     g.buffer = device_.create_buffer(desc);
     g.view = device_.create_buffer_view(g.buffer, view_format(format, rgba8), 0, VK_WHOLE_SIZE, tex_name(t));
+    if (rgba8) g.view_u32 = device_.create_buffer_view(g.buffer, VK_FORMAT_R32_UINT, 0, VK_WHOLE_SIZE, tex_name(t));
 }
 
 void Renderer::drop_texture(Tex t) { textures_[int(t)] = GpuTexture{}; }
@@ -204,9 +206,10 @@ Result<void> Renderer::prepare(const FrameInputs& in, const PassPlan& plan) {
         ensure_texture(Tex::emission, TexFormat::rgba16f, W, H);
         ensure_texture(Tex::heat_a, TexFormat::rgba16f, g.width, g.height);
         ensure_texture(Tex::heat_b, TexFormat::rgba16f, g.width, g.height);
+        ensure_texture(Tex::heat_mask, TexFormat::r8, g.width, g.height, true);
         ensure_texture(Tex::indirect, TexFormat::rgba16f, W, H);
     } else {
-        for (Tex t : {Tex::emission, Tex::heat_a, Tex::heat_b, Tex::indirect}) drop_texture(t);
+        for (Tex t : {Tex::emission, Tex::heat_a, Tex::heat_b, Tex::heat_mask, Tex::indirect}) drop_texture(t);
     }
     if (need(Pass::blur)) ensure_texture(Tex::blur_temp, TexFormat::rgba16f, W, H);
     else drop_texture(Tex::blur_temp);
@@ -450,20 +453,31 @@ void Renderer::record_heat(gpu::CommandList& cmd, const FrameInputs& in) {
     cmd.push_constants(static_cast<const GiPassParams&>(seed));
     dispatch_blocks(cmd, g.width, g.height);
     cmd.barrier_compute_to_compute();
+    // Tap masks: which taps each heat texel may use (air, segment clear), once per frame.
+    const float distance = s.diffusion_distance * g.texels_per_unit;
+    cmd.bind(pipelines_->get("gi_heat_mask.comp", block_h_, group_x_, group_y_, false, true, true, s.segment_check));
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .uniform_texel_buffer(0, walls_view_)
+                             .uniform_buffer(1, proxies_)
+                             .storage_buffer(2, textures_[int(Tex::heat_mask)].buffer));
+    PassParams mask = params(in, g.width, g.height, w.resolution);
+    mask.params0 = glm::vec4(g.texels_per_unit, distance, s.diffusion_distance * 2.0f + 2.0f, 0.0f);
+    cmd.push_constants(static_cast<const GiPassParams&>(mask));
+    dispatch_blocks(cmd, g.width, g.height);
+    cmd.barrier_compute_to_compute();
     // Rounds, ping-pong.
     const auto& round_pipeline =
-        pipelines_->get("gi_heat.comp", block_h_, group_x_, group_y_, false, true, s.per_channel, s.segment_check);
+        pipelines_->get("gi_heat.comp", block_h_, group_x_, group_y_, false, true, s.per_channel, true);
     PassParams round = params(in, g.width, g.height, w.resolution);
-    round.params0 = glm::vec4(g.texels_per_unit, s.diffusion_distance * g.texels_per_unit, s.diffusion_rate, s.range_boost);
-    round.params1 = glm::vec4(s.intensity_multiplier, s.diffusion_distance * 2.0f + 2.0f, 0.0f, 0.0f);
+    round.params0 = glm::vec4(g.texels_per_unit, distance, s.diffusion_rate, s.range_boost);
+    round.params1 = glm::vec4(s.intensity_multiplier, 0.0f, 0.0f, 0.0f);
     Tex src = Tex::heat_a, dst = Tex::heat_b;
     for (int r = 0; r < s.heat_rounds; ++r) {
         cmd.bind(round_pipeline);
         cmd.push_descriptors(gpu::DescriptorWrites()
-                                 .uniform_texel_buffer(0, walls_view_)
-                                 .uniform_buffer(1, proxies_)
-                                 .uniform_texel_buffer(2, textures_[int(src)].view)
-                                 .storage_buffer(3, textures_[int(dst)].buffer));
+                                 .uniform_texel_buffer(0, textures_[int(Tex::heat_mask)].view_u32)
+                                 .uniform_texel_buffer(1, textures_[int(src)].view)
+                                 .storage_buffer(2, textures_[int(dst)].buffer));
         cmd.push_constants(static_cast<const GiPassParams&>(round));
         dispatch_blocks(cmd, g.width, g.height);
         cmd.barrier_compute_to_compute();

@@ -35,6 +35,7 @@ enum class Tex : std::uint8_t {
     emission,
     heat_a,
     heat_b,
+    heat_mask, // 32-bit words: usable heat taps per heat texel (internal)
     indirect,
     blur_temp,
     wall_indirect_px,
@@ -99,6 +100,7 @@ class Renderer {
     struct GpuTexture {
         gpu::Buffer buffer;
         gpu::BufferView view;
+        gpu::BufferView view_u32; // 32-bit word textures (lit, heat_mask): R32_UINT view
         TexFormat format = TexFormat::rgba16f;
         int width = 0, height = 0, pitch = 0;
         bool rgba8 = false;

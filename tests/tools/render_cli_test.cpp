@@ -1,0 +1,159 @@
+// lantern-render as users run it: the real executable, real files, exit statuses.
+#include "common/test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+using lantern::test::TempDir;
+
+namespace {
+
+struct Run {
+    int status = -1;
+    std::string output; // stdout + stderr
+};
+
+Run run(const std::string& args) {
+    Run r;
+    const std::string cmd = std::string(LANTERN_RENDER_EXE) + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    char buf[4096];
+    std::size_t n;
+    while ((n = fread(buf, 1, sizeof(buf), p)) > 0) r.output.append(buf, n);
+    int status = pclose(p);
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+void write(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+const char* small_scene = R"({
+  "lantern_scene": 1,
+  "world": { "rows": ["##########", "#........#", "#..#.....#", "#........#", "##########"] },
+  "view": { "center": [5.0, 2.5], "size": [10.0, 5.0] },
+  "gi": { "resolution": 4, "padding": 1.0, "heat_rounds": 4 },
+  "point_lights": [ { "position": [2.5, 2.5], "color": [1.0, 0.6, 0.3], "intensity": 2.0, "radius": 6.0 } ]
+})";
+
+std::size_t file_count(const fs::path& dir) {
+    std::size_t n = 0;
+    for (auto& e : fs::recursive_directory_iterator(dir)) n += e.is_regular_file();
+    return n;
+}
+
+} // namespace
+
+TEST(RenderCli, HelpAndUsageErrors) {
+    auto help = run("--help");
+    EXPECT_EQ(help.status, 0);
+    EXPECT_NE(help.output.find("--dump DIR"), std::string::npos);
+    EXPECT_EQ(run("").status, 2);
+    EXPECT_EQ(run("a.json --backend metal").status, 2);
+    EXPECT_EQ(run("a.json --bogus").status, 2);
+    EXPECT_EQ(run("a.json --out").status, 2);
+}
+
+TEST(RenderCli, BadScenesExitTwoAndWriteNothing) {
+    TempDir dir;
+    struct Case {
+        const char* name;
+        std::string text;
+        const char* expect; // part of the one-line message
+    };
+    const std::vector<Case> cases = {
+        {"malformed.json", "{ \"lantern_scene\": 1, ", "bad.json"},
+        {"missing_key.json", R"({"lantern_scene": 1, "view": {"center": [0,0]}})", "world"},
+        {"wrong_type.json", std::string(small_scene).replace(std::string(small_scene).find("\"resolution\": 4"), 15, "\"resolution\": \"4\""), "gi.resolution"},
+        {"negative_radius.json", std::string(small_scene).replace(std::string(small_scene).find("\"radius\": 6.0"), 13, "\"radius\": -6.0"), "radius"},
+        {"missing_map.json", R"({"lantern_scene": 1, "world": {"map": "nowhere.map"}, "view": {"center": [0,0], "size": [4,4]}})", "nowhere.map"},
+        {"huge.json", R"({"lantern_scene": 1, "world": {"rows": ["."]}, "view": {"center": [0,0], "size": [1e9, 4]}})", "view"},
+    };
+    for (const Case& c : cases) {
+        const fs::path scene = dir.path() / c.name;
+        write(scene, c.text);
+        const fs::path out = dir.path() / "out";
+        fs::create_directories(out);
+        auto r = run(scene.string() + " --backend cpu --out " + (out / "img.png").string() + " --dump " +
+                     (out / "dump").string() + " --timings " + (out / "t.json").string());
+        EXPECT_EQ(r.status, 2) << c.name << ": " << r.output;
+        EXPECT_EQ(file_count(out), 0u) << c.name << " wrote output";
+        EXPECT_NE(r.output.find(std::string(c.name) == "malformed.json" ? "malformed.json:" : c.expect), std::string::npos)
+            << c.name << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one clear message: " << r.output;
+    }
+    // A map file with an unknown character: file, line and column of the map.
+    write(dir.path() / "bad.map", "type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n");
+    write(dir.path() / "map_scene.json",
+          R"({"lantern_scene": 1, "world": {"map": "bad.map"}, "view": {"center": [1,1], "size": [4,4]}})");
+    auto r = run((dir.path() / "map_scene.json").string() + " --backend cpu");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.output.find("bad.map:6:2"), std::string::npos) << r.output;
+    // --set errors name the override.
+    write(dir.path() / "ok.json", small_scene);
+    auto s = run((dir.path() / "ok.json").string() + " --backend cpu --set gi.resolution=99");
+    EXPECT_EQ(s.status, 2);
+    EXPECT_NE(s.output.find("--set gi.resolution"), std::string::npos) << s.output;
+}
+
+TEST(RenderCli, DumpTimingsAndImageOnTheCpuBackend) {
+    TempDir dir;
+    write(dir.path() / "scene.json", small_scene);
+    auto r = run((dir.path() / "scene.json").string() + " --backend cpu --quiet --out " + dir.file("img.png") +
+                 " --dump " + dir.file("dump") + " --timings " + dir.file("t.json") + " --set gi.ao.enabled=false");
+    ASSERT_EQ(r.status, 0) << r.output;
+    // PNG signature.
+    std::string png = lantern::test::read_file(dir.path() / "img.png");
+    ASSERT_GT(png.size(), 8u);
+    EXPECT_EQ(png.substr(1, 3), "PNG");
+    // Every texture of the frame, named by the contract; AO was turned off: no ao.pfm.
+    for (const char* name : {"conduction", "direct", "shadow", "wall_direct_px", "wall_direct_nx", "wall_direct_pz",
+                             "wall_direct_nz", "emission", "indirect", "wall_indirect_px", "wall_indirect_nz"})
+        EXPECT_TRUE(fs::exists(dir.path() / "dump" / (std::string(name) + ".pfm"))) << name;
+    EXPECT_FALSE(fs::exists(dir.path() / "dump" / "ao.pfm"));
+    // PFM layout: colour "PF", greyscale "Pf", little-endian scale; 64 x 64 (the minimum size).
+    std::string pfm = lantern::test::read_file(dir.path() / "dump" / "direct.pfm");
+    EXPECT_EQ(pfm.rfind("PF\n64 64\n-1.0\n", 0), 0u);
+    EXPECT_EQ(pfm.size(), std::string("PF\n64 64\n-1.0\n").size() + 64 * 64 * 3 * 4);
+    std::string cond = lantern::test::read_file(dir.path() / "dump" / "conduction.pfm");
+    ASSERT_EQ(cond.rfind("Pf\n64 64\n-1.0\n", 0), 0u);
+    // First stored row = texture row 0 = world z in [0, 0.25): the wall row, conduction 0.
+    float first;
+    std::memcpy(&first, cond.data() + std::string("Pf\n64 64\n-1.0\n").size() + 4 * 20, 4);
+    EXPECT_EQ(first, 0.0f);
+    auto t = nlohmann::json::parse(lantern::test::read_file(dir.path() / "t.json"));
+    EXPECT_EQ(t["texture_size"], nlohmann::json::array({64, 64}));
+    EXPECT_EQ(t["camera_view"], nlohmann::json::array({0.0, 0.0, 16.0, 16.0}));
+    EXPECT_TRUE(t.contains("device"));
+    bool saw_ao = false;
+    for (const auto& p : t["passes"]) {
+        EXPECT_TRUE(p.contains("name") && p.contains("ran") && p.contains("gpu_ms"));
+        if (p["name"] == "ao") {
+            saw_ao = true;
+            EXPECT_FALSE(p["ran"].get<bool>());
+            EXPECT_EQ(p["reason"], "AO disabled");
+        }
+    }
+    EXPECT_TRUE(saw_ao);
+}
+
+TEST(RenderCli, VulkanAndCpuBackendsAgree) {
+    TempDir dir;
+    write(dir.path() / "scene.json", small_scene);
+    auto v = run((dir.path() / "scene.json").string() + " --quiet --out " + dir.file("v.png"));
+    if (v.status == 1 && v.output.find("no Vulkan device") != std::string::npos) GTEST_SKIP() << v.output;
+    ASSERT_EQ(v.status, 0) << v.output;
+    auto c = run((dir.path() / "scene.json").string() + " --quiet --backend cpu --out " + dir.file("c.png"));
+    ASSERT_EQ(c.status, 0) << c.output;
+    EXPECT_EQ(lantern::test::read_file(dir.path() / "v.png"), lantern::test::read_file(dir.path() / "c.png"));
+}
