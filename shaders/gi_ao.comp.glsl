@@ -1,35 +1,54 @@
-// Ambient occlusion (r8): distance-weighted share of wall tiles within the AO radius.
-// params0 = (radius, power, strength, dither on/off).
+// Ambient occlusion (r8): the distance-weighted share of wall tiles within the AO radius.
+// The weights come from the host (AoKernel: per position inside a tile, per neighbour tile);
+// an invocation loads the wall pattern around its tile once and sums the weights of the
+// walls in it. params0 = (-, -, strength, dither on/off); params1.x = range (ceil(radius)).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[1]; } u_proxies; // unused
-layout(std430, binding = 2) writeonly buffer Out { uint texels[]; } o_ao;
+layout(binding = 2) uniform samplerBuffer u_kernel; // weights, then totals (R32_SFLOAT)
+layout(std430, binding = 3) writeonly buffer Out { uint texels[]; } o_ao;
 
 #include "lantern/gi_shadow.glsl"
 
 const float BAYER4[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);
+const int MAX_WORDS = 10; // (2 * 8 + 1)^2 = 289 neighbour bits for radius 8
+
+uint g_walls[MAX_WORDS];
+ivec2 g_tile = ivec2(0x7FFFFFFF);
+
+void load_walls(ivec2 tile, int range) {
+    if (tile == g_tile) return;
+    g_tile = tile;
+    int span = 2 * range + 1;
+    for (int w = 0; w < (span * span + 31) >> 5; ++w) g_walls[w] = 0u;
+    for (int dy = -range; dy <= range; ++dy)
+        for (int dx = -range; dx <= range; ++dx)
+            if (is_wall(tile.x + dx, tile.y + dy)) {
+                int bit = (dy + range) * span + dx + range;
+                g_walls[bit >> 5] |= 1u << uint(bit & 31);
+            }
+}
 
 float ao_texel(int x, int y) {
-    float radius = max(pc.params0.x, 0.01);
-    int range = int(ceil(radius));
-    float power = max(pc.params0.y, 0.01);
-    vec2 p = texel_center(x, y);
-    ivec2 base = ivec2(floor(p));
-    float occluded = 0.0, total = 0.0;
-    for (int dy = -range; dy <= range; ++dy) {
-        for (int dx = -range; dx <= range; ++dx) {
-            vec2 center = vec2(float(base.x + dx) + 0.5, float(base.y + dy) + 0.5);
-            vec2 d = p - center;
-            float dist = sqrt(d.x * d.x + d.y * d.y);
-            if (dist > radius) continue;
-            float weight = pow(1.0 - saturate(dist / radius), power);
-            total += weight;
-            if (is_wall(base.x + dx, base.y + dy)) occluded += weight;
+    int res = pc.size.w, range = int(pc.params1.x);
+    int taps = (2 * range + 1) * (2 * range + 1);
+    ivec2 tile = ivec2(int(floor(pc.camera_view.x)) + x / res, int(floor(pc.camera_view.y)) + y / res);
+    load_walls(tile, range);
+    int sub = (y % res) * res + (x % res);
+    float occluded = 0.0;
+    int words = (taps + 31) >> 5;
+    for (int w = 0; w < words; ++w) {
+        uint bits = g_walls[w];
+        while (bits != 0u) { // ascending neighbour order, as the reference sums
+            int bit = findLSB(bits);
+            bits &= bits - 1u;
+            occluded += texelFetch(u_kernel, sub * taps + w * 32 + bit).r;
         }
     }
+    float total = texelFetch(u_kernel, res * res * taps + sub).r;
     float occlusion = total > 0.0 ? occluded / total : 0.0;
     float value = 1.0 - saturate(pc.params0.z) * occlusion;
     if (pc.params0.w > 0.5) value += ((BAYER4[(y & 3) * 4 + (x & 3)] + 0.5) / 16.0 - 0.5) / 255.0;

@@ -1,6 +1,7 @@
 // Direct light from point lights (DDA-shadowed, proxy-shadowed) and emissives (no
 // shadows, no cap): ground colour (rgba16f), shadow map R (rg8), and per-face wall light
-// (4 x rgba16f) on wall texels. params0.x = light softness.
+// (4 x rgba16f) on wall texels. Each workgroup visits only the lights gi_light_bins listed
+// for its footprint. params0.x = light softness.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "lantern/gi_common.glsl"
@@ -16,6 +17,7 @@ layout(std430, binding = 5) writeonly buffer FacePX { uvec2 texels[]; } o_face_p
 layout(std430, binding = 6) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
 layout(std430, binding = 7) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
 layout(std430, binding = 8) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
+layout(std430, binding = 9) readonly buffer Bins { uint masks[]; } u_bins; // gi_light_bins
 
 #include "lantern/gi_shadow.glsl"
 
@@ -37,17 +39,23 @@ vec4 face_weights(vec4 mask, vec2 p, vec2 light_pos) {
     return mask * wall_facing(to_light * inv_len);
 }
 
-void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
-    vec4 mask = wall_face_mask(cell);
-    float softness = pc.params0.x;
-    for (int i = 0; i < pc.counts.x; ++i) {
+// The lights this workgroup's bin lists, in ascending order: point lights first.
+int g_bin_base;
+int g_bin_words;
+
+#define FOR_EACH_BIN_LIGHT(i)                                                                   \
+    for (int w_ = 0; w_ < g_bin_words; ++w_)                                                    \
+        for (uint bits_ = u_bins.masks[g_bin_base + w_]; bits_ != 0u; bits_ &= bits_ - 1u)      \
+            for (int i = w_ * 32 + findLSB(bits_), once_ = 1; once_ == 1; once_ = 0)
+
+void point_wall_light(int i, ivec2 cell, vec2 p, vec4 mask, float softness, inout TexelLight t) {
         GpuPointLight l = u_lights.lights[i];
         vec2 pos = l.position_radius.xy;
         float radius = l.position_radius.z;
         float dist = light_distance(p, pos);
-        if (dist > radius) continue;
+        if (dist > radius) return;
         vec4 weight = face_weights(mask, p, pos);
-        if (weight == vec4(0.0)) continue;
+        if (weight == vec4(0.0)) return;
         vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0)) continue;
@@ -55,44 +63,51 @@ void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
             float shadow = min(shadow_dda(pos, target, radius), point_proxy_shadow(pos, target));
             t.face[f] += contribution * (weight[f] * shadow);
         }
-    }
-    for (int i = pc.counts.x; i < pc.counts.x + pc.counts.y; ++i) {
+}
+
+void emissive_wall_light(int i, vec2 p, vec4 mask, float softness, inout TexelLight t) {
         GpuPointLight l = u_lights.lights[i];
         vec2 pos = l.position_radius.xy;
         float radius = l.position_radius.z;
         float dist = light_distance(p, pos);
-        if (dist > radius) continue;
+        if (dist > radius) return;
         vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
         vec4 weight = face_weights(mask, p, pos);
         for (int f = 0; f < 4; ++f) t.face[f] += contribution * weight[f];
+}
+
+void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
+    vec4 mask = wall_face_mask(cell);
+    float softness = pc.params0.x;
+    FOR_EACH_BIN_LIGHT(i) {
+        if (i < pc.counts.x) point_wall_light(i, cell, p, mask, softness, t);
+        else emissive_wall_light(i, p, mask, softness, t);
     }
 }
 
 void ground_texel(vec2 p, inout TexelLight t) {
     float softness = pc.params0.x;
-    for (int i = 0; i < pc.counts.x; ++i) {
+    FOR_EACH_BIN_LIGHT(i) {
         GpuPointLight l = u_lights.lights[i];
         vec2 pos = l.position_radius.xy;
         float radius = l.position_radius.z;
         float dist = light_distance(p, pos);
         if (dist > radius) continue;
-        float shadow = min(shadow_dda(pos, p, radius), point_proxy_shadow(pos, p));
-        t.shadow = max(t.shadow, shadow);
-        t.color += l.color.rgb * light_falloff(dist, radius, softness) * shadow;
-    }
-    for (int i = pc.counts.x; i < pc.counts.x + pc.counts.y; ++i) {
-        GpuPointLight l = u_lights.lights[i];
-        vec2 pos = l.position_radius.xy;
-        float radius = l.position_radius.z;
-        float dist = light_distance(p, pos);
-        if (dist > radius) continue;
-        t.color += l.color.rgb * light_falloff(dist, radius, softness);
+        if (i < pc.counts.x) {
+            float shadow = min(shadow_dda(pos, p, radius), point_proxy_shadow(pos, p));
+            t.shadow = max(t.shadow, shadow);
+            t.color += l.color.rgb * light_falloff(dist, radius, softness) * shadow;
+        } else {
+            t.color += l.color.rgb * light_falloff(dist, radius, softness);
+        }
     }
 }
 
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
+    g_bin_words = (pc.counts.x + pc.counts.y + 31) >> 5;
+    g_bin_base = int(gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * g_bin_words;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);
         if (y >= pc.size.y) return;

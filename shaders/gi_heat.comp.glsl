@@ -19,15 +19,29 @@ layout(std430, binding = 2) writeonly buffer Out { uvec2 texels[]; } o_heat;
 
 const vec3 LUMA = vec3(0.299, 0.587, 0.114);
 
+ivec2 g_offsets[24];
+float g_weights[24];
+int g_taps;
+
+void prepare_taps() {
+    float distance = pc.params0.y;
+    g_taps = heat_tap_count(distance);
+    for (int t = 0; t < g_taps; ++t) {
+        g_offsets[t] = heat_tap_offset(t, distance);
+        g_weights[t] = heat_tap_weight(t, distance) * pc.params0.z;
+    }
+}
+
 vec4 heat_texel(int i, int j, uint mask) {
     vec4 center = texelFetch(u_heat_in, texel_index(i, j));
-    float distance = pc.params0.y, rate = pc.params0.z;
+    float rate = pc.params0.z;
     vec3 accum = vec3(0.0), wsum = vec3(0.0);
-    for (int t = 0; t < heat_tap_count(distance); ++t) {
-        if (((mask >> uint(t)) & 1u) == 0u) continue;
-        ivec2 k = heat_tap_offset(t, distance);
+    while (mask != 0u) {
+        int t = findLSB(mask);
+        mask &= mask - 1u;
+        ivec2 k = g_offsets[t];
         int ti = clamp(i + k.x, 0, pc.size.x - 1), tj = clamp(j + k.y, 0, pc.size.y - 1);
-        float weight = heat_tap_weight(t, distance) * rate;
+        float weight = g_weights[t];
         vec3 n = texelFetch(u_heat_in, texel_index(ti, tj)).rgb;
         vec3 w = PER_CHANNEL ? weight * clamp(n + 0.1, 0.0, 1.0) : vec3(weight);
         accum += n * w;
@@ -48,6 +62,7 @@ vec4 heat_texel(int i, int j, uint mask) {
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
+    prepare_taps();
     for (uint r = 0; r < BLOCK_H; ++r) {
         int j = o.y + int(r);
         if (j >= pc.size.y) return;

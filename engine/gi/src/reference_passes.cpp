@@ -159,28 +159,51 @@ Texture reference_conduction(const FrameInputs& in, const RefOptions& options) {
     return t;
 }
 
+AoKernel ao_kernel(int resolution, const scene::AoSettings& ao) {
+    AoKernel k;
+    k.resolution = resolution;
+    const float radius = std::max(ao.radius, 0.01f);
+    const float power = std::max(ao.power, 0.01f);
+    k.range = int(std::ceil(radius));
+    const int n = k.taps();
+    k.weights.assign(std::size_t(resolution) * std::size_t(resolution) * std::size_t(n), 0.0f);
+    k.totals.assign(std::size_t(resolution) * std::size_t(resolution), 0.0f);
+    for (int sy = 0; sy < resolution; ++sy)
+        for (int sx = 0; sx < resolution; ++sx) {
+            const glm::vec2 p((float(sx) + 0.5f) / float(resolution), (float(sy) + 0.5f) / float(resolution));
+            float total = 0.0f;
+            for (int dy = -k.range; dy <= k.range; ++dy)
+                for (int dx = -k.range; dx <= k.range; ++dx) {
+                    const glm::vec2 center(float(dx) + 0.5f, float(dy) + 0.5f);
+                    const float dist = glm::distance(p, center);
+                    if (dist > radius) continue;
+                    const float weight = std::pow(1.0f - saturate(dist / radius), power);
+                    k.weights[std::size_t((sy * resolution + sx) * n + (dy + k.range) * (2 * k.range + 1) + dx + k.range)] =
+                        weight;
+                    total += weight;
+                }
+            k.totals[std::size_t(sy * resolution + sx)] = total;
+        }
+    return k;
+}
+
 Texture reference_ao(const FrameInputs& in, const RefOptions& options) {
     const GiWindow& w = in.window;
     const scene::AoSettings& ao = in.settings.ao;
     Texture t("ao", TexFormat::r8, w.width, w.height);
-    const float radius = std::max(ao.radius, 0.01f);
-    const int range = int(std::ceil(radius));
-    const float power = std::max(ao.power, 0.01f);
+    const AoKernel k = ao_kernel(w.resolution, ao);
+    const int res = w.resolution, span = 2 * k.range + 1;
     for_each_row(w, options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
-            const glm::vec2 p = w.texel_center(x, y);
-            const glm::ivec2 base = tile_of(p);
-            float occluded = 0.0f, total = 0.0f;
-            for (int dy = -range; dy <= range; ++dy) {
-                for (int dx = -range; dx <= range; ++dx) {
-                    const glm::vec2 center(float(base.x + dx) + 0.5f, float(base.y + dy) + 0.5f);
-                    const float dist = glm::distance(p, center);
-                    if (dist > radius) continue;
-                    const float weight = std::pow(1.0f - saturate(dist / radius), power);
-                    total += weight;
-                    if (in.walls.is_wall(base.x + dx, base.y + dy)) occluded += weight;
-                }
-            }
+            // The window origin is a whole tile, so the tile and the position in it are exact.
+            const glm::ivec2 base(int(std::floor(w.view.min_x)) + x / res, int(std::floor(w.view.min_z)) + y / res);
+            const int sub = (y % res) * res + (x % res);
+            float occluded = 0.0f;
+            for (int dy = -k.range; dy <= k.range; ++dy)
+                for (int dx = -k.range; dx <= k.range; ++dx)
+                    if (in.walls.is_wall(base.x + dx, base.y + dy))
+                        occluded += k.weights[std::size_t(sub * k.taps() + (dy + k.range) * span + dx + k.range)];
+            const float total = k.totals[std::size_t(sub)];
             const float occlusion = total > 0.0f ? occluded / total : 0.0f;
             float value = 1.0f - saturate(ao.strength) * occlusion;
             if (ao.dither) value += (bayer4(x, y) - 0.5f) / 255.0f;

@@ -35,10 +35,11 @@ const std::vector<BindingType>& bindings_of(const char* shader) {
     using B = BindingType;
     static const std::map<std::string, std::vector<BindingType>> table = {
         {"gi_conduction.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::storage_buffer}},
-        {"gi_ao.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::storage_buffer}},
+        {"gi_ao.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
+        {"gi_light_bins.comp", {B::uniform_buffer, B::storage_buffer}},
         {"gi_direct.comp",
          {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::storage_buffer, B::storage_buffer,
-          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer}},
+          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer}},
         {"gi_directional.comp",
          {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::uniform_texel_buffer,
           B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
@@ -97,7 +98,8 @@ struct Renderer::Pipelines {
                                {spec_group_y, gy},            {spec_has_proxies, proxies ? 1u : 0u},
                                {spec_has_walls, walls ? 1u : 0u}, {spec_per_channel, per_channel ? 1u : 0u},
                                {spec_segment_check, segment_check ? 1u : 0u}};
-        if (std::string(shader) == "gi_direct.comp") desc.specialization.push_back({spec_max_lights, max_gpu_lights});
+        if (std::string(shader) == "gi_direct.comp" || std::string(shader) == "gi_light_bins.comp")
+            desc.specialization.push_back({spec_max_lights, max_gpu_lights});
         desc.push_constant_size = sizeof(GiPassParams);
         desc.name = shader;
         return cache.emplace(key, device->create_compute_pipeline(desc)).first->second;
@@ -370,13 +372,32 @@ void Renderer::record_conduction(gpu::CommandList& cmd, const FrameInputs& in) {
 void Renderer::record_ao(gpu::CommandList& cmd, const FrameInputs& in) {
     const GiWindow& w = in.window;
     const scene::AoSettings& ao = in.settings.ao;
+    const auto key = std::make_tuple(w.resolution, ao.radius, ao.power);
+    if (!ao_kernel_ || ao_kernel_key_ != key) {
+        // The weight table changes only with the resolution and the AO shape: upload it then.
+        const AoKernel k = ao_kernel(w.resolution, ao);
+        std::vector<float> table(k.weights);
+        table.insert(table.end(), k.totals.begin(), k.totals.end());
+        gpu::BufferDesc desc;
+        desc.size = (table.size() * sizeof(float) + 15) & ~std::size_t(15);
+        desc.usage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+        desc.name = "ao kernel";
+        ao_kernel_ = device_.create_buffer(desc);
+        ao_kernel_view_ = device_.create_buffer_view(ao_kernel_, VK_FORMAT_R32_SFLOAT, 0, VK_WHOLE_SIZE, "ao kernel");
+        cmd.upload(ao_kernel_, 0, bytes_of(table.data(), table.size() * sizeof(float)));
+        cmd.barrier_transfer_to_compute();
+        ao_kernel_key_ = key;
+        ao_range_ = k.range;
+    }
     cmd.bind(pipelines_->get("gi_ao.comp", block_h_, group_x_, group_y_, false));
     cmd.push_descriptors(gpu::DescriptorWrites()
                              .uniform_texel_buffer(0, walls_view_)
                              .uniform_buffer(1, proxies_)
-                             .storage_buffer(2, textures_[int(Tex::ao)].buffer));
+                             .uniform_texel_buffer(2, ao_kernel_view_)
+                             .storage_buffer(3, textures_[int(Tex::ao)].buffer));
     PassParams p = params(in, w.width, w.height, w.resolution);
     p.params0 = glm::vec4(ao.radius, ao.power, ao.strength, ao.dither ? 1.0f : 0.0f);
+    p.params1.x = float(ao_range_);
     cmd.push_constants(static_cast<const GiPassParams&>(p));
     dispatch_blocks(cmd, w.width, w.height);
     cmd.barrier_compute_to_compute();
@@ -385,6 +406,28 @@ void Renderer::record_ao(gpu::CommandList& cmd, const FrameInputs& in) {
 void Renderer::record_direct(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
     const GiWindow& w = in.window;
     auto tex = [&](Tex t) -> const gpu::Buffer& { return textures_[int(t)].buffer; };
+    // Light bins: one per direct-pass workgroup, a bitmask of the lights reaching it.
+    const std::uint32_t blocks_x = std::uint32_t(pitch_of(w.width) / 4);
+    const std::uint32_t blocks_y = (std::uint32_t(w.height) + block_h_ - 1) / block_h_;
+    const std::uint32_t bins_x = (blocks_x + group_x_ - 1) / group_x_, bins_y = (blocks_y + group_y_ - 1) / group_y_;
+    const std::uint32_t words = std::uint32_t((in.point_lights.size() + in.emissive_lights.size() + 31) / 32);
+    const VkDeviceSize bin_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(bins_x) * bins_y * std::max(words, 1u) * 4);
+    if (!light_bins_ || light_bins_.size() < bin_bytes) {
+        gpu::BufferDesc desc;
+        desc.size = bin_bytes;
+        desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        desc.name = "gi light bins";
+        light_bins_ = device_.create_buffer(desc);
+    }
+    cmd.bind(pipelines_->get("gi_light_bins.comp", 1, 8, 8, false));
+    cmd.push_descriptors(gpu::DescriptorWrites().uniform_buffer(0, lights_).storage_buffer(1, light_bins_));
+    PassParams b = params(in, w.width, w.height, w.resolution);
+    b.params0 = glm::vec4(float(bins_x), float(bins_y), float(words), 0.0f);
+    b.params1 = glm::vec4(float(4 * group_x_), float(block_h_ * group_y_), 0.0f, 0.0f);
+    cmd.push_constants(static_cast<const GiPassParams&>(b));
+    cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
+    cmd.barrier_compute_to_compute();
+
     cmd.bind(pipelines_->get("gi_direct.comp", block_h_, group_x_, group_y_, !in.proxies.empty(),
                              plan.has_walls_in_window));
     cmd.push_descriptors(gpu::DescriptorWrites()
@@ -396,7 +439,8 @@ void Renderer::record_direct(gpu::CommandList& cmd, const FrameInputs& in, const
                              .storage_buffer(5, tex(Tex::wall_direct_px))
                              .storage_buffer(6, tex(Tex::wall_direct_nx))
                              .storage_buffer(7, tex(Tex::wall_direct_pz))
-                             .storage_buffer(8, tex(Tex::wall_direct_nz)));
+                             .storage_buffer(8, tex(Tex::wall_direct_nz))
+                             .storage_buffer(9, light_bins_));
     PassParams p = params(in, w.width, w.height, w.resolution);
     p.params0.x = in.settings.light_softness;
     cmd.push_constants(static_cast<const GiPassParams&>(p));
@@ -604,6 +648,74 @@ std::vector<std::uint8_t> Renderer::read_back_lit_rgb() {
                 rgb[(std::size_t(y) * std::size_t(g.width) + std::size_t(x)) * 3 + std::size_t(c)] =
                     std::uint8_t(bytes[(std::size_t(y) * std::size_t(g.pitch) + std::size_t(x)) * 4 + std::size_t(c)]);
     return rgb;
+}
+
+// ---- benchmark baseline
+
+std::vector<std::uint64_t> Renderer::pass_bytes_written(Pass pass, const FrameInputs& in) {
+    const std::uint64_t texels = std::uint64_t(pitch_of(in.window.width)) * std::uint64_t(in.window.height);
+    const HeatGrid g = heat_grid(in.window, in.settings.heat_scale);
+    const std::uint64_t heat_texels = std::uint64_t(pitch_of(g.width)) * std::uint64_t(g.height);
+    switch (pass) {
+    case Pass::conduction:
+    case Pass::ao: return {texels};
+    case Pass::direct:
+    case Pass::directional: return {texels * (8 + 2 + 4 * 8)};
+    case Pass::emission: return {texels * 8};
+    case Pass::heat: {
+        std::vector<std::uint64_t> out{heat_texels * 8, heat_texels * 4};
+        for (int r = 0; r < in.settings.heat_rounds; ++r) out.push_back(heat_texels * 8);
+        out.push_back(texels * 8);
+        return out;
+    }
+    case Pass::blur: return {texels * 8, texels * 8};
+    case Pass::wall_indirect: return {texels * 4 * 8};
+    case Pass::lit: return {texels * 4};
+    case Pass::count: break;
+    }
+    return {};
+}
+
+double Renderer::time_copy_dispatches(const std::vector<std::uint64_t>& bytes_written, int repeats) {
+    if (bytes_written.empty() || queries_.empty()) return 0.0;
+    const std::uint64_t max_bytes = *std::max_element(bytes_written.begin(), bytes_written.end());
+    // Copy texels laid out as rows of 1024 (the kernel needs a 2D grid).
+    constexpr int row = 1024;
+    gpu::BufferDesc desc;
+    desc.size = ((max_bytes + 8 * row - 1) / (8 * row)) * (8 * row);
+    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    desc.name = "copy src";
+    gpu::Buffer src = device_.create_buffer(desc);
+    desc.name = "copy dst";
+    gpu::Buffer dst = device_.create_buffer(desc);
+    gpu::BufferView src_view = device_.create_buffer_view(src, VK_FORMAT_R16G16B16A16_SFLOAT);
+    auto queries = device_.create_timestamp_queries(1, "copy");
+    if (!queries) return 0.0;
+    const auto& pipeline = pipelines_->get("gi_copy.comp", block_h_, group_x_, group_y_, false);
+    std::vector<double> samples;
+    for (int rep = 0; rep < repeats + 1; ++rep) { // the first run warms up
+        gpu::CommandList cmd = device_.begin("copy baseline");
+        cmd.fill_buffer(src, 0x3C003C00u); // 1.0 halves
+        cmd.barrier_transfer_to_compute();
+        queries->reset(cmd);
+        const std::uint32_t region = queries->begin(cmd, "copy");
+        for (std::uint64_t bytes : bytes_written) {
+            const int height = int((bytes / 8 + row - 1) / row);
+            cmd.bind(pipeline);
+            cmd.push_descriptors(gpu::DescriptorWrites().uniform_texel_buffer(0, src_view).storage_buffer(1, dst));
+            GiPassParams p{};
+            p.size = glm::ivec4(row, height, row, 1);
+            cmd.push_constants(p);
+            dispatch_blocks(cmd, row, height);
+            cmd.barrier_compute_to_compute();
+        }
+        queries->end(cmd, region);
+        device_.submit(std::move(cmd));
+        const auto result = queries->resolve();
+        if (rep > 0) samples.push_back(double(result.regions[0].duration_ns) * 1e-6);
+    }
+    std::sort(samples.begin(), samples.end());
+    return samples[samples.size() / 2];
 }
 
 } // namespace lantern::gi::vk

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <span>
+#include <vector>
 
 namespace lantern::jobs {
 class JobSystem;
@@ -56,5 +57,19 @@ float light_falloff(float distance, float radius, float softness);
 glm::vec4 wall_face_mask(const WallView& walls, glm::ivec2 cell);
 glm::vec4 wall_facing(glm::vec2 dir_to_light);
 float bayer4(int x, int y); // (M[y%4][x%4] + 0.5) / 16
+
+// AO weights. A texel's weight for the tile (dx, dy) tiles away from its own depends only on
+// the texel's position inside its tile, so the weights are computed once per resolution in
+// tile-local coordinates: weights[(sy * res + sx) * n + (dy + range) * (2 range + 1) + dx + range]
+// = pow(1 - saturate(dist / radius), power) (0 beyond the radius), totals[sy * res + sx] =
+// their sum. Both the reference and the GPU pass use this table.
+struct AoKernel {
+    int resolution = 1;
+    int range = 0; // ceil(radius)
+    std::vector<float> weights;
+    std::vector<float> totals;
+    int taps() const { return (2 * range + 1) * (2 * range + 1); }
+};
+AoKernel ao_kernel(int resolution, const scene::AoSettings& ao);
 
 } // namespace lantern::gi

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,15 @@ class Renderer {
     std::vector<std::uint8_t> read_back_lit_rgb();
 
     std::uint32_t block_h() const { return block_h_; }
+    std::uint32_t group_x() const { return group_x_; }
+    std::uint32_t group_y() const { return group_y_; }
+
+    // Benchmark baseline: GPU time (ms, median of `repeats`) of the copy kernel (texel-buffer
+    // read, one 64-bit word written per texel: the GI passes' access pattern) run as one
+    // dispatch per entry of `bytes_written`, each writing that many bytes. Blocking.
+    double time_copy_dispatches(const std::vector<std::uint64_t>& bytes_written, int repeats = 5);
+    // Bytes each dispatch of `pass` writes for this frame (same order as record()).
+    static std::vector<std::uint64_t> pass_bytes_written(Pass pass, const FrameInputs& in);
 
   private:
     struct GpuTexture {
@@ -133,7 +143,12 @@ class Renderer {
     gpu::Buffer walls_;
     gpu::BufferView walls_view_;
     int grid_width_ = 0, grid_height_ = 0;
-    gpu::Buffer lights_, proxies_, suns_; // uniform buffers (upload memory)
+    gpu::Buffer lights_, proxies_, suns_; // uniform buffers, written with update_buffer
+    gpu::Buffer light_bins_;              // per direct-pass workgroup: bitmask of reaching lights
+    gpu::Buffer ao_kernel_;               // AoKernel weights + totals (R32_SFLOAT texels)
+    gpu::BufferView ao_kernel_view_;
+    std::tuple<int, float, float> ao_kernel_key_{0, 0.0f, 0.0f}; // resolution, radius, power
+    int ao_range_ = 0;
     std::vector<QuerySet> queries_;
     std::vector<PassTiming> latest_timings_;
     int frame_slot_ = -1;

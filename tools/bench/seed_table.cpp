@@ -1,0 +1,176 @@
+// lantern-bench seed-table: seed 000's performance table on the current device, each pass
+// next to a copy kernel writing the same bytes in the same dispatches, and next to the
+// scalar C++ reference (single thread).
+#include "bench.hpp"
+#include "seed_scene.hpp"
+
+#include "lantern/core/clock.hpp"
+#include "lantern/core/file.hpp"
+#include "lantern/core/machine.hpp"
+#include "lantern/gi/frame_runner.hpp"
+#include "lantern/gi/vulkan/renderer.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lantern::bench {
+namespace {
+
+struct PassNumbers {
+    double gpu_ms = 0.0, copy_ms = 0.0, cpp_ms = 0.0;
+    bool ran = false;
+};
+
+struct RowResult {
+    SeedRow row;
+    int width = 0, height = 0;
+    std::map<gi::Pass, PassNumbers> passes;
+    double total_gpu = 0.0, total_copy = 0.0, total_cpp = 0.0;
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+Result<RowResult> run_row(gi::vk::Renderer& renderer, const SeedRow& row, const SeedTableOptions& o) {
+    const scene::Scene s = seed_scene(row);
+    std::string why;
+    auto window = gi::compute_window(s.view, s.gi.padding, s.gi.resolution, &why);
+    if (!window) return make_error("seed scene has no GI window: " + why, 1);
+    const gi::FrameInputs in = gi::gather_frame_inputs(s, *window);
+    const gi::PassPlan plan = gi::plan_passes(in, false);
+    RowResult r{row, window->width, window->height, {}, 0, 0, 0};
+    std::map<gi::Pass, std::vector<double>> samples;
+    for (int rep = 0; rep <= o.repeats; ++rep) { // rep 0 warms up (pipeline creation)
+        auto frame = gi::run_vulkan_frame(renderer, in, plan, false);
+        if (!frame) return frame.error();
+        if (rep == 0) continue;
+        for (const gi::PassReport& p : frame->passes)
+            if (p.ran) samples[p.pass].push_back(p.gpu_ms);
+    }
+    for (auto& [pass, v] : samples) {
+        PassNumbers& n = r.passes[pass];
+        n.ran = true;
+        n.gpu_ms = median(v);
+        n.copy_ms = renderer.time_copy_dispatches(gi::vk::Renderer::pass_bytes_written(pass, in), o.repeats);
+        r.total_gpu += n.gpu_ms;
+        r.total_copy += n.copy_ms;
+    }
+    if (o.reference) {
+        const gi::FrameResult ref = gi::run_reference_frame(in, plan); // single-threaded
+        for (const gi::PassReport& p : ref.passes)
+            if (p.ran) {
+                r.passes[p.pass].cpp_ms = p.gpu_ms;
+                r.total_cpp += p.gpu_ms;
+            }
+    }
+    return r;
+}
+
+std::string fmt(const char* f, double v) {
+    char b[64];
+    std::snprintf(b, sizeof(b), f, v);
+    return b;
+}
+
+void print_row(const RowResult& r, bool reference) {
+    std::printf("\n%s: %d x %d texels\n", r.row.label().c_str(), r.width, r.height);
+    std::printf("  %-14s %10s %10s %8s%s\n", "pass", "gpu ms", "copy ms", "x copy", reference ? "     C++ ms  C++/gpu" : "");
+    for (const auto& [pass, n] : r.passes) {
+        if (!n.ran) continue;
+        std::printf("  %-14s %10.3f %10.3f %8.2f", gi::pass_name(pass), n.gpu_ms, n.copy_ms,
+                    n.copy_ms > 0 ? n.gpu_ms / n.copy_ms : 0.0);
+        if (reference) std::printf(" %10.2f %8.1f", n.cpp_ms, n.gpu_ms > 0 ? n.cpp_ms / n.gpu_ms : 0.0);
+        std::printf("\n");
+    }
+    std::printf("  %-14s %10.3f %10.3f %8.2f", "total", r.total_gpu, r.total_copy,
+                r.total_copy > 0 ? r.total_gpu / r.total_copy : 0.0);
+    if (reference) std::printf(" %10.2f %8.1f", r.total_cpp, r.total_gpu > 0 ? r.total_cpp / r.total_gpu : 0.0);
+    std::printf("\n");
+    std::fflush(stdout);
+}
+
+std::string markdown(const std::vector<RowResult>& rows, const std::string& device, bool reference) {
+    std::string md = "Device: " + device + "\nMachine: " + describe_machine() + "\n\n";
+    md += "| giRes | Heat Spread Res | Point | Emissive | Directional | DDA | DDA_Directional | HeatSpread | Blur | "
+          "Total (ms) | DDA x copy | Dir x copy | Heat x copy | Blur x copy |";
+    md += reference ? " C++ total (ms) |\n" : "\n";
+    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|";
+    md += reference ? "---|\n" : "\n";
+    auto get = [](const RowResult& r, gi::Pass p) {
+        auto it = r.passes.find(p);
+        return it == r.passes.end() ? PassNumbers{} : it->second;
+    };
+    for (const RowResult& r : rows) {
+        auto ratio = [&](gi::Pass p) {
+            PassNumbers n = get(r, p);
+            return n.ran && n.copy_ms > 0 ? fmt("%.2f", n.gpu_ms / n.copy_ms) : std::string("-");
+        };
+        auto ms = [&](gi::Pass p) {
+            PassNumbers n = get(r, p);
+            return n.ran ? fmt("%.2f", n.gpu_ms) : std::string("-");
+        };
+        const char* scale = r.row.scale == scene::HeatScale::full ? "full" : r.row.scale == scene::HeatScale::half ? "half" : "quarter";
+        md += "| " + std::to_string(r.row.resolution) + " | " + scale + " | " + std::to_string(r.row.points) + " | " +
+              std::to_string(r.row.emissives) + " | " + std::to_string(r.row.directionals) + " | " + ms(gi::Pass::direct) +
+              " | " + ms(gi::Pass::directional) + " | " + ms(gi::Pass::heat) + " | " + ms(gi::Pass::blur) + " | " +
+              fmt("%.2f", r.total_gpu) + " | " + ratio(gi::Pass::direct) + " | " + ratio(gi::Pass::directional) + " | " +
+              ratio(gi::Pass::heat) + " | " + ratio(gi::Pass::blur) + " |";
+        md += reference ? " " + fmt("%.1f", r.total_cpp) + " |\n" : "\n";
+    }
+    return md;
+}
+
+} // namespace
+
+int seed_table(const SeedTableOptions& o) {
+    auto device = gpu::Device::create();
+    if (!device) {
+        std::fprintf(stderr, "lantern-bench: %s\n", device.error().message.c_str());
+        return 1;
+    }
+    gi::vk::RendererOptions ro;
+    ro.block_h = o.block_h;
+    ro.group_x = o.group_x;
+    ro.group_y = o.group_y;
+    auto renderer = gi::vk::Renderer::create(**device, ro);
+    if (!renderer) {
+        std::fprintf(stderr, "lantern-bench: %s\n", renderer.error().message.c_str());
+        return 1;
+    }
+    std::printf("lantern-bench seed-table\ndevice: %s\nmachine: %s\nmedian of %d frames per pass after a warm-up; "
+                "copy = the copy kernel writing the same bytes in the same dispatches%s\n",
+                (*device)->name().c_str(), describe_machine().c_str(), o.repeats,
+                o.reference ? "; C++ = the scalar reference, one thread" : "");
+    std::printf("block: 4 x %u texels per invocation, workgroup %u x %u blocks\n", (*renderer)->block_h(),
+                (*renderer)->group_x(), (*renderer)->group_y());
+    std::vector<RowResult> rows;
+    const auto all = seed_rows();
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (o.only_row >= 0 && int(i) != o.only_row) continue;
+        std::fprintf(stderr, "lantern-bench: row %zu/%zu: %s ...\n", i + 1, all.size(), all[i].label().c_str());
+        auto r = run_row(**renderer, all[i], o);
+        if (!r) {
+            std::fprintf(stderr, "lantern-bench: %s\n", r.error().message.c_str());
+            return 1;
+        }
+        print_row(*r, o.reference);
+        rows.push_back(std::move(r.value()));
+    }
+    const std::string md = markdown(rows, (*device)->name(), o.reference);
+    std::printf("\n%s", md.c_str());
+    if (!o.markdown_out.empty()) {
+        if (auto ok = write_file_atomic(o.markdown_out, md); !ok) {
+            std::fprintf(stderr, "lantern-bench: %s\n", ok.error().message.c_str());
+            return 1;
+        }
+    }
+    return 0;
+}
+
+} // namespace lantern::bench
