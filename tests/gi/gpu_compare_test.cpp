@@ -14,13 +14,13 @@ using gi_test::NamedScene;
 
 namespace {
 
+// Created on first use, after the shared Device, so it is destroyed before the Device.
 vk::Renderer& shared_renderer(lantern::gpu::Device& device) {
-    static std::unique_ptr<vk::Renderer> renderer;
-    if (!renderer) {
+    static std::unique_ptr<vk::Renderer> renderer = [&] {
         auto r = vk::Renderer::create(device);
         EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
-        renderer = std::move(r.value());
-    }
+        return std::move(r.value());
+    }();
     return *renderer;
 }
 

@@ -18,16 +18,14 @@ using lantern::scene::Scene;
 
 namespace {
 
+// Created on first use, after the shared Device, so it is destroyed before the Device.
 vk::Renderer* renderer_or_null() {
-    static std::unique_ptr<vk::Renderer> renderer;
-    static bool tried = false;
-    if (!tried) {
-        tried = true;
-        if (lantern::gpu::Device* d = lantern::test::shared_gpu_device()) {
-            auto r = vk::Renderer::create(*d);
-            if (r) renderer = std::move(r.value());
-        }
-    }
+    static std::unique_ptr<vk::Renderer> renderer = []() -> std::unique_ptr<vk::Renderer> {
+        lantern::gpu::Device* d = lantern::test::shared_gpu_device();
+        if (!d) return nullptr;
+        auto r = vk::Renderer::create(*d);
+        return r ? std::move(r.value()) : nullptr;
+    }();
     return renderer.get();
 }
 
@@ -45,9 +43,11 @@ Frames run_both(const Scene& s) {
     const PassPlan plan = plan_passes(f.in, true);
     f.ref = run_reference_frame(f.in, plan);
     if (vk::Renderer* r = renderer_or_null()) {
+        r->device().clear_validation_messages();
         auto g = run_vulkan_frame(*r, f.in, plan);
         EXPECT_TRUE(g.ok()) << (g.ok() ? "" : g.error().message);
         if (g) f.gpu = std::move(g.value());
+        EXPECT_EQ(r->device().validation_message_count(), 0u) << "Vulkan validation messages (see the log above)";
     }
     return f;
 }
