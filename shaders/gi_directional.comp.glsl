@@ -89,10 +89,11 @@ void main() {
             if (HAS_WALLS) {
                 vec4 px = texelFetch(u_face_px_in, index), nx = texelFetch(u_face_nx_in, index);
                 vec4 pz = texelFetch(u_face_pz_in, index), nz = texelFetch(u_face_nz_in, index);
-                o_face_px.texels[index] = pack_rgba16f(vec4(px.rgb + t.face[0], px.a));
-                o_face_nx.texels[index] = pack_rgba16f(vec4(nx.rgb + t.face[1], nx.a));
-                o_face_pz.texels[index] = pack_rgba16f(vec4(pz.rgb + t.face[2], pz.a));
-                o_face_nz.texels[index] = pack_rgba16f(vec4(nz.rgb + t.face[3], nz.a));
+                float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
+                o_face_px.texels[index] = pack_rgba16f(vec4(px.rgb + t.face[0], has_faces));
+                o_face_nx.texels[index] = pack_rgba16f(vec4(nx.rgb + t.face[1], has_faces));
+                o_face_pz.texels[index] = pack_rgba16f(vec4(pz.rgb + t.face[2], has_faces));
+                o_face_nz.texels[index] = pack_rgba16f(vec4(nz.rgb + t.face[3], has_faces));
             }
             shadow[k] = vec2(texelFetch(u_shadow_in, index).r, wall ? 0.0 : t.shadow);
         }

@@ -23,7 +23,7 @@ inline lantern::scene::WallGrid grid_from_rows(const std::vector<std::string>& r
     return g;
 }
 
-inline lantern::gi::WallView view_of(const lantern::scene::WallGrid& g) { return {&g, -g.origin}; }
+inline lantern::gi::WallView view_of(const lantern::scene::WallGrid& g) { return lantern::gi::WallView::of(g); }
 
 inline lantern::scene::Scene open_scene(glm::vec2 center, glm::vec2 size, int resolution = 4) {
     lantern::scene::Scene s;

@@ -60,7 +60,7 @@ GpuDirectionalLight pack_directional(const scene::DirectionalLight& l) {
 FrameInputs gather_frame_inputs(const scene::Scene& s, const GiWindow& window) {
     FrameInputs in;
     in.window = window;
-    in.walls = WallView{&s.walls, -s.walls.origin};
+    in.walls = WallView::of(s.walls);
     in.wall_height = s.wall_height;
     in.settings = s.gi;
     const glm::vec2 center = window.center();

@@ -83,7 +83,7 @@ Result<FrameResult> run_vulkan_frame(vk::Renderer& renderer, const FrameInputs& 
     const std::int64_t start = now_ns();
     gpu::CommandList cmd = device.begin("gi frame");
     renderer.begin_frame(cmd);
-    renderer.upload_walls(cmd, *in.walls.grid);
+    renderer.upload_walls(cmd, in.walls);
     renderer.upload_lights(cmd, in);
     renderer.record_plan(cmd, in, plan);
     device.submit(std::move(cmd));
@@ -96,7 +96,8 @@ Result<FrameResult> run_vulkan_frame(vk::Renderer& renderer, const FrameInputs& 
     using vk::Tex;
     for (int t = 0; t < vk::tex_count; ++t) {
         const Tex tex = Tex(t);
-        if (tex == Tex::heat_a || tex == Tex::heat_b || tex == Tex::heat_mask || tex == Tex::blur_temp || tex == Tex::lit)
+        if (tex == Tex::heat_a || tex == Tex::heat_b || tex == Tex::heat_mask || tex == Tex::blur_temp ||
+            tex == Tex::lit || int(tex) >= int(Tex::direct_point))
             continue;
         if (!renderer.has(tex)) continue;
         if (tex == Tex::emission && !plan.run.has(Pass::emission)) continue;

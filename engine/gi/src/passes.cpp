@@ -31,8 +31,6 @@ PassPlan plan_passes(const FrameInputs& in, bool lit_image, Pass through) {
         plan.reason[int(p)] = why;
     };
     if (!in.settings.ao.enabled) leave_out(Pass::ao, "AO disabled");
-    // Without point or emissive lights the direct textures are cleared instead (a fill).
-    if (in.point_lights.empty() && in.emissive_lights.empty()) leave_out(Pass::direct, "no point or emissive lights");
     if (in.directional_lights.empty()) leave_out(Pass::directional, "no directional lights");
     if (!in.settings.blur) leave_out(Pass::blur, "blur disabled");
     if (!plan.has_walls_in_window) leave_out(Pass::wall_indirect, "no walls in the GI window");

@@ -255,7 +255,7 @@ void reference_directional(const FrameInputs& in, DirectTextures& t, const RefOp
             t.shadow.store(x, y, shadow);
             for (int f = 0; f < 4; ++f) {
                 const float* face = t.wall_direct[f].at(x, y);
-                store_rgb(t.wall_direct[f], x, y, glm::vec3(face[0], face[1], face[2]) + sun.face[f], face[3]);
+                store_rgb(t.wall_direct[f], x, y, glm::vec3(face[0], face[1], face[2]) + sun.face[f], wall ? 1.0f : 0.0f);
             }
         }
     });

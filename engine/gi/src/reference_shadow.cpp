@@ -85,10 +85,7 @@ bool blocks_directional_cell(const WallView& walls, glm::ivec2 cell, glm::vec2 s
     return true;
 }
 
-bool in_grid(const WallView& walls, glm::ivec2 cell) {
-    const int c = cell.x + walls.offset.x, r = cell.y + walls.offset.y;
-    return c >= 0 && r >= 0 && c < walls.grid->width && r < walls.grid->height;
-}
+bool in_grid(const WallView& walls, glm::ivec2 cell) { return walls.contains(cell.x, cell.y); }
 
 } // namespace
 
@@ -103,7 +100,7 @@ float directional_shadow_dda(const WallView& walls, glm::vec2 pixel, glm::vec3 l
     const glm::ivec2 step(sign_of(dir.x), sign_of(dir.y));
     glm::vec2 t_max(first_boundary(start.x, dir.x, step.x), first_boundary(start.y, dir.y, step.y));
     const glm::vec2 t_delta(boundary_step(dir.x), boundary_step(dir.y));
-    const int max_steps = 2 * (walls.grid->width + walls.grid->height);
+    const int max_steps = 2 * (walls.width + walls.height);
 
     for (int i = 0; i < max_steps; ++i) {
         if (blocks_directional_cell(walls, cell, start, to_sun, xz_length, wall_height)) return 0.0f;

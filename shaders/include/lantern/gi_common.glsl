@@ -21,10 +21,11 @@ const uint BLOCK_W = 4;
 layout(push_constant) uniform GiPassParams {
     vec4 camera_view;  // min_x, min_z, width, height (world units)
     ivec4 size;        // texture width, height, pitch (texels), resolution (texels per unit)
-    ivec4 grid;        // wall grid width, height, offset x, offset z
+    ivec4 grid;        // wall grid width, height, origin x, origin z (see gi_shadow.glsl)
     ivec4 counts;      // point lights, emissives, directional lights, proxies
     vec4 params0;      // pass-specific
     vec4 params1;      // pass-specific
+    ivec4 grid_phase;  // toroidal phase of the wall grid (x, z)
 } pc;
 
 // The block this invocation owns: x0 is a multiple of 4.

@@ -8,12 +8,13 @@ namespace lantern::gi::vk {
 struct alignas(16) GiPassParams {
     glm::vec4 camera_view; // min_x, min_z, width, height (world units)
     glm::ivec4 size;       // texture width, height, pitch (texels), resolution (texels per unit)
-    glm::ivec4 grid;       // wall grid width, height, offset x, offset z
+    glm::ivec4 grid;       // wall grid width, height, origin x, origin z (world tile of cell row/col 0)
     glm::ivec4 counts;     // point lights, emissives, directional lights, proxies
     glm::vec4 params0;     // pass-specific
     glm::vec4 params1;     // pass-specific
+    glm::ivec4 grid_phase; // toroidal phase of the wall grid (x, z), 0, 0
 };
-static_assert(sizeof(GiPassParams) == 96, "GiPassParams must match the GLSL push-constant block");
+static_assert(sizeof(GiPassParams) == 112, "GiPassParams must match the GLSL push-constant block");
 
 // Specialisation constant ids shared by the GI shaders.
 enum SpecId : unsigned {

@@ -75,7 +75,8 @@ const char* tex_name(Tex t) {
         "conduction",       "ao",           "direct",           "shadow",           "wall_direct_px",
         "wall_direct_nx",   "wall_direct_pz", "wall_direct_nz", "emission",         "heat_a",
         "heat_b",           "heat_mask",    "indirect",     "blur_temp",        "wall_indirect_px", "wall_indirect_nx",
-        "wall_indirect_pz", "wall_indirect_nz", "lit"};
+        "wall_indirect_pz", "wall_indirect_nz", "lit",           "direct_point",     "shadow_point",
+        "wall_direct_point_px", "wall_direct_point_nx", "wall_direct_point_pz", "wall_direct_point_nz"};
     return names[int(t)];
 }
 
@@ -202,6 +203,13 @@ Result<void> Renderer::prepare(const FrameInputs& in, const PassPlan& plan) {
     ensure_texture(Tex::direct, TexFormat::rgba16f, W, H);
     ensure_texture(Tex::shadow, TexFormat::rg8, W, H);
     for (int f = 0; f < 4; ++f) ensure_texture(Tex(int(Tex::wall_direct_px) + f), TexFormat::rgba16f, W, H);
+    if (!in.directional_lights.empty()) {
+        ensure_texture(Tex::direct_point, TexFormat::rgba16f, W, H);
+        ensure_texture(Tex::shadow_point, TexFormat::rg8, W, H);
+        for (int f = 0; f < 4; ++f) ensure_texture(Tex(int(Tex::wall_direct_point_px) + f), TexFormat::rgba16f, W, H);
+    } else {
+        for (int t = int(Tex::direct_point); t <= int(Tex::wall_direct_point_nz); ++t) drop_texture(Tex(t));
+    }
     const bool indirect = need(Pass::emission) || need(Pass::heat);
     if (indirect) {
         const HeatGrid g = heat_grid(w, in.settings.heat_scale);
@@ -225,8 +233,9 @@ Result<void> Renderer::prepare(const FrameInputs& in, const PassPlan& plan) {
     return {};
 }
 
-void Renderer::upload_walls(gpu::CommandList& cmd, const scene::WallGrid& grid) {
-    const VkDeviceSize size = std::max<VkDeviceSize>(16, (VkDeviceSize(grid.cells.size()) + 15) & ~VkDeviceSize(15));
+void Renderer::upload_walls(gpu::CommandList& cmd, const WallView& walls) {
+    const std::size_t cells = std::size_t(walls.width) * std::size_t(walls.height);
+    const VkDeviceSize size = std::max<VkDeviceSize>(16, (VkDeviceSize(cells) + 15) & ~VkDeviceSize(15));
     if (!walls_ || walls_.size() != size) {
         gpu::BufferDesc desc;
         desc.size = size;
@@ -235,10 +244,23 @@ void Renderer::upload_walls(gpu::CommandList& cmd, const scene::WallGrid& grid) 
         walls_ = device_.create_buffer(desc);
         walls_view_ = device_.create_buffer_view(walls_, VK_FORMAT_R8_UINT, 0, VK_WHOLE_SIZE, "gi walls");
     }
-    grid_width_ = grid.width;
-    grid_height_ = grid.height;
-    if (!grid.cells.empty()) cmd.upload(walls_, 0, bytes_of(grid.cells.data(), grid.cells.size()));
+    if (cells) {
+        cmd.upload(walls_, 0, bytes_of(walls.cells, cells));
+        wall_bytes_uploaded_ += cells;
+    }
     cmd.barrier_transfer_to_compute();
+}
+
+void Renderer::update_walls(gpu::CommandList& cmd, const WallView& walls, std::span<const WallRange> ranges) {
+    LANTERN_ASSERT(walls_ && walls_.size() >= VkDeviceSize(walls.width) * VkDeviceSize(walls.height),
+                   "update_walls before upload_walls, or after the grid size changed");
+    for (const WallRange& r : ranges) {
+        LANTERN_ASSERT(r.end <= std::size_t(walls.width) * std::size_t(walls.height) && r.begin < r.end,
+                       "wall range outside the grid");
+        cmd.upload(walls_, r.begin, bytes_of(walls.cells + r.begin, r.end - r.begin));
+        wall_bytes_uploaded_ += r.end - r.begin;
+    }
+    if (!ranges.empty()) cmd.barrier_transfer_to_compute();
 }
 
 void Renderer::upload_lights(gpu::CommandList& cmd, const FrameInputs& in) {
@@ -258,7 +280,8 @@ Renderer::PassParams Renderer::params(const FrameInputs& in, int width, int heig
     const CameraView& v = in.window.view;
     p.camera_view = glm::vec4(v.min_x, v.min_z, v.width, v.height);
     p.size = glm::ivec4(width, height, pitch_of(width), resolution);
-    p.grid = glm::ivec4(grid_width_, grid_height_, in.walls.offset.x, in.walls.offset.y);
+    p.grid = glm::ivec4(in.walls.width, in.walls.height, in.walls.origin.x, in.walls.origin.y);
+    p.grid_phase = glm::ivec4(in.walls.phase, 0, 0);
     p.counts = glm::ivec4(int(in.point_lights.size()), int(in.emissive_lights.size()),
                           int(in.directional_lights.size()), int(in.proxies.size()));
     return p;
@@ -339,19 +362,20 @@ void Renderer::record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, c
     if (set) set->queries.end(cmd, region);
 }
 
+std::array<Tex, 6> Renderer::direct_outputs(const FrameInputs& in) const {
+    if (in.directional_lights.empty())
+        return {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz};
+    return {Tex::direct_point,         Tex::shadow_point,         Tex::wall_direct_point_px,
+            Tex::wall_direct_point_nx, Tex::wall_direct_point_pz, Tex::wall_direct_point_nz};
+}
+
 void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
-    bool cleared = false;
-    auto clear_direct_outputs = [&] {
-        for (Tex t : {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz,
-                      Tex::wall_direct_nz})
-            clear(cmd, t);
-        cleared = true;
-    };
-    // Faces are cleared when no wall is in view (the shaders then skip writing them).
-    if (!plan.run.has(Pass::direct) || !plan.has_walls_in_window) clear_direct_outputs();
-    if (cleared) cmd.barrier_transfer_to_compute();
+    record_plan(cmd, in, plan, plan.run);
+}
+
+void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan, PassSet subset) {
     for (int p = 0; p < pass_count; ++p)
-        if (plan.run.has(Pass(p))) record(cmd, Pass(p), in, plan);
+        if (plan.run.has(Pass(p)) && subset.has(Pass(p))) record(cmd, Pass(p), in, plan);
 }
 
 // ---- issue 3 passes
@@ -406,6 +430,15 @@ void Renderer::record_ao(gpu::CommandList& cmd, const FrameInputs& in) {
 void Renderer::record_direct(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
     const GiWindow& w = in.window;
     auto tex = [&](Tex t) -> const gpu::Buffer& { return textures_[int(t)].buffer; };
+    const auto out = direct_outputs(in);
+    // No point or emissive lights: the outputs are zero. No wall in view: the shader skips
+    // the faces, which stay zero.
+    const bool no_lights = in.point_lights.empty() && in.emissive_lights.empty();
+    if (no_lights || !plan.has_walls_in_window) {
+        for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i) clear(cmd, out[i]);
+        cmd.barrier_transfer_to_compute();
+        if (no_lights) return;
+    }
     // Light bins: one per direct-pass workgroup, a bitmask of the lights reaching it.
     const std::uint32_t blocks_x = std::uint32_t(pitch_of(w.width) / 4);
     const std::uint32_t blocks_y = (std::uint32_t(w.height) + block_h_ - 1) / block_h_;
@@ -434,12 +467,12 @@ void Renderer::record_direct(gpu::CommandList& cmd, const FrameInputs& in, const
                              .uniform_texel_buffer(0, walls_view_)
                              .uniform_buffer(1, proxies_)
                              .uniform_buffer(2, lights_)
-                             .storage_buffer(3, tex(Tex::direct))
-                             .storage_buffer(4, tex(Tex::shadow))
-                             .storage_buffer(5, tex(Tex::wall_direct_px))
-                             .storage_buffer(6, tex(Tex::wall_direct_nx))
-                             .storage_buffer(7, tex(Tex::wall_direct_pz))
-                             .storage_buffer(8, tex(Tex::wall_direct_nz))
+                             .storage_buffer(3, tex(out[0]))
+                             .storage_buffer(4, tex(out[1]))
+                             .storage_buffer(5, tex(out[2]))
+                             .storage_buffer(6, tex(out[3]))
+                             .storage_buffer(7, tex(out[4]))
+                             .storage_buffer(8, tex(out[5]))
                              .storage_buffer(9, light_bins_));
     PassParams p = params(in, w.width, w.height, w.resolution);
     p.params0.x = in.settings.light_softness;
@@ -451,13 +484,19 @@ void Renderer::record_direct(gpu::CommandList& cmd, const FrameInputs& in, const
 void Renderer::record_directional(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
     const GiWindow& w = in.window;
     auto tex = [&](Tex t) -> const GpuTexture& { return textures_[int(t)]; };
+    if (!plan.has_walls_in_window) { // the shader skips the faces: they stay zero
+        for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz}) clear(cmd, t);
+        cmd.barrier_transfer_to_compute();
+    }
     cmd.bind(pipelines_->get("gi_directional.comp", block_h_, group_x_, group_y_, !in.proxies.empty(),
                              plan.has_walls_in_window));
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, walls_view_).uniform_buffer(1, proxies_).uniform_buffer(2, suns_);
+    // Reads the point-light results, writes the contract textures (never in place).
+    const auto inputs = direct_outputs(in);
     const Tex outputs[6] = {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz,
                             Tex::wall_direct_nz};
-    for (int i = 0; i < 6; ++i) writes.uniform_texel_buffer(std::uint32_t(3 + i), tex(outputs[i]).view);
+    for (int i = 0; i < 6; ++i) writes.uniform_texel_buffer(std::uint32_t(3 + i), tex(inputs[std::size_t(i)]).view);
     for (int i = 0; i < 6; ++i) writes.storage_buffer(std::uint32_t(9 + i), tex(outputs[i]).buffer);
     cmd.push_descriptors(writes);
     PassParams p = params(in, w.width, w.height, w.resolution);

@@ -35,17 +35,36 @@ struct alignas(16) GpuShadowProxy {
 };
 static_assert(sizeof(GpuShadowProxy) == 48);
 
-// The wall grid as the passes index it: tile (x, z) is cell (x + offset.x, z + offset.y),
-// row-major; cells outside [0, width) x [0, height) are air.
+// The wall grid as the passes read it: a width x height rectangle of tiles starting at world
+// tile `origin`, stored toroidally so that a streaming world can move the rectangle and
+// rewrite only the chunks that changed. Tile (x, z) inside the rectangle is
+// cells[col + row * width] with col = (x - origin.x + phase.x) mod width (rows alike);
+// tiles outside are air. A plain grid has phase (0, 0): cells[(x - origin.x) + ...].
 struct WallView {
-    const scene::WallGrid* grid = nullptr;
-    glm::ivec2 offset{0}; // = -grid->origin
+    const std::uint8_t* cells = nullptr; // width * height, 1 = wall
+    int width = 0, height = 0;
+    glm::ivec2 origin{0};
+    glm::ivec2 phase{0}; // 0 <= phase < (width, height)
 
-    bool is_wall(int x, int z) const {
-        const int c = x + offset.x, r = z + offset.y;
-        if (c < 0 || r < 0 || c >= grid->width || r >= grid->height) return false;
-        return grid->cells[std::size_t(c) + std::size_t(r) * std::size_t(grid->width)] != 0;
+    static WallView of(const scene::WallGrid& g) {
+        return WallView{g.cells.data(), g.width, g.height, g.origin, glm::ivec2(0)};
     }
+    bool contains(int x, int z) const {
+        const int c = x - origin.x, r = z - origin.y;
+        return c >= 0 && r >= 0 && c < width && r < height;
+    }
+    std::size_t index(int x, int z) const {
+        int c = x - origin.x + phase.x, r = z - origin.y + phase.y;
+        if (c >= width) c -= width;
+        if (r >= height) r -= height;
+        return std::size_t(c) + std::size_t(r) * std::size_t(width);
+    }
+    bool is_wall(int x, int z) const { return contains(x, z) && cells[index(x, z)] != 0; }
+};
+
+// A byte range [begin, end) of a WallView's cells that changed.
+struct WallRange {
+    std::size_t begin = 0, end = 0;
 };
 
 struct FrameInputs {

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <tuple>
 #include <string>
 #include <vector>
@@ -44,6 +45,15 @@ enum class Tex : std::uint8_t {
     wall_indirect_pz,
     wall_indirect_nz,
     lit, // rgba8 sRGB, one 32-bit word per texel
+    // Point and emissive light alone, when the scene has directional lights: the
+    // directional pass reads these and writes direct/shadow/wall_direct_*, so either pass
+    // can be rerun (or cached) without the other.
+    direct_point,
+    shadow_point,
+    wall_direct_point_px,
+    wall_direct_point_nx,
+    wall_direct_point_pz,
+    wall_direct_point_nz,
     count
 };
 inline constexpr int tex_count = int(Tex::count);
@@ -71,8 +81,12 @@ class Renderer {
     // (Re)allocates the textures a frame with this window and plan needs (same size: kept).
     // An error when the window does not fit the device's buffer limits.
     Result<void> prepare(const FrameInputs& in, const PassPlan& plan);
-    // Uploads the wall grid (whole) and the light/proxy data of `in`, recorded into `cmd`.
-    void upload_walls(gpu::CommandList& cmd, const scene::WallGrid& grid);
+    // Uploads the whole wall buffer (first frame, or when the grid's size changed).
+    void upload_walls(gpu::CommandList& cmd, const WallView& walls);
+    // Uploads only the changed byte ranges of the wall buffer (streaming, edits).
+    void update_walls(gpu::CommandList& cmd, const WallView& walls, std::span<const WallRange> ranges);
+    std::uint64_t wall_bytes_uploaded() const { return wall_bytes_uploaded_; }
+    // Records the light, proxy and sun data of `in` (small: copied into the command buffer).
     void upload_lights(gpu::CommandList& cmd, const FrameInputs& in);
 
     // Records one pass (with its timestamps and the barriers it needs after it).
@@ -80,6 +94,9 @@ class Renderer {
     // Records every pass of `plan` in pipeline order; passes left out clear what they own
     // when later passes read it.
     void record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
+    // Records the passes of `plan` that are in `subset` (the others keep last frame's results:
+    // the caller knows they are still valid).
+    void record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan, PassSet subset);
 
     // Timestamps: begin/end a frame's query set around record calls.
     void begin_frame(gpu::CommandList& cmd);
@@ -120,6 +137,8 @@ class Renderer {
     explicit Renderer(gpu::Device& device);
 
     void ensure_texture(Tex t, TexFormat format, int width, int height, bool rgba8 = false);
+    // The textures the direct pass writes: the point set when directional lights follow.
+    std::array<Tex, 6> direct_outputs(const FrameInputs& in) const;
     void drop_texture(Tex t);
     void clear(gpu::CommandList& cmd, Tex t);
     struct PassParams;
@@ -142,7 +161,7 @@ class Renderer {
     std::array<GpuTexture, tex_count> textures_;
     gpu::Buffer walls_;
     gpu::BufferView walls_view_;
-    int grid_width_ = 0, grid_height_ = 0;
+    std::uint64_t wall_bytes_uploaded_ = 0;
     gpu::Buffer lights_, proxies_, suns_; // uniform buffers, written with update_buffer
     gpu::Buffer light_bins_;              // per direct-pass workgroup: bitmask of reaching lights
     gpu::Buffer ao_kernel_;               // AoKernel weights + totals (R32_SFLOAT texels)
