@@ -111,6 +111,7 @@ struct Renderer::QuerySet {
     gpu::TimestampQueries queries;
     std::vector<Pass> passes; // region i measured passes[i]
     bool pending = false;     // recorded, not yet read
+    std::uint64_t frame = 0;
 };
 
 struct Renderer::PassParams : GiPassParams {};
@@ -132,7 +133,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(gpu::Device& device, const Re
         for (int i = 0; i < num_query_sets; ++i) {
             auto q = device.create_timestamp_queries(pass_count + 8, "gi passes");
             if (!q) return q.error();
-            r->queries_.push_back(QuerySet{std::move(q.value()), {}, false});
+            r->queries_.push_back(QuerySet{std::move(q.value()), {}, false, 0});
         }
     }
     gpu::BufferDesc ubo;
@@ -295,49 +296,50 @@ void Renderer::dispatch_blocks(gpu::CommandList& cmd, int width, int height) {
 
 void Renderer::clear(gpu::CommandList& cmd, Tex t) { cmd.fill_buffer(textures_[int(t)].buffer, 0); }
 
-void Renderer::begin_frame(gpu::CommandList& cmd) {
+void Renderer::begin_frame(gpu::CommandList& cmd, std::uint64_t frame) {
     if (queries_.empty()) return;
     frame_slot_ = (frame_slot_ + 1) % int(queries_.size());
     QuerySet& set = queries_[std::size_t(frame_slot_)];
     if (set.pending) {
-        // Three frames old: its submission is normally done. Read it if so (never block).
-        if (auto done = set.queries.try_resolve()) latest_timings_ = collect_timings(set, *done);
+        // Three recordings old: its submission is normally done. Read it if so; a set whose
+        // submission is still running is dropped rather than waited for.
+        if (auto done = set.queries.try_resolve()) resolved_.push_back(collect_timings(set, *done));
         set.pending = false;
     }
     set.queries.reset(cmd);
     set.passes.clear();
     set.pending = true;
+    set.frame = frame;
 }
 
-std::vector<PassTiming> Renderer::collect_timings(const QuerySet& set, const gpu::TimestampResult& result) {
-    std::vector<PassTiming> out;
+FrameTimings Renderer::collect_timings(const QuerySet& set, const gpu::TimestampResult& result) {
+    FrameTimings out{set.frame, {}};
     for (std::size_t i = 0; i < result.regions.size() && i < set.passes.size(); ++i)
-        out.push_back({set.passes[i], double(result.regions[i].duration_ns) * 1e-6, result.regions[i]});
+        out.passes.push_back({set.passes[i], double(result.regions[i].duration_ns) * 1e-6, result.regions[i]});
     return out;
 }
 
-std::vector<PassTiming> Renderer::completed_timings() {
-    // The newest completed recording wins.
-    for (int k = 0; k < int(queries_.size()); ++k) {
-        const int slot = (frame_slot_ - k + int(queries_.size())) % int(queries_.size());
-        QuerySet& set = queries_[std::size_t(slot)];
+std::vector<FrameTimings> Renderer::completed_timings() {
+    std::vector<FrameTimings> out = std::move(resolved_);
+    resolved_.clear();
+    // Oldest first: walk the sets from the one after the newest.
+    for (int k = 1; k <= int(queries_.size()); ++k) {
+        QuerySet& set = queries_[std::size_t((frame_slot_ + k) % int(queries_.size()))];
         if (!set.pending) continue;
         if (auto done = set.queries.try_resolve()) {
-            latest_timings_ = collect_timings(set, *done);
+            out.push_back(collect_timings(set, *done));
             set.pending = false;
-            break;
         }
     }
-    return latest_timings_;
+    return out;
 }
 
 std::vector<PassTiming> Renderer::wait_timings() {
     if (queries_.empty() || frame_slot_ < 0) return {};
     QuerySet& set = queries_[std::size_t(frame_slot_)];
-    if (!set.pending) return latest_timings_;
-    latest_timings_ = collect_timings(set, set.queries.resolve());
+    if (!set.pending) return {};
     set.pending = false;
-    return latest_timings_;
+    return collect_timings(set, set.queries.resolve()).passes;
 }
 
 void Renderer::record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, const PassPlan& plan) {

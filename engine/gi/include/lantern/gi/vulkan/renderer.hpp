@@ -71,6 +71,11 @@ struct PassTiming {
     gpu::TimestampRegion region; // raw and CPU-clock times (for the profiler's GPU lane)
 };
 
+struct FrameTimings {
+    std::uint64_t frame = 0;
+    std::vector<PassTiming> passes;
+};
+
 class Renderer {
   public:
     static Result<std::unique_ptr<Renderer>> create(gpu::Device& device, const RendererOptions& options = {});
@@ -98,14 +103,17 @@ class Renderer {
     // the caller knows they are still valid).
     void record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan, PassSet subset);
 
-    // Timestamps: begin/end a frame's query set around record calls.
-    void begin_frame(gpu::CommandList& cmd);
-    // Pass durations of the newest completed frame (non-blocking); empty when none yet.
-    std::vector<PassTiming> completed_timings();
+    // Starts a query set for the passes recorded into `cmd` (`frame`: the caller's frame
+    // number, returned with the timings). Three sets rotate; a set is read before reuse.
+    void begin_frame(gpu::CommandList& cmd, std::uint64_t frame = 0);
+    // Timings of recorded frames whose submissions completed, oldest first, each returned
+    // once. Never blocks.
+    std::vector<FrameTimings> completed_timings();
     // Blocks until the frame begun last completed, then returns its pass durations (tools).
     std::vector<PassTiming> wait_timings();
 
     bool has(Tex t) const { return bool(textures_[int(t)].buffer); }
+    glm::ivec2 size(Tex t) const { return {textures_[int(t)].width, textures_[int(t)].height}; }
     // Blocking read back into the C++ texture representation (tests and tools).
     Texture read_back(Tex t);
     Texture read_back(Tex t, const char* name);
@@ -145,7 +153,7 @@ class Renderer {
     PassParams params(const FrameInputs& in, int width, int height, int resolution) const;
     void dispatch_blocks(gpu::CommandList& cmd, int width, int height);
 
-    std::vector<PassTiming> collect_timings(const QuerySet& set, const gpu::TimestampResult& result);
+    static FrameTimings collect_timings(const QuerySet& set, const gpu::TimestampResult& result);
     void record_conduction(gpu::CommandList& cmd, const FrameInputs& in);
     void record_ao(gpu::CommandList& cmd, const FrameInputs& in);
     void record_direct(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
@@ -169,7 +177,7 @@ class Renderer {
     std::tuple<int, float, float> ao_kernel_key_{0, 0.0f, 0.0f}; // resolution, radius, power
     int ao_range_ = 0;
     std::vector<QuerySet> queries_;
-    std::vector<PassTiming> latest_timings_;
+    std::vector<FrameTimings> resolved_; // read from a set before its reuse, not yet returned
     int frame_slot_ = -1;
     std::uint32_t block_h_ = 4, group_x_ = 8, group_y_ = 8;
 };

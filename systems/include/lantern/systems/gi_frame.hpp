@@ -1,0 +1,119 @@
+// The frame: ECS systems on the job graph feeding a GI backend (docs/frame.md).
+//
+//   camera_view ──► streaming ─┐
+//        │   └────► light_gather ├──► cache_keys ──► gpu_submit (main thread)
+//        └────────► proxy_gather ┘
+//
+// Each system is a job with declared reads and writes; the Schedule runs independent ones
+// in parallel. The cache keys are per pass, so an unchanged frame submits no GI work and a
+// change reruns exactly the passes that depend on it. Game systems are added to schedule()
+// before the first step (they run before the GI systems they conflict with when added first).
+//
+// Threads: construct and step() on the job system's main thread.
+#pragma once
+
+#include "lantern/components/components.hpp"
+#include "lantern/ecs/schedule.hpp"
+#include "lantern/gi/frame_inputs.hpp"
+#include "lantern/systems/gi_backend.hpp"
+#include "lantern/systems/streaming.hpp"
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lantern::systems {
+
+// ---- resources
+
+struct GiConfig {
+    scene::GiSettings settings;
+    float wall_height = 2.0f;
+    bool lit_image = false; // run the lit-image pass (tools); the game shades in its raster pass
+    float light_hysteresis = 2.0f; // world units of priority bonus for lights kept last frame
+};
+
+struct GiView {
+    std::optional<gi::GiWindow> window; // nullopt: no GI this frame
+    std::string bail_reason;
+};
+
+struct GatheredLights {
+    std::vector<gi::GpuPointLight> points, emissives;
+    std::vector<gi::GpuDirectionalLight> suns;
+    std::vector<ecs::Entity> point_entities; // kept this frame, in GPU order
+    std::uint64_t hash = 0;                  // of everything above
+    std::uint32_t point_candidates = 0;      // reaching the window, before the cap
+};
+
+struct GatheredProxies {
+    std::vector<gi::GpuShadowProxy> proxies;
+    std::uint64_t hash = 0;
+};
+
+// What this frame runs, from the cache keys.
+struct FramePasses {
+    gi::PassPlan plan;                           // what the scene needs
+    gi::PassSet run;                             // what runs: needed and keys changed
+    std::array<std::uint64_t, gi::pass_count> keys{};
+    std::array<std::string, gi::pass_count> reason; // for passes that do not run
+    gi::FrameInputs inputs;                      // the GPU-ready inputs of this frame
+};
+
+struct FrameReport {
+    std::uint64_t frame = 0;
+    gi::PassSet ran;
+    std::array<std::string, gi::pass_count> reason;
+    std::optional<gi::GiWindow> window;
+    std::vector<FrameTimes> completed; // GPU times of earlier frames that finished since
+};
+
+struct GiFrameOptions {
+    StreamingConfig streaming;
+};
+
+class GiFrame {
+  public:
+    // `source` gives the walls; `backend` runs the passes. Registers the resources and the
+    // GI systems in the world and schedule.
+    GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const WorldSource> source,
+            std::unique_ptr<GiBackend> backend, GiConfig config, GiFrameOptions options = {});
+    ~GiFrame();
+
+    // Game systems go here (before the first step).
+    ecs::Schedule& schedule() { return schedule_; }
+    ecs::World& world() { return world_; }
+    Streaming& streaming() { return *streaming_; }
+    GiBackend& backend() { return *backend_; }
+    GiConfig& config() { return world_.resource<GiConfig>(); }
+
+    // Loads the walls the camera's first window needs and waits for them (start-up).
+    void warm_up();
+    // One frame: runs the schedule (every system, the GPU submission included).
+    FrameReport step();
+    std::uint64_t frame() const { return frame_; }
+    // The camera entity whose view and GICache the frame uses (the first Camera).
+    ecs::Entity camera() const;
+
+  private:
+    void add_systems();
+
+    ecs::World& world_;
+    jobs::JobSystem& jobs_;
+    std::shared_ptr<Streaming> streaming_;
+    std::unique_ptr<GiBackend> backend_;
+    ecs::Schedule schedule_;
+    std::uint64_t frame_ = 0;
+    std::uint32_t gpu_lane_ = 0;
+    FrameReport report_;
+};
+
+// Per-pass cache keys of a frame (exposed for tests and the HUD). A pass's key hashes its
+// own inputs and the keys of the passes it reads, so a change reruns exactly its dependents.
+std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, const gi::PassPlan& plan,
+                                                     std::uint64_t wall_version, std::uint64_t lights_hash,
+                                                     std::uint64_t proxies_hash, bool lit_image);
+
+} // namespace lantern::systems

@@ -1,0 +1,43 @@
+// Where wall tiles come from: a seeded procedural cave world of unbounded size, or a finite
+// grid (a scene's rows, a Moving AI map) surrounded by air. The streaming system asks a
+// source for whole chunks from background jobs, so generate() must be thread-safe and
+// deterministic.
+#pragma once
+
+#include "lantern/components/components.hpp"
+#include "lantern/scene/procedural.hpp"
+
+#include <memory>
+#include <span>
+
+namespace lantern::systems {
+
+inline constexpr int chunk_size = WallChunk::size;
+
+class WorldSource {
+  public:
+    virtual ~WorldSource() = default;
+    // Fills `cells` (chunk_size^2, row-major, 1 = wall) with chunk `coord`.
+    virtual void generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const = 0;
+};
+
+class CaveSource final : public WorldSource {
+  public:
+    explicit CaveSource(const scene::CaveParams& params) : params_(params) {}
+    void generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const override;
+
+  private:
+    scene::CaveParams params_;
+};
+
+class GridSource final : public WorldSource {
+  public:
+    explicit GridSource(scene::WallGrid grid) : grid_(std::move(grid)) {}
+    void generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const override;
+    const scene::WallGrid& grid() const { return grid_; }
+
+  private:
+    scene::WallGrid grid_;
+};
+
+} // namespace lantern::systems

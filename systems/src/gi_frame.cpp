@@ -1,0 +1,335 @@
+#include "lantern/systems/gi_frame.hpp"
+
+#include "lantern/core/hash.hpp"
+#include "lantern/core/log.hpp"
+#include "lantern/profile/profiler.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+namespace lantern::systems {
+namespace {
+
+// Did any component of type T change, appear or disappear at or after `tick`? (At: a
+// system that ran later in the frame of `tick` may have changed it after we looked.)
+template <typename T>
+bool pool_changed_since(ecs::World& w, ecs::Tick tick) {
+    const ecs::Pool<T>* p = w.find_pool<T>();
+    if (!p) return false;
+    return tick == 0 || p->last_changed() >= tick || p->last_added() >= tick || p->last_removed() >= tick;
+}
+
+std::uint64_t hash_window(const std::optional<gi::GiWindow>& w) {
+    Hasher h;
+    if (!w) return h.add(0).value();
+    return h.add(w->view.min_x).add(w->view.min_z).add(w->view.width).add(w->view.height).add(w->width)
+        .add(w->height).add(w->resolution).value();
+}
+
+template <typename T>
+std::uint64_t hash_vector(Hasher h, const std::vector<T>& v) {
+    h.add_u64(v.size());
+    if (!v.empty()) h.add_bytes(v.data(), v.size() * sizeof(T));
+    return h.value();
+}
+
+gi::GpuPointLight pack(glm::vec2 p, glm::vec3 color, float intensity, float radius) {
+    return gi::GpuPointLight{glm::vec4(p, radius, 0.0f), glm::vec4(color * intensity, 0.0f)};
+}
+
+struct LightGatherState {
+    std::uint64_t window_hash = ~0ull;
+    std::unordered_set<std::uint64_t> kept; // entities kept last time (hysteresis)
+};
+
+void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
+    ecs::World& w = ctx.world;
+    const GiView& view = w.resource<GiView>();
+    const GiConfig& config = w.resource<GiConfig>();
+    const std::uint64_t window_hash = hash_window(view.window);
+    const bool changed = window_hash != state.window_hash || pool_changed_since<PointLight>(w, ctx.last_run) ||
+                         pool_changed_since<EmissiveLight>(w, ctx.last_run) ||
+                         pool_changed_since<DirectionalLight>(w, ctx.last_run);
+    if (!changed) return; // nothing to redo: last frame's lists stand
+    state.window_hash = window_hash;
+    GatheredLights out;
+    if (view.window) {
+        const gi::GiWindow& win = *view.window;
+        const glm::vec2 center = win.center();
+        struct Candidate {
+            float priority;
+            ecs::Entity entity;
+            gi::GpuPointLight light;
+        };
+        std::vector<Candidate> candidates;
+        w.view<PointLight>().each([&](ecs::Entity e, const PointLight& l) {
+            if (gi::distance_to_window(win, l.position) > l.radius) return;
+            // Stable priority: lights kept last frame get a head start, so lights near the
+            // cap do not flicker in and out as the camera moves.
+            const float bonus = state.kept.count(e.bits()) ? config.light_hysteresis : 0.0f;
+            candidates.push_back({glm::distance(l.position, center) - bonus, e, pack(l.position, l.color, l.intensity, l.radius)});
+        });
+        out.point_candidates = std::uint32_t(candidates.size());
+        const std::size_t cap = std::size_t(std::max(0, config.settings.max_lights));
+        if (candidates.size() > cap) {
+            std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+                return a.priority != b.priority ? a.priority < b.priority : a.entity < b.entity;
+            });
+            candidates.resize(cap);
+        }
+        // GPU order: by entity, so sums do not depend on iteration or priority order.
+        std::sort(candidates.begin(), candidates.end(),
+                  [](const Candidate& a, const Candidate& b) { return a.entity < b.entity; });
+        state.kept.clear();
+        for (const Candidate& c : candidates) {
+            out.points.push_back(c.light);
+            out.point_entities.push_back(c.entity);
+            state.kept.insert(c.entity.bits());
+        }
+        std::vector<std::pair<ecs::Entity, gi::GpuPointLight>> emissives;
+        w.view<EmissiveLight>().each([&](ecs::Entity e, const EmissiveLight& l) {
+            if (gi::distance_to_window(win, l.position) <= l.radius)
+                emissives.push_back({e, pack(l.position, l.color, l.intensity, l.radius)});
+        });
+        std::sort(emissives.begin(), emissives.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (const auto& [e, l] : emissives) out.emissives.push_back(l);
+        std::vector<std::pair<ecs::Entity, gi::GpuDirectionalLight>> suns;
+        w.view<DirectionalLight>().each([&](ecs::Entity e, const DirectionalLight& d) {
+            suns.push_back({e, gi::pack_directional({d.direction, d.color, d.intensity, d.base_shadow_distance,
+                                                      d.bounce_intensity})});
+        });
+        std::sort(suns.begin(), suns.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (const auto& [e, s] : suns) out.suns.push_back(s);
+    }
+    out.hash = hash_vector(Hasher(hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives)), out.suns);
+    w.resource<GatheredLights>() = std::move(out);
+}
+
+struct ProxyGatherState {
+    std::uint64_t window_hash = ~0ull;
+};
+
+void gather_proxies(ecs::SystemContext& ctx, ProxyGatherState& state) {
+    ecs::World& w = ctx.world;
+    const GiView& view = w.resource<GiView>();
+    const GiConfig& config = w.resource<GiConfig>();
+    const std::uint64_t window_hash = hash_window(view.window);
+    if (window_hash == state.window_hash && !pool_changed_since<ShadowProxy>(w, ctx.last_run)) return;
+    state.window_hash = window_hash;
+    GatheredProxies out;
+    if (view.window) {
+        const gi::GiWindow& win = *view.window;
+        const glm::vec2 center = win.center();
+        std::vector<std::pair<float, ecs::Entity>> candidates;
+        std::vector<gi::GpuShadowProxy> packed;
+        w.view<ShadowProxy>().each([&](ecs::Entity e, const ShadowProxy& p) {
+            const scene::ShadowProxy& s = p.shape;
+            const float reach = std::max(s.size.x, s.size.y) + s.max_length + std::max(s.penumbra_width, s.penumbra_length);
+            if (gi::distance_to_window(win, s.position) <= reach) candidates.push_back({glm::distance(s.position, center), e});
+        });
+        const std::size_t cap = std::size_t(std::max(0, config.settings.max_shadow_proxies));
+        if (candidates.size() > cap) {
+            std::sort(candidates.begin(), candidates.end());
+            candidates.resize(cap);
+        }
+        std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+        for (const auto& [d, e] : candidates) {
+            const scene::ShadowProxy& s = w.get<ShadowProxy>(e).shape;
+            out.proxies.push_back({glm::vec4(s.position, s.size),
+                                   glm::vec4(s.max_length, s.end_cap_blend, s.penumbra_width, s.penumbra_length),
+                                   glm::vec4(s.penumbra_power, float(s.shape), float(s.width_mode), float(s.penumbra_mode))});
+        }
+    }
+    out.hash = hash_vector(Hasher(), out.proxies);
+    w.resource<GatheredProxies>() = std::move(out);
+}
+
+} // namespace
+
+std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, const gi::PassPlan& plan,
+                                                     std::uint64_t wall_version, std::uint64_t lights_hash,
+                                                     std::uint64_t proxies_hash, bool lit_image) {
+    using gi::Pass;
+    const scene::GiSettings& s = in.settings;
+    std::array<std::uint64_t, gi::pass_count> k{};
+    const std::uint64_t window = hash_window(in.window);
+    const bool suns = !in.directional_lights.empty();
+    auto key = [&](Pass p) -> std::uint64_t& { return k[std::size_t(p)]; };
+    key(Pass::conduction) = Hasher(window).add(wall_version).add(int(Pass::conduction)).value();
+    key(Pass::ao) = Hasher(key(Pass::conduction)).add(s.ao.radius).add(s.ao.power).add(s.ao.strength).add(s.ao.dither)
+                        .add(s.ao.enabled).value();
+    // The direct pass also depends on whether suns follow (it then writes the point set).
+    key(Pass::direct) = Hasher(window).add(wall_version).add(lights_hash).add(proxies_hash).add(s.light_softness)
+                            .add(suns).add(plan.has_walls_in_window).add(int(Pass::direct)).value();
+    key(Pass::directional) = Hasher(key(Pass::direct)).add(in.wall_height).add(s.directional_angle_scale).value();
+    const std::uint64_t direct_result = suns ? key(Pass::directional) : key(Pass::direct);
+    key(Pass::emission) = Hasher(direct_result).add(s.emission_strength).value();
+    // Heat includes the blur flag: the blur works in place on heat's result, so turning it
+    // off must recompute the unblurred light.
+    key(Pass::heat) = Hasher(key(Pass::emission)).add(wall_version).add(s.heat_rounds).add(int(s.heat_scale))
+                          .add(s.diffusion_rate).add(s.diffusion_distance).add(s.range_boost)
+                          .add(s.intensity_multiplier).add(s.per_channel).add(s.segment_check).add(s.blur).value();
+    key(Pass::blur) = Hasher(key(Pass::heat)).add(int(Pass::blur)).value();
+    key(Pass::wall_indirect) = Hasher(key(Pass::heat)).add(int(Pass::wall_indirect)).value();
+    Hasher lit(direct_result);
+    for (int p = 0; p < gi::pass_count; ++p) lit.add(k[std::size_t(p)]);
+    key(Pass::lit) = lit.add(int(s.tone_map)).add(s.white_point).add(lit_image).value();
+    return k;
+}
+
+GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const WorldSource> source,
+                 std::unique_ptr<GiBackend> backend, GiConfig config, GiFrameOptions options)
+    : world_(world), jobs_(jobs), streaming_(std::make_shared<Streaming>(std::move(source), options.streaming)),
+      backend_(std::move(backend)), schedule_(jobs) {
+    world_.set_resource<GiConfig>(std::move(config));
+    world_.set_resource<GiView>();
+    world_.set_resource<GatheredLights>();
+    world_.set_resource<GatheredProxies>();
+    world_.set_resource<FramePasses>();
+    gpu_lane_ = profile::add_gpu_lane(profile::intern("GPU: " + backend_->name()));
+    add_systems();
+}
+
+GiFrame::~GiFrame() { backend_->wait_idle(); }
+
+ecs::Entity GiFrame::camera() const {
+    ecs::Entity found;
+    const_cast<ecs::World&>(world_).view<Camera>().each([&](ecs::Entity e, Camera&) {
+        if (found.is_null()) found = e;
+    });
+    return found;
+}
+
+void GiFrame::add_systems() {
+    schedule_.add("camera_view", [](ecs::SystemContext& ctx) {
+        GiView& out = ctx.world.resource<GiView>();
+        const GiConfig& config = ctx.world.resource<GiConfig>();
+        out = GiView{};
+        bool found = false;
+        ctx.world.view<Camera>().each([&](const Camera& cam) {
+            if (found) return;
+            found = true;
+            out.window = gi::compute_window(cam.view, config.settings.padding, config.settings.resolution, &out.bail_reason);
+        });
+        if (!found) out.bail_reason = "no camera";
+    }).reads<Camera>().reads_resource<GiConfig>().writes_resource<GiView>();
+
+    schedule_.add("streaming", [this](ecs::SystemContext& ctx) {
+        const GiView& view = ctx.world.resource<GiView>();
+        if (view.window) streaming_->update(ctx.world, ctx.commands(), jobs_, view.window->view);
+    }).main_thread().reads_resource<GiView>().writes<WallChunk>().writes_resource<Streaming>();
+
+    auto light_state = std::make_shared<LightGatherState>();
+    schedule_.add("light_gather", [light_state](ecs::SystemContext& ctx) { gather_lights(ctx, *light_state); })
+        .reads<PointLight, EmissiveLight, DirectionalLight>()
+        .reads_resource<GiView, GiConfig>()
+        .writes_resource<GatheredLights>();
+
+    auto proxy_state = std::make_shared<ProxyGatherState>();
+    schedule_.add("proxy_gather", [proxy_state](ecs::SystemContext& ctx) { gather_proxies(ctx, *proxy_state); })
+        .reads<ShadowProxy>()
+        .reads_resource<GiView, GiConfig>()
+        .writes_resource<GatheredProxies>();
+
+    schedule_.add("cache_keys", [this](ecs::SystemContext& ctx) {
+        ecs::World& w = ctx.world;
+        const GiView& view = w.resource<GiView>();
+        const GiConfig& config = w.resource<GiConfig>();
+        FramePasses& f = w.resource<FramePasses>();
+        f.run = {};
+        if (!view.window) {
+            for (auto& r : f.reason) r = "no GI window: " + view.bail_reason;
+            return;
+        }
+        const GatheredLights& lights = w.resource<GatheredLights>();
+        const GatheredProxies& proxies = w.resource<GatheredProxies>();
+        gi::FrameInputs& in = f.inputs;
+        in.window = *view.window;
+        in.walls = streaming_->view();
+        in.wall_height = config.wall_height;
+        in.settings = config.settings;
+        in.point_lights = lights.points;
+        in.emissive_lights = lights.emissives;
+        in.directional_lights = lights.suns;
+        in.proxies = proxies.proxies;
+        f.plan = gi::plan_passes(in, config.lit_image);
+        f.keys = pass_keys(in, f.plan, streaming_->version(), lights.hash, proxies.hash, config.lit_image);
+        const ecs::Entity cam = camera();
+        const GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
+        for (int p = 0; p < gi::pass_count; ++p) {
+            if (!f.plan.run.has(gi::Pass(p))) {
+                f.reason[std::size_t(p)] = "not needed: " + f.plan.reason[p];
+            } else if (cache && cache->keys[std::size_t(p)] == f.keys[std::size_t(p)]) {
+                f.reason[std::size_t(p)] = "cache hit";
+            } else {
+                f.run.add(gi::Pass(p));
+                f.reason[std::size_t(p)].clear();
+            }
+        }
+    })
+        .reads_resource<GiView, GiConfig, GatheredLights, GatheredProxies, Streaming>()
+        .reads<GICache>()
+        .writes_resource<FramePasses>();
+
+    schedule_.add("gpu_submit", [this](ecs::SystemContext& ctx) {
+        ecs::World& w = ctx.world;
+        FramePasses& f = w.resource<FramePasses>();
+        const GiView& view = w.resource<GiView>();
+        report_.ran = {};
+        if (view.window) {
+            const WallUpdate walls{streaming_->resized(), streaming_->dirty()};
+            auto ok = backend_->execute(frame_, f.inputs, f.plan, f.run, walls);
+            const ecs::Entity cam = camera();
+            GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
+            if (!ok) {
+                LANTERN_LOG_ERROR("GI frame %llu: %s", static_cast<unsigned long long>(frame_), ok.error().message.c_str());
+                if (cache) cache->keys = {}; // retry everything next frame
+            } else {
+                streaming_->clear_dirty();
+                report_.ran = f.run;
+                if (cache && f.run.bits) {
+                    GICache& c = w.patch<GICache>(cam);
+                    for (int p = 0; p < gi::pass_count; ++p)
+                        if (f.run.has(gi::Pass(p))) c.keys[std::size_t(p)] = f.keys[std::size_t(p)];
+                }
+            }
+            if (cache) {
+                cache->ran = report_.ran;
+                ++cache->frames;
+            }
+        }
+        report_.reason = f.reason;
+        report_.window = view.window;
+        report_.completed = backend_->completed_times();
+        for (const FrameTimes& t : report_.completed)
+            for (const PassTime& p : t.passes)
+                profile::record_gpu(gpu_lane_, t.frame, gi::pass_name(p.pass), p.cpu_begin_ns, p.cpu_end_ns);
+    })
+        .main_thread()
+        .reads_resource<FramePasses, GiView>()
+        .writes<GICache>()
+        .writes_resource<Streaming>();
+}
+
+void GiFrame::warm_up() {
+    const ecs::Entity cam = camera();
+    if (cam.is_null()) return;
+    const GiConfig& config = world_.resource<GiConfig>();
+    auto window = gi::compute_window(world_.get<Camera>(cam).view, config.settings.padding, config.settings.resolution);
+    if (window) streaming_->load_all(world_, jobs_, window->view);
+}
+
+FrameReport GiFrame::step() {
+    // The backend's frame ids are profiler frame indices when a profiler frame is open, so
+    // GPU timestamps land in the frame that submitted them.
+    frame_ = profile::frame_index() ? profile::frame_index() : frame_ + 1;
+    report_ = {};
+    report_.frame = frame_;
+    schedule_.run(world_);
+    return report_;
+}
+
+} // namespace lantern::systems

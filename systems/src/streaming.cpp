@@ -1,0 +1,237 @@
+#include "lantern/systems/streaming.hpp"
+
+#include "lantern/core/assert.hpp"
+#include "lantern/profile/profiler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace lantern::systems {
+
+constexpr int cells_per_chunk = chunk_size * chunk_size;
+
+struct Streaming::PendingLoad {
+    glm::ivec2 coord{0};
+    std::array<std::uint8_t, cells_per_chunk> cells{};
+    jobs::Counter done;
+    const WorldSource* source = nullptr;
+};
+
+Streaming::Streaming(std::shared_ptr<const WorldSource> source, StreamingConfig config)
+    : source_(std::move(source)), config_(config) {}
+
+Streaming::~Streaming() {
+    // Loads in flight write into their PendingLoad: let them finish first.
+    for (auto& [k, slot] : chunks_)
+        if (slot.pending && jobs_) jobs_->wait(slot.pending->done);
+}
+
+std::uint64_t Streaming::key(glm::ivec2 c) {
+    return (std::uint64_t(std::uint32_t(c.x)) << 32) | std::uint32_t(c.y);
+}
+
+std::size_t Streaming::mirror_index(int x, int z) const {
+    return std::size_t(pmod(x, size_.x)) + std::size_t(pmod(z, size_.y)) * std::size_t(size_.x);
+}
+
+bool Streaming::in_rect(glm::ivec2 coord) const {
+    const glm::ivec2 lo = rect_min_ / chunk_size, hi = (rect_min_ + size_) / chunk_size;
+    return coord.x >= lo.x && coord.y >= lo.y && coord.x < hi.x && coord.y < hi.y;
+}
+
+gi::WallView Streaming::view() const {
+    return gi::WallView{mirror_.data(), size_.x, size_.y, rect_min_,
+                        glm::ivec2(pmod(rect_min_.x, std::max(size_.x, 1)), pmod(rect_min_.y, std::max(size_.y, 1)))};
+}
+
+void Streaming::clear_dirty() {
+    dirty_.clear();
+    resized_ = false;
+}
+
+StreamingStats Streaming::stats() const {
+    StreamingStats s = stats_;
+    s.resident_chunks = 0;
+    s.loading_chunks = 0;
+    for (const auto& [k, slot] : chunks_) (slot.pending ? s.loading_chunks : s.resident_chunks)++;
+    s.edited_chunks_stored = edits_.size();
+    s.mirror_bytes = mirror_.size();
+    return s;
+}
+
+void Streaming::resize_mirror(glm::ivec2 size) {
+    size_ = size;
+    mirror_.assign(std::size_t(size.x) * std::size_t(size.y), 0);
+    resized_ = true;
+    dirty_.clear();
+    ++version_;
+}
+
+// Copies a chunk's cells into the mirror (chunk rows are contiguous there: the mirror's
+// width is a multiple of the chunk size and chunks start at multiples of it).
+void Streaming::write_chunk(glm::ivec2 coord, const std::uint8_t* cells) {
+    const int x0 = coord.x * chunk_size;
+    for (int r = 0; r < chunk_size; ++r) {
+        const std::size_t begin = mirror_index(x0, coord.y * chunk_size + r);
+        if (cells)
+            std::memcpy(&mirror_[begin], cells + r * chunk_size, chunk_size);
+        else
+            std::memset(&mirror_[begin], 0, chunk_size);
+        dirty_.push_back({begin, begin + chunk_size});
+    }
+    ++version_;
+}
+
+void Streaming::start_load(ecs::CommandBuffer& commands, jobs::JobSystem& jobs, glm::ivec2 coord) {
+    ChunkSlot slot;
+    slot.entity = commands.create();
+    WallChunk chunk;
+    chunk.coord = coord;
+    chunk.state = ChunkState::loading;
+    commands.emplace<WallChunk>(slot.entity, chunk);
+    auto it = edits_.find(key(coord));
+    if (it != edits_.end()) {
+        // Edited before: the stored cells are the chunk (no generation needed).
+        slot.pending = std::make_unique<PendingLoad>();
+        slot.pending->coord = coord;
+        std::memcpy(slot.pending->cells.data(), it->second.data(), cells_per_chunk);
+        edits_.erase(it);
+    } else {
+        slot.pending = std::make_unique<PendingLoad>();
+        slot.pending->coord = coord;
+        slot.pending->source = source_.get();
+        PendingLoad* load = slot.pending.get();
+        jobs.spawn(&load->done, jobs::JobOptions{"streaming.generate", jobs::Priority::normal, false},
+                   [load] { load->source->generate(load->coord, load->cells); });
+    }
+    ++stats_.loads_started;
+    chunks_.emplace(key(coord), std::move(slot));
+}
+
+void Streaming::finish_loads(ecs::World& world, ecs::CommandBuffer& commands, bool wait, jobs::JobSystem& jobs) {
+    for (auto& [k, slot] : chunks_) {
+        if (!slot.pending) continue;
+        if (wait) jobs.wait(slot.pending->done);
+        if (!slot.pending->done.done()) continue;
+        PendingLoad& load = *slot.pending;
+        for (auto [cell, wall] : slot.pending_edits) load.cells[std::size_t(cell)] = wall ? 1 : 0;
+        WallChunk chunk;
+        chunk.coord = load.coord;
+        chunk.state = ChunkState::resident;
+        chunk.version = slot.pending_edits.empty() ? 0 : 1;
+        chunk.cells = load.cells;
+        if (world.alive(slot.entity))
+            world.patch<WallChunk>(slot.entity) = chunk;
+        else
+            commands.emplace<WallChunk>(slot.entity, chunk); // created this frame: replaces at apply
+        write_chunk(load.coord, load.cells.data());
+        slot.pending.reset();
+        slot.pending_edits.clear();
+        ++stats_.loads_completed;
+    }
+}
+
+void Streaming::unload(ecs::World& world, ecs::CommandBuffer& commands, glm::ivec2 coord, ChunkSlot& slot) {
+    if (slot.pending) {
+        // Still generating: let the job finish into its buffer, then drop it (rare: the
+        // camera moved a chunk and back within a load). Pending edits become stored edits.
+        if (jobs_) jobs_->wait(slot.pending->done);
+        if (!slot.pending_edits.empty()) {
+            std::vector<std::uint8_t> cells(slot.pending->cells.begin(), slot.pending->cells.end());
+            for (auto [cell, wall] : slot.pending_edits) cells[std::size_t(cell)] = wall ? 1 : 0;
+            edits_[key(coord)] = std::move(cells);
+        }
+    } else if (world.alive(slot.entity)) {
+        const WallChunk& chunk = world.get<WallChunk>(slot.entity);
+        if (chunk.version > 0) edits_[key(coord)] = std::vector<std::uint8_t>(chunk.cells.begin(), chunk.cells.end());
+        write_chunk(coord, nullptr); // the slot reads as air until the next chunk arrives
+    }
+    commands.destroy(slot.entity);
+    ++stats_.unloads;
+}
+
+void Streaming::update(ecs::World& world, ecs::CommandBuffer& commands, jobs::JobSystem& jobs,
+                       const gi::CameraView& window) {
+    LANTERN_PROFILE_SCOPE("streaming.update");
+    jobs_ = &jobs;
+    // Mirror size: the window plus the margin on both sides plus one chunk of alignment
+    // slack, in whole chunks; stable while the window keeps its size.
+    const glm::ivec2 span(int(std::ceil(window.width)) + 2 * config_.margin,
+                          int(std::ceil(window.height)) + 2 * config_.margin);
+    const glm::ivec2 size = (span / chunk_size + 2) * chunk_size;
+    const glm::ivec2 rect_min(floor_div(int(std::floor(window.min_x)) - config_.margin, chunk_size) * chunk_size,
+                              floor_div(int(std::floor(window.min_z)) - config_.margin, chunk_size) * chunk_size);
+    if (size != size_) {
+        // A new mirror: everything reloads (edits are kept).
+        for (auto& [k, slot] : chunks_) unload(world, commands, glm::ivec2(std::int32_t(k >> 32), std::int32_t(k)), slot);
+        chunks_.clear();
+        resize_mirror(size);
+    }
+    rect_min_ = rect_min;
+    has_rect_ = true;
+    // Unload what left the rectangle, then load what entered it.
+    for (auto it = chunks_.begin(); it != chunks_.end();) {
+        const glm::ivec2 coord(std::int32_t(it->first >> 32), std::int32_t(it->first));
+        if (in_rect(coord)) {
+            ++it;
+            continue;
+        }
+        unload(world, commands, coord, it->second);
+        it = chunks_.erase(it);
+    }
+    const glm::ivec2 lo = rect_min_ / chunk_size, hi = (rect_min_ + size_) / chunk_size;
+    for (int cz = lo.y; cz < hi.y; ++cz)
+        for (int cx = lo.x; cx < hi.x; ++cx)
+            if (!chunks_.count(key({cx, cz}))) start_load(commands, jobs, {cx, cz});
+    finish_loads(world, commands, false, jobs);
+}
+
+void Streaming::load_all(ecs::World& world, jobs::JobSystem& jobs, const gi::CameraView& window) {
+    ecs::CommandBuffer commands(world);
+    update(world, commands, jobs, window);
+    finish_loads(world, commands, true, jobs);
+    commands.apply();
+}
+
+void Streaming::set_wall(ecs::World& world, glm::ivec2 tile, bool wall) {
+    const glm::ivec2 coord(floor_div(tile.x, chunk_size), floor_div(tile.y, chunk_size));
+    const int cell = pmod(tile.y, chunk_size) * chunk_size + pmod(tile.x, chunk_size);
+    auto it = chunks_.find(key(coord));
+    if (it != chunks_.end()) {
+        ChunkSlot& slot = it->second;
+        if (slot.pending) {
+            slot.pending_edits.push_back({cell, wall});
+            return;
+        }
+        WallChunk& chunk = world.patch<WallChunk>(slot.entity);
+        chunk.cells[std::size_t(cell)] = wall ? 1 : 0;
+        ++chunk.version;
+        const std::size_t index = mirror_index(tile.x, tile.y);
+        mirror_[index] = wall ? 1 : 0;
+        dirty_.push_back({index, index + 1});
+        ++version_;
+        return;
+    }
+    // Not resident: edit the stored copy (generated now if there is none).
+    auto& cells = edits_[key(coord)];
+    if (cells.empty()) {
+        cells.resize(cells_per_chunk);
+        source_->generate(coord, cells);
+    }
+    cells[std::size_t(cell)] = wall ? 1 : 0;
+}
+
+bool Streaming::is_wall(glm::ivec2 tile) const {
+    const glm::ivec2 coord(floor_div(tile.x, chunk_size), floor_div(tile.y, chunk_size));
+    const int cell = pmod(tile.y, chunk_size) * chunk_size + pmod(tile.x, chunk_size);
+    auto it = chunks_.find(key(coord));
+    if (it != chunks_.end() && !it->second.pending) return mirror_[mirror_index(tile.x, tile.y)] != 0;
+    auto e = edits_.find(key(coord));
+    if (e != edits_.end()) return e->second[std::size_t(cell)] != 0;
+    std::uint8_t cells[cells_per_chunk];
+    source_->generate(coord, cells);
+    return cells[cell] != 0;
+}
+
+} // namespace lantern::systems

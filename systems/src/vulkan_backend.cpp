@@ -1,0 +1,95 @@
+// GiBackend on the Vulkan renderer: one submission per frame that has work, at most two in
+// flight, timestamps read back from earlier frames without stalling.
+#include "lantern/gi/vulkan/renderer.hpp"
+#include "lantern/profile/profiler.hpp"
+#include "lantern/systems/gi_backend.hpp"
+
+namespace lantern::systems {
+namespace {
+
+using gi::vk::Tex;
+
+constexpr std::uint64_t frames_in_flight = 2;
+
+class VulkanBackend final : public GiBackend {
+  public:
+    explicit VulkanBackend(gi::vk::Renderer& r) : renderer_(r) {}
+
+    std::string name() const override { return renderer_.device().name(); }
+
+    Result<void> execute(std::uint64_t frame, const gi::FrameInputs& in, const gi::PassPlan& plan, gi::PassSet run,
+                         const WallUpdate& walls) override {
+        gpu::Device& device = renderer_.device();
+        // Throttle: wait for the submission two frames back before recording a third.
+        if (device.last_submitted_serial() >= frames_in_flight)
+            device.wait(device.last_submitted_serial() - (frames_in_flight - 1));
+        if (auto ok = renderer_.prepare(in, plan); !ok) return ok;
+        const bool walls_changed = walls.whole || !walls.ranges.empty();
+        if (run.bits == 0 && !walls_changed) return {}; // an unchanged frame: no GPU work
+        gpu::CommandList cmd = device.begin("gi frame");
+        renderer_.begin_frame(cmd, frame);
+        if (walls.whole || !uploaded_walls_)
+            renderer_.upload_walls(cmd, in.walls);
+        else
+            renderer_.update_walls(cmd, in.walls, walls.ranges);
+        uploaded_walls_ = true;
+        if (run.has(gi::Pass::direct) || run.has(gi::Pass::directional)) renderer_.upload_lights(cmd, in);
+        renderer_.record_plan(cmd, in, plan, run);
+        device.submit(std::move(cmd));
+        return {};
+    }
+
+    std::vector<FrameTimes> completed_times() override {
+        std::vector<FrameTimes> out;
+        for (const gi::vk::FrameTimings& f : renderer_.completed_timings()) {
+            FrameTimes t{f.frame, {}};
+            for (const gi::vk::PassTiming& p : f.passes)
+                t.passes.push_back({p.pass, p.gpu_ms, p.region.cpu_begin_ns, p.region.cpu_end_ns});
+            out.push_back(std::move(t));
+        }
+        return out;
+    }
+
+    std::optional<gi::Texture> read(const std::string& name) override {
+        for (int t = 0; t < int(Tex::direct_point); ++t) {
+            const Tex tex = Tex(t);
+            if (tex == Tex::heat_a || tex == Tex::heat_b || tex == Tex::heat_mask || tex == Tex::blur_temp ||
+                tex == Tex::lit)
+                continue;
+            if (name == gi::vk::tex_name(tex) && renderer_.has(tex)) return renderer_.read_back(tex);
+        }
+        return std::nullopt;
+    }
+
+    std::optional<gi::Image> read_lit() override {
+        if (!renderer_.has(Tex::lit)) return std::nullopt;
+        const glm::ivec2 size = renderer_.size(Tex::lit);
+        return gi::Image{size.x, size.y, renderer_.read_back_lit_rgb()};
+    }
+
+    std::vector<std::string> texture_names() const override {
+        std::vector<std::string> out;
+        for (int t = 0; t < int(Tex::direct_point); ++t) {
+            const Tex tex = Tex(t);
+            if (tex == Tex::heat_a || tex == Tex::heat_b || tex == Tex::heat_mask || tex == Tex::blur_temp ||
+                tex == Tex::lit)
+                continue;
+            if (renderer_.has(tex)) out.push_back(gi::vk::tex_name(tex));
+        }
+        return out;
+    }
+
+    void wait_idle() override { renderer_.device().wait_idle(); }
+
+  private:
+    gi::vk::Renderer& renderer_;
+    bool uploaded_walls_ = false;
+};
+
+} // namespace
+
+std::unique_ptr<GiBackend> make_vulkan_backend(gi::vk::Renderer& renderer) {
+    return std::make_unique<VulkanBackend>(renderer);
+}
+
+} // namespace lantern::systems
