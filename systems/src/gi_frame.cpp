@@ -104,7 +104,8 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
         std::sort(suns.begin(), suns.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         for (const auto& [e, s] : suns) out.suns.push_back(s);
     }
-    out.hash = hash_vector(Hasher(hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives)), out.suns);
+    out.hash = hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives);
+    out.suns_hash = hash_vector(Hasher(), out.suns);
     w.resource<GatheredLights>() = std::move(out);
 }
 
@@ -151,7 +152,7 @@ void gather_proxies(ecs::SystemContext& ctx, ProxyGatherState& state) {
 
 std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, const gi::PassPlan& plan,
                                                      std::uint64_t wall_version, std::uint64_t lights_hash,
-                                                     std::uint64_t proxies_hash, bool lit_image) {
+                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash, bool lit_image) {
     using gi::Pass;
     const scene::GiSettings& s = in.settings;
     std::array<std::uint64_t, gi::pass_count> k{};
@@ -164,7 +165,8 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, c
     // The direct pass also depends on whether suns follow (it then writes the point set).
     key(Pass::direct) = Hasher(window).add(wall_version).add(lights_hash).add(proxies_hash).add(s.light_softness)
                             .add(suns).add(plan.has_walls_in_window).add(int(Pass::direct)).value();
-    key(Pass::directional) = Hasher(key(Pass::direct)).add(in.wall_height).add(s.directional_angle_scale).value();
+    key(Pass::directional) = Hasher(key(Pass::direct)).add(suns_hash).add(proxies_hash).add(in.wall_height)
+                                 .add(s.directional_angle_scale).value();
     const std::uint64_t direct_result = suns ? key(Pass::directional) : key(Pass::direct);
     key(Pass::emission) = Hasher(direct_result).add(s.emission_strength).value();
     // Heat includes the blur flag: the blur works in place on heat's result, so turning it
@@ -256,7 +258,8 @@ void GiFrame::add_systems() {
         in.directional_lights = lights.suns;
         in.proxies = proxies.proxies;
         f.plan = gi::plan_passes(in, config.lit_image);
-        f.keys = pass_keys(in, f.plan, streaming_->version(), lights.hash, proxies.hash, config.lit_image);
+        f.keys = pass_keys(in, f.plan, streaming_->version(), lights.hash, lights.suns_hash, proxies.hash,
+                           config.lit_image);
         const ecs::Entity cam = camera();
         const GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
         for (int p = 0; p < gi::pass_count; ++p) {

@@ -23,8 +23,9 @@ Streaming::Streaming(std::shared_ptr<const WorldSource> source, StreamingConfig 
 
 Streaming::~Streaming() {
     // Loads in flight write into their PendingLoad: let them finish first.
-    for (auto& [k, slot] : chunks_)
-        if (slot.pending && jobs_) jobs_->wait(slot.pending->done);
+    for (auto* map : {&chunks_, &cancelled_})
+        for (auto& [k, slot] : *map)
+            if (slot.pending && jobs_) jobs_->wait(slot.pending->done);
 }
 
 std::uint64_t Streaming::key(glm::ivec2 c) {
@@ -85,26 +86,29 @@ void Streaming::write_chunk(glm::ivec2 coord, const std::uint8_t* cells) {
 
 void Streaming::start_load(ecs::CommandBuffer& commands, jobs::JobSystem& jobs, glm::ivec2 coord) {
     ChunkSlot slot;
+    if (auto revived = cancelled_.find(key(coord)); revived != cancelled_.end()) {
+        // Came back before its cancelled load finished: that load (and its edits) stands.
+        slot = std::move(revived->second);
+        cancelled_.erase(revived);
+    } else {
+        slot.pending = std::make_unique<PendingLoad>();
+        slot.pending->coord = coord;
+        if (auto stored = edits_.find(key(coord)); stored != edits_.end()) {
+            // Edited before: the stored cells are the chunk (no generation needed).
+            std::memcpy(slot.pending->cells.data(), stored->second.data(), cells_per_chunk);
+            edits_.erase(stored);
+        } else {
+            slot.pending->source = source_.get();
+            PendingLoad* load = slot.pending.get();
+            jobs.spawn(&load->done, jobs::JobOptions{"streaming.generate", jobs::Priority::normal, false},
+                       [load] { load->source->generate(load->coord, load->cells); });
+        }
+    }
     slot.entity = commands.create();
     WallChunk chunk;
     chunk.coord = coord;
     chunk.state = ChunkState::loading;
     commands.emplace<WallChunk>(slot.entity, chunk);
-    auto it = edits_.find(key(coord));
-    if (it != edits_.end()) {
-        // Edited before: the stored cells are the chunk (no generation needed).
-        slot.pending = std::make_unique<PendingLoad>();
-        slot.pending->coord = coord;
-        std::memcpy(slot.pending->cells.data(), it->second.data(), cells_per_chunk);
-        edits_.erase(it);
-    } else {
-        slot.pending = std::make_unique<PendingLoad>();
-        slot.pending->coord = coord;
-        slot.pending->source = source_.get();
-        PendingLoad* load = slot.pending.get();
-        jobs.spawn(&load->done, jobs::JobOptions{"streaming.generate", jobs::Priority::normal, false},
-                   [load] { load->source->generate(load->coord, load->cells); });
-    }
     ++stats_.loads_started;
     chunks_.emplace(key(coord), std::move(slot));
 }
@@ -134,14 +138,12 @@ void Streaming::finish_loads(ecs::World& world, ecs::CommandBuffer& commands, bo
 
 void Streaming::unload(ecs::World& world, ecs::CommandBuffer& commands, glm::ivec2 coord, ChunkSlot& slot) {
     if (slot.pending) {
-        // Still generating: let the job finish into its buffer, then drop it (rare: the
-        // camera moved a chunk and back within a load). Pending edits become stored edits.
-        if (jobs_) jobs_->wait(slot.pending->done);
-        if (!slot.pending_edits.empty()) {
-            std::vector<std::uint8_t> cells(slot.pending->cells.begin(), slot.pending->cells.end());
-            for (auto [cell, wall] : slot.pending_edits) cells[std::size_t(cell)] = wall ? 1 : 0;
-            edits_[key(coord)] = std::move(cells);
-        }
+        // Still generating: park it (never wait in a frame); reaped when done.
+        ++stats_.loads_cancelled;
+        ChunkSlot parked;
+        parked.pending = std::move(slot.pending);
+        parked.pending_edits = std::move(slot.pending_edits);
+        cancelled_[key(coord)] = std::move(parked);
     } else if (world.alive(slot.entity)) {
         const WallChunk& chunk = world.get<WallChunk>(slot.entity);
         if (chunk.version > 0) edits_[key(coord)] = std::vector<std::uint8_t>(chunk.cells.begin(), chunk.cells.end());
@@ -151,10 +153,27 @@ void Streaming::unload(ecs::World& world, ecs::CommandBuffer& commands, glm::ive
     ++stats_.unloads;
 }
 
+void Streaming::reap_cancelled() {
+    for (auto it = cancelled_.begin(); it != cancelled_.end();) {
+        ChunkSlot& slot = it->second;
+        if (!slot.pending->done.done()) {
+            ++it;
+            continue;
+        }
+        if (!slot.pending_edits.empty()) { // keep the edits made while it was loading
+            std::vector<std::uint8_t> cells(slot.pending->cells.begin(), slot.pending->cells.end());
+            for (auto [cell, wall] : slot.pending_edits) cells[std::size_t(cell)] = wall ? 1 : 0;
+            edits_[it->first] = std::move(cells);
+        }
+        it = cancelled_.erase(it);
+    }
+}
+
 void Streaming::update(ecs::World& world, ecs::CommandBuffer& commands, jobs::JobSystem& jobs,
                        const gi::CameraView& window) {
     LANTERN_PROFILE_SCOPE("streaming.update");
     jobs_ = &jobs;
+    reap_cancelled();
     // Mirror size: the window plus the margin on both sides plus one chunk of alignment
     // slack, in whole chunks; stable while the window keeps its size.
     const glm::ivec2 span(int(std::ceil(window.width)) + 2 * config_.margin,
@@ -213,6 +232,10 @@ void Streaming::set_wall(ecs::World& world, glm::ivec2 tile, bool wall) {
         ++version_;
         return;
     }
+    if (auto parked = cancelled_.find(key(coord)); parked != cancelled_.end()) {
+        parked->second.pending_edits.push_back({cell, wall}); // applied when it is reaped or revived
+        return;
+    }
     // Not resident: edit the stored copy (generated now if there is none).
     auto& cells = edits_[key(coord)];
     if (cells.empty()) {
@@ -229,6 +252,9 @@ bool Streaming::is_wall(glm::ivec2 tile) const {
     if (it != chunks_.end() && !it->second.pending) return mirror_[mirror_index(tile.x, tile.y)] != 0;
     auto e = edits_.find(key(coord));
     if (e != edits_.end()) return e->second[std::size_t(cell)] != 0;
+    if (auto parked = cancelled_.find(key(coord)); parked != cancelled_.end())
+        for (auto edit = parked->second.pending_edits.rbegin(); edit != parked->second.pending_edits.rend(); ++edit)
+            if (edit->first == cell) return edit->second;
     std::uint8_t cells[cells_per_chunk];
     source_->generate(coord, cells);
     return cells[cell] != 0;

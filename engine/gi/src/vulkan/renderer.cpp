@@ -264,6 +264,14 @@ void Renderer::update_walls(gpu::CommandList& cmd, const WallView& walls, std::s
     if (!ranges.empty()) cmd.barrier_transfer_to_compute();
 }
 
+std::vector<std::uint8_t> Renderer::read_back_walls() {
+    if (!walls_) return {};
+    const auto bytes = device_.read_back(walls_);
+    std::vector<std::uint8_t> out(bytes.size());
+    std::memcpy(out.data(), bytes.data(), bytes.size());
+    return out;
+}
+
 void Renderer::upload_lights(gpu::CommandList& cmd, const FrameInputs& in) {
     std::vector<GpuPointLight> lights(in.point_lights);
     lights.insert(lights.end(), in.emissive_lights.begin(), in.emissive_lights.end());

@@ -44,7 +44,8 @@ struct GatheredLights {
     std::vector<gi::GpuPointLight> points, emissives;
     std::vector<gi::GpuDirectionalLight> suns;
     std::vector<ecs::Entity> point_entities; // kept this frame, in GPU order
-    std::uint64_t hash = 0;                  // of everything above
+    std::uint64_t hash = 0;                  // of the point lights and emissives
+    std::uint64_t suns_hash = 0;             // of the directional lights
     std::uint32_t point_candidates = 0;      // reaching the window, before the cap
 };
 
@@ -114,6 +115,6 @@ class GiFrame {
 // own inputs and the keys of the passes it reads, so a change reruns exactly its dependents.
 std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, const gi::PassPlan& plan,
                                                      std::uint64_t wall_version, std::uint64_t lights_hash,
-                                                     std::uint64_t proxies_hash, bool lit_image);
+                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash, bool lit_image);
 
 } // namespace lantern::systems

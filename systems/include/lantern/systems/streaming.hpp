@@ -36,6 +36,7 @@ struct StreamingStats {
     std::uint32_t resident_chunks = 0; // loaded and in the mirror
     std::uint32_t loading_chunks = 0;  // jobs in flight
     std::uint64_t loads_started = 0, loads_completed = 0, unloads = 0;
+    std::uint64_t loads_cancelled = 0; // the chunk left the resident area before it arrived
     std::uint64_t edited_chunks_stored = 0; // chunks whose edits are kept while unloaded
     std::size_t mirror_bytes = 0;
 };
@@ -88,6 +89,7 @@ class Streaming {
     void finish_loads(ecs::World& world, ecs::CommandBuffer& commands, bool wait, jobs::JobSystem& jobs);
     void unload(ecs::World& world, ecs::CommandBuffer& commands, glm::ivec2 coord, ChunkSlot& slot);
     void write_chunk(glm::ivec2 coord, const std::uint8_t* cells);
+    void reap_cancelled();
     bool in_rect(glm::ivec2 coord) const;
     std::size_t mirror_index(int x, int z) const;
 
@@ -102,6 +104,9 @@ class Streaming {
     std::uint64_t version_ = 1;
     std::unordered_map<std::uint64_t, ChunkSlot> chunks_; // resident or loading
     std::unordered_map<std::uint64_t, std::vector<std::uint8_t>> edits_; // unloaded edited chunks
+    // Loads whose chunk left the area before they finished: never waited for; reaped once
+    // done, or revived if the chunk comes back first.
+    std::unordered_map<std::uint64_t, ChunkSlot> cancelled_;
     StreamingStats stats_;
     jobs::JobSystem* jobs_ = nullptr; // for waiting on loads at destruction
 };

@@ -91,6 +91,8 @@ class Renderer {
     // Uploads only the changed byte ranges of the wall buffer (streaming, edits).
     void update_walls(gpu::CommandList& cmd, const WallView& walls, std::span<const WallRange> ranges);
     std::uint64_t wall_bytes_uploaded() const { return wall_bytes_uploaded_; }
+    // Blocking copy of the GPU wall buffer (tests: it must equal the CPU mirror).
+    std::vector<std::uint8_t> read_back_walls();
     // Records the light, proxy and sun data of `in` (small: copied into the command buffer).
     void upload_lights(gpu::CommandList& cmd, const FrameInputs& in);
 

@@ -1,0 +1,205 @@
+// The frame: per-pass caching (an unchanged frame runs nothing; each change reruns exactly
+// its passes), pass culling with no textures for passes a scene does not need, determinism
+// over worker counts, and profiler lanes.
+#include "gpu_test_support.hpp"
+#include "test_scenes.hpp"
+
+#include "lantern/gi/vulkan/renderer.hpp"
+#include "lantern/profile/profiler.hpp"
+#include "lantern/systems/scene_world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <set>
+
+using namespace lantern;
+using gi::Pass;
+using gi::PassSet;
+
+namespace {
+
+jobs::JobSystem::Config workers(int n) {
+    jobs::JobSystem::Config c;
+    c.worker_threads = n;
+    return c;
+}
+
+PassSet set_of(std::initializer_list<Pass> passes) {
+    PassSet s;
+    for (Pass p : passes) s.add(p);
+    return s;
+}
+
+std::string names(PassSet s) {
+    std::string out;
+    for (int p = 0; p < gi::pass_count; ++p)
+        if (s.has(Pass(p))) out += std::string(out.empty() ? "" : " ") + gi::pass_name(Pass(p));
+    return out.empty() ? "(none)" : out;
+}
+
+// A rooms scene with a sun and a proxy: every pass has work.
+scene::Scene full_scene() {
+    scene::Scene s = gi_test::comparison_scenes()[1].scene;
+    s.directional_lights.push_back({glm::normalize(glm::vec3(0.5f, -0.6f, 0.3f)), {1.0f, 0.9f, 0.8f}, 0.8f, 3.0f, 0.4f});
+    scene::ShadowProxy tree;
+    tree.position = {7.5f, 14.5f};
+    s.shadow_proxies.push_back(tree);
+    return s;
+}
+
+struct Harness {
+    jobs::JobSystem jobs;
+    ecs::World world;
+    systems::SceneWorld sw;
+    std::unique_ptr<gi::vk::Renderer> renderer;
+    std::unique_ptr<systems::GiFrame> frame;
+
+    Harness(const scene::Scene& s, int worker_count, gpu::Device* device) : jobs(workers(worker_count)) {
+        sw = systems::populate_world(s, world);
+        std::unique_ptr<systems::GiBackend> backend;
+        if (device) {
+            renderer = std::move(gi::vk::Renderer::create(*device).value());
+            backend = systems::make_vulkan_backend(*renderer);
+        } else {
+            backend = systems::make_reference_backend(nullptr);
+        }
+        frame = std::make_unique<systems::GiFrame>(world, jobs, sw.source, std::move(backend), sw.config);
+        frame->warm_up();
+    }
+    ~Harness() {
+        frame.reset(); // the backend waits for the GPU before the renderer goes
+    }
+    PassSet step() { return frame->step().ran; }
+};
+
+} // namespace
+
+class FrameCaching : public ::testing::TestWithParam<bool> {
+  protected:
+    void SetUp() override {
+        if (GetParam() && !test::shared_gpu_device()) GTEST_SKIP() << "no Vulkan device";
+    }
+    gpu::Device* device() { return GetParam() ? test::shared_gpu_device() : nullptr; }
+};
+
+TEST_P(FrameCaching, EachChangeRerunsExactlyItsPasses) {
+    gpu::Device* d = device();
+    Harness h(full_scene(), 1, d);
+    ecs::World& w = h.world;
+    const PassSet all = set_of({Pass::conduction, Pass::ao, Pass::direct, Pass::directional, Pass::emission, Pass::heat,
+                                Pass::blur, Pass::wall_indirect});
+    const PassSet from_direct = set_of({Pass::direct, Pass::directional, Pass::emission, Pass::heat, Pass::blur,
+                                        Pass::wall_indirect});
+    const PassSet from_sun = set_of({Pass::directional, Pass::emission, Pass::heat, Pass::blur, Pass::wall_indirect});
+    EXPECT_EQ(names(h.step()), names(all)) << "first frame";
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "unchanged frame";
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "still unchanged";
+
+    w.patch<PointLight>(h.sw.point_lights[0]).position.x += 0.5f;
+    EXPECT_EQ(names(h.step()), names(from_direct)) << "a light moved";
+    w.patch<EmissiveLight>(h.sw.emissive_lights[0]).intensity *= 1.5f;
+    EXPECT_EQ(names(h.step()), names(from_direct)) << "an emissive changed";
+    w.patch<DirectionalLight>(h.sw.directional_lights[0]).direction.x += 0.1f;
+    EXPECT_EQ(names(h.step()), names(from_sun)) << "the sun moved";
+    w.patch<ShadowProxy>(h.sw.proxies[0]).shape.position.x += 1.0f;
+    EXPECT_EQ(names(h.step()), names(from_direct)) << "a proxy moved";
+    const glm::ivec2 tile(3, 3);
+    h.frame->streaming().set_wall(w, tile, !h.frame->streaming().is_wall(tile));
+    EXPECT_EQ(names(h.step()), names(all)) << "a wall was edited";
+    h.frame->config().settings.ao.strength = 0.3f;
+    EXPECT_EQ(names(h.step()), names(set_of({Pass::ao}))) << "AO settings";
+    h.frame->config().settings.heat_rounds = 12;
+    EXPECT_EQ(names(h.step()), names(set_of({Pass::heat, Pass::blur, Pass::wall_indirect}))) << "heat settings";
+    auto& view = std::get<scene::OrthoView>(w.patch<Camera>(h.sw.camera).view);
+    view.center.x += 0.3f; // rooms: window origin at a whole tile; 0.3 stays within it
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "sub-tile camera motion (phase lock)";
+    view.center.x += 1.0f;
+    EXPECT_EQ(names(h.step()), names(all)) << "camera moved a tile";
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "unchanged again";
+}
+
+TEST_P(FrameCaching, ScenesLeaveOutWhatTheyDoNotNeed) {
+    gpu::Device* d = device();
+    scene::Scene s = gi_test::comparison_scenes()[1].scene; // no suns, no proxies
+    s.gi.ao.enabled = false;
+    s.gi.blur = false;
+    Harness h(s, 1, d);
+    const systems::FrameReport first = h.frame->step();
+    for (Pass p : {Pass::directional, Pass::ao, Pass::blur}) {
+        EXPECT_FALSE(first.ran.has(p)) << gi::pass_name(p);
+        EXPECT_EQ(first.reason[std::size_t(p)].rfind("not needed", 0), 0u) << first.reason[std::size_t(p)];
+    }
+    const auto names_allocated = h.frame->backend().texture_names();
+    EXPECT_EQ(std::count(names_allocated.begin(), names_allocated.end(), "ao"), 0);
+    if (h.renderer) {
+        using gi::vk::Tex;
+        for (Tex t : {Tex::ao, Tex::blur_temp, Tex::direct_point, Tex::shadow_point, Tex::wall_direct_point_px})
+            EXPECT_FALSE(h.renderer->has(t)) << gi::vk::tex_name(t);
+        EXPECT_TRUE(h.renderer->has(Tex::indirect));
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, FrameCaching, ::testing::Values(false, true),
+                         [](const auto& p) { return p.param ? "vulkan" : "reference"; });
+
+namespace {
+
+// Runs scripted frames and returns every texture of the last one.
+std::map<std::string, std::vector<float>> run_scripted(int worker_count, gpu::Device* device) {
+    Harness h(full_scene(), worker_count, device);
+    ecs::World& w = h.world;
+    for (int k = 0; k < 6; ++k) {
+        if (k == 1) w.patch<PointLight>(h.sw.point_lights[0]).position += glm::vec2(0.7f, -0.3f);
+        if (k == 2) h.frame->streaming().set_wall(w, {5, 5}, true);
+        if (k == 4) w.patch<DirectionalLight>(h.sw.directional_lights[0]).direction.z -= 0.2f;
+        h.step();
+    }
+    std::map<std::string, std::vector<float>> out;
+    for (const std::string& name : h.frame->backend().texture_names()) out[name] = h.frame->backend().read(name)->texels;
+    return out;
+}
+
+} // namespace
+
+TEST(FrameDeterminism, SameTexturesForZeroOneAndTwoWorkers) {
+    auto reference = run_scripted(0, nullptr);
+    EXPECT_EQ(run_scripted(1, nullptr), reference);
+    EXPECT_EQ(run_scripted(2, nullptr), reference);
+    gpu::Device* d = test::shared_gpu_device();
+    if (!d) GTEST_SKIP() << "no Vulkan device: reference backend checked only";
+    auto vk0 = run_scripted(0, d);
+    EXPECT_EQ(run_scripted(1, d), vk0);
+    EXPECT_EQ(run_scripted(2, d), vk0);
+}
+
+TEST(FrameProfiling, SystemsOnWorkerLanesAndPassesOnTheGpuLane) {
+    gpu::Device* d = test::shared_gpu_device();
+    if (!d) GTEST_SKIP() << "no Vulkan device";
+    profile::reset();
+    profile::set_enabled(true);
+    {
+        Harness h(full_scene(), 1, d);
+        for (int k = 0; k < 4; ++k) {
+            h.world.patch<PointLight>(h.sw.point_lights[0]).position.x += 0.25f;
+            profile::begin_frame();
+            h.step();
+            profile::end_frame();
+        }
+        h.frame->backend().wait_idle();
+        profile::begin_frame();
+        h.step(); // collects the remaining GPU timestamps
+        profile::end_frame();
+    }
+    profile::set_enabled(false);
+    std::set<std::string> systems_seen, passes_seen;
+    for (const profile::Frame* f : profile::history())
+        for (const profile::Event& e : f->events) {
+            if (e.kind == profile::EventKind::gpu) passes_seen.insert(e.name);
+            else systems_seen.insert(e.name);
+        }
+    for (const char* s : {"camera_view", "streaming", "light_gather", "proxy_gather", "cache_keys", "gpu_submit"})
+        EXPECT_TRUE(systems_seen.count(s)) << s;
+    for (const char* p : {"conduction", "direct", "directional", "heat"}) EXPECT_TRUE(passes_seen.count(p)) << p;
+    profile::reset();
+}
