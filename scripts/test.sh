@@ -19,7 +19,7 @@ ctest --test-dir build --output-on-failure -j "$jobs"
 
 if [ "${LANTERN_TEST_SANITIZERS:-1}" != "0" ]; then
     # The CPU engine suites; see docs/testing.md for why GPU suites are not included.
-    labels='core|profile|jobs|ecs|scene|gi_reference'
+    labels='core|profile|jobs|ecs|scene|gi_reference|systems'
     echo "== build + test: ASan+UBSan (build-asan/, labels $labels)"
     bash scripts/build.sh build-asan -DLANTERN_SANITIZE=address -DLANTERN_BUILD_BENCHMARKS=OFF
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
