@@ -141,7 +141,7 @@ TEST(RenderCli, DumpTimingsAndImageOnTheCpuBackend) {
         if (p["name"] == "ao") {
             saw_ao = true;
             EXPECT_FALSE(p["ran"].get<bool>());
-            EXPECT_EQ(p["reason"], "AO disabled");
+            EXPECT_EQ(p["reason"], "not needed: AO disabled");
         }
     }
     EXPECT_TRUE(saw_ao);

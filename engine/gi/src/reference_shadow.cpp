@@ -85,7 +85,14 @@ bool blocks_directional_cell(const WallView& walls, glm::ivec2 cell, glm::vec2 s
     return true;
 }
 
-bool in_grid(const WallView& walls, glm::ivec2 cell) { return walls.contains(cell.x, cell.y); }
+// True when the traversal can never meet a wall again: outside the grid and stepping away
+// from it along an axis it is outside on (so the result does not depend on how far the
+// grid extends: tiles outside it are air).
+bool leaving_grid(const WallView& walls, glm::ivec2 cell, glm::ivec2 step) {
+    const glm::ivec2 lo = walls.origin, hi = walls.origin + glm::ivec2(walls.width, walls.height);
+    return (cell.x < lo.x && step.x <= 0) || (cell.x >= hi.x && step.x >= 0) || (cell.y < lo.y && step.y <= 0) ||
+           (cell.y >= hi.y && step.y >= 0);
+}
 
 } // namespace
 
@@ -100,7 +107,8 @@ float directional_shadow_dda(const WallView& walls, glm::vec2 pixel, glm::vec3 l
     const glm::ivec2 step(sign_of(dir.x), sign_of(dir.y));
     glm::vec2 t_max(first_boundary(start.x, dir.x, step.x), first_boundary(start.y, dir.y, step.y));
     const glm::vec2 t_delta(boundary_step(dir.x), boundary_step(dir.y));
-    const int max_steps = 2 * (walls.width + walls.height);
+    // A straight line crosses at most 2 cells per unit of length (plus the ends).
+    const int max_steps = 2 * int(std::ceil(std::min(max_distance, 1e6f))) + 2;
 
     for (int i = 0; i < max_steps; ++i) {
         if (blocks_directional_cell(walls, cell, start, to_sun, xz_length, wall_height)) return 0.0f;
@@ -112,7 +120,7 @@ float directional_shadow_dda(const WallView& walls, glm::vec2 pixel, glm::vec3 l
             cell.y += step.y;
         }
         if (std::min(t_max.x, t_max.y) > max_distance) return 1.0f;
-        if (!in_grid(walls, cell)) return 1.0f;
+        if (leaving_grid(walls, cell, step)) return 1.0f;
     }
     return 1.0f;
 }

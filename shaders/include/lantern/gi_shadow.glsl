@@ -31,6 +31,13 @@ bool is_wall(int x, int z) {
     return texelFetch(u_walls, r * pc.grid.x + c).r != 0u;
 }
 bool is_wall(ivec2 c) { return is_wall(c.x, c.y); }
+// True when a traversal can never meet a wall again: outside the grid and stepping away
+// from it (results then do not depend on how far the grid extends).
+bool leaving_grid(ivec2 cell, ivec2 stp) {
+    ivec2 lo = pc.grid.zw, hi = pc.grid.zw + pc.grid.xy;
+    return (cell.x < lo.x && stp.x <= 0) || (cell.x >= hi.x && stp.x >= 0) || (cell.y < lo.y && stp.y <= 0) ||
+           (cell.y >= hi.y && stp.y >= 0);
+}
 
 float saturate(float x) { return clamp(x, 0.0, 1.0); }
 
@@ -104,7 +111,8 @@ float directional_shadow_dda(vec2 pixel, vec3 light_dir, float max_distance, flo
     ivec2 stp = ivec2(sign_of(dir.x), sign_of(dir.y));
     precise vec2 t_max = vec2(first_boundary(start.x, dir.x, stp.x), first_boundary(start.y, dir.y, stp.y));
     vec2 t_delta = vec2(boundary_step(dir.x), boundary_step(dir.y));
-    int max_steps = 2 * (pc.grid.x + pc.grid.y);
+    // A straight line crosses at most 2 cells per unit of length (plus the ends).
+    int max_steps = 2 * int(ceil(min(max_distance, 1e6))) + 2;
     for (int i = 0; i < max_steps; ++i) {
         if (blocks_directional_cell(cell, start, to_sun, xz_length, wall_height)) return 0.0;
         if (t_max.x < t_max.y) {
@@ -115,7 +123,7 @@ float directional_shadow_dda(vec2 pixel, vec3 light_dir, float max_distance, flo
             cell.y += stp.y;
         }
         if (min(t_max.x, t_max.y) > max_distance) return 1.0;
-        if (!in_grid(cell.x, cell.y)) return 1.0;
+        if (leaving_grid(cell, stp)) return 1.0;
     }
     return 1.0;
 }
