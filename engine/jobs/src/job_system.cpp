@@ -269,22 +269,22 @@ void JobSystem::idle_sleep(ThreadState& t, const Counter* counter) {
     sleepers_.fetch_sub(1, std::memory_order_seq_cst);
 }
 
+void JobSystem::run_or_idle(ThreadState& t, std::uint32_t& idle, const Counter* counter) {
+    if (Job* job = find_job(t)) {
+        execute(job, t);
+        idle = 0;
+    } else if (idle < config_.spin_iterations) {
+        idle += backoff(idle);
+    } else {
+        idle_sleep(t, counter);
+        idle = config_.spin_iterations / 2; // spin a little after each wake-up
+    }
+}
+
 void JobSystem::wait(Counter& counter) {
     ThreadState& t = this_thread();
     std::uint32_t idle = 0;
-    while (!counter.done()) {
-        if (Job* job = find_job(t)) {
-            execute(job, t);
-            idle = 0;
-            continue;
-        }
-        if (idle < config_.spin_iterations) {
-            idle += backoff(idle);
-            continue;
-        }
-        idle_sleep(t, &counter);
-        idle = config_.spin_iterations / 2; // spin a little after each wake-up
-    }
+    while (!counter.done()) run_or_idle(t, idle, &counter);
 }
 
 std::uint32_t JobSystem::run_main_thread_jobs() {
@@ -314,19 +314,7 @@ void JobSystem::worker_main(std::uint32_t index) {
     started_.fetch_add(1, std::memory_order_release);
     started_.notify_all();
     std::uint32_t idle = 0;
-    while (running_.load(std::memory_order_acquire)) {
-        if (Job* job = find_job(t)) {
-            execute(job, t);
-            idle = 0;
-            continue;
-        }
-        if (idle < config_.spin_iterations) {
-            idle += backoff(idle);
-            continue;
-        }
-        idle_sleep(t, nullptr);
-        idle = config_.spin_iterations / 2;
-    }
+    while (running_.load(std::memory_order_acquire)) run_or_idle(t, idle, nullptr);
     // Drain our own deques so no job is lost at shutdown (the destructor drained before
     // stopping, so only jobs spawned by jobs in flight can remain).
     while (Job* job = find_job(t)) execute(job, t);

@@ -133,6 +133,8 @@ class JobSystem {
     void signal(bool all);
     void worker_main(std::uint32_t index);
     void idle_sleep(ThreadState& t, const Counter* counter);
+    // Runs one job if there is one; otherwise backs off, then sleeps (`idle` counts pauses).
+    void run_or_idle(ThreadState& t, std::uint32_t& idle, const Counter* counter);
     ThreadState& this_thread();
     void run_for_loop(void* state, std::uint32_t worker);
 
