@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace lantern::bench {
 
@@ -13,5 +14,21 @@ struct SeedTableOptions {
     unsigned block_h = 0, group_x = 0, group_y = 0; // 0: the renderer's default for the device
 };
 int seed_table(const SeedTableOptions& options);
+
+struct AccuracyOptions {
+    bool quick = false;            // one scene, five settings, a 5 % reference
+    int repeats = 5;               // timed frames per setting (after one warm-up); median
+    std::string out_dir = "accuracy"; // accuracy.md, accuracy.csv, <scene>.png
+    std::string maps_dir = "../shared/maps";
+    std::vector<std::string> scenes; // names to run (empty: all)
+    float albedo = 0.5f;           // the reference's wall albedo
+    double target = 0.0;           // reference relative standard error; 0: 1 % (5 % with quick)
+    std::string cache_dir;         // "" with use_cache: transport::default_cache_dir()
+    bool use_cache = true;
+    std::string backend = "vulkan"; // "vulkan" (C++ reference when no device) or "cpu"
+    bool images = false;            // also DIR/<scene>_reference.png and _lantern.png (defaults)
+    std::string command;            // the command line, for the report
+};
+int accuracy(const AccuracyOptions& options);
 
 } // namespace lantern::bench

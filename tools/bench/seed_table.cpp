@@ -98,9 +98,10 @@ void print_row(const RowResult& r, bool reference) {
 std::string markdown(const std::vector<RowResult>& rows, const std::string& device, bool reference) {
     std::string md = "Device: " + device + "\nMachine: " + describe_machine() + "\n\n";
     md += "| giRes | Heat Spread Res | Point | Emissive | Directional | DDA | DDA_Directional | HeatSpread | Blur | "
-          "Total (ms) | DDA x copy | Dir x copy | Heat x copy | Blur x copy |";
+          "Total (ms) | DDA x copy | Dir x copy | Heat x copy | Blur x copy | Cond x copy | AO x copy | "
+          "Emission x copy | WallInd x copy |";
     md += reference ? " C++ total (ms) |\n" : "\n";
-    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|";
+    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|";
     md += reference ? "---|\n" : "\n";
     auto get = [](const RowResult& r, gi::Pass p) {
         auto it = r.passes.find(p);
@@ -120,7 +121,8 @@ std::string markdown(const std::vector<RowResult>& rows, const std::string& devi
               std::to_string(r.row.emissives) + " | " + std::to_string(r.row.directionals) + " | " + ms(gi::Pass::direct) +
               " | " + ms(gi::Pass::directional) + " | " + ms(gi::Pass::heat) + " | " + ms(gi::Pass::blur) + " | " +
               fmt("%.2f", r.total_gpu) + " | " + ratio(gi::Pass::direct) + " | " + ratio(gi::Pass::directional) + " | " +
-              ratio(gi::Pass::heat) + " | " + ratio(gi::Pass::blur) + " |";
+              ratio(gi::Pass::heat) + " | " + ratio(gi::Pass::blur) + " | " + ratio(gi::Pass::conduction) + " | " +
+              ratio(gi::Pass::ao) + " | " + ratio(gi::Pass::emission) + " | " + ratio(gi::Pass::wall_indirect) + " |";
         md += reference ? " " + fmt("%.1f", r.total_cpp) + " |\n" : "\n";
     }
     return md;
