@@ -98,6 +98,10 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
         for (const auto& [e, l] : emissives) out.emissives.push_back(l);
         std::vector<std::pair<ecs::Entity, gi::GpuDirectionalLight>> suns;
         w.view<DirectionalLight>().each([&](ecs::Entity e, const DirectionalLight& d) {
+            // A dark sun (the night side of a day cycle) adds nothing: left out, so the
+            // directional pass is not run for it.
+            const glm::vec3 c = d.color * d.intensity;
+            if (std::max({c.r, c.g, c.b}) <= 0.0f) return;
             suns.push_back({e, gi::pack_directional({d.direction, d.color, d.intensity, d.base_shadow_distance,
                                                       d.bounce_intensity})});
         });
@@ -192,6 +196,7 @@ GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const
     world_.set_resource<GatheredProxies>();
     world_.set_resource<FramePasses>();
     gpu_lane_ = profile::add_gpu_lane(profile::intern("GPU: " + backend_->name()));
+    if (options.add_game_systems) options.add_game_systems(schedule_, *streaming_);
     add_systems();
 }
 

@@ -16,6 +16,7 @@ struct Streaming::PendingLoad {
     std::array<std::uint8_t, cells_per_chunk> cells{};
     jobs::Counter done;
     const WorldSource* source = nullptr;
+    bool edited = false; // the cells came from stored edits: they differ from the source
 };
 
 Streaming::Streaming(std::shared_ptr<const WorldSource> source, StreamingConfig config)
@@ -96,6 +97,7 @@ void Streaming::start_load(ecs::CommandBuffer& commands, jobs::JobSystem& jobs, 
         if (auto stored = edits_.find(key(coord)); stored != edits_.end()) {
             // Edited before: the stored cells are the chunk (no generation needed).
             std::memcpy(slot.pending->cells.data(), stored->second.data(), cells_per_chunk);
+            slot.pending->edited = true;
             edits_.erase(stored);
         } else {
             slot.pending->source = source_.get();
@@ -123,7 +125,7 @@ void Streaming::finish_loads(ecs::World& world, ecs::CommandBuffer& commands, bo
         WallChunk chunk;
         chunk.coord = load.coord;
         chunk.state = ChunkState::resident;
-        chunk.version = slot.pending_edits.empty() ? 0 : 1;
+        chunk.version = (load.edited || !slot.pending_edits.empty()) ? 1 : 0;
         chunk.cells = load.cells;
         if (world.alive(slot.entity))
             world.patch<WallChunk>(slot.entity) = chunk;
@@ -245,6 +247,30 @@ void Streaming::set_wall(ecs::World& world, glm::ivec2 tile, bool wall) {
     cells[std::size_t(cell)] = wall ? 1 : 0;
 }
 
+std::vector<Streaming::EditedChunk> Streaming::edited_chunks(const ecs::World& world) const {
+    std::vector<EditedChunk> out;
+    for (const auto& [k, cells] : edits_)
+        out.push_back({glm::ivec2(std::int32_t(k >> 32), std::int32_t(k)), cells});
+    for (const auto& [k, slot] : chunks_) {
+        if (slot.pending || !world.alive(slot.entity)) continue;
+        const WallChunk& chunk = world.get<WallChunk>(slot.entity);
+        if (chunk.version > 0) out.push_back({chunk.coord, std::vector<std::uint8_t>(chunk.cells.begin(), chunk.cells.end())});
+    }
+    std::sort(out.begin(), out.end(), [](const EditedChunk& a, const EditedChunk& b) {
+        return a.coord.y != b.coord.y ? a.coord.y < b.coord.y : a.coord.x < b.coord.x;
+    });
+    return out;
+}
+
+void Streaming::restore_edits(std::vector<EditedChunk> chunks) {
+    LANTERN_ASSERT(chunks_.empty(), "restore_edits after chunks were loaded");
+    edits_.clear();
+    for (EditedChunk& c : chunks) {
+        LANTERN_ASSERT(c.cells.size() == std::size_t(cells_per_chunk), "edited chunk of the wrong size");
+        edits_[key(c.coord)] = std::move(c.cells);
+    }
+}
+
 bool Streaming::is_wall(glm::ivec2 tile) const {
     const glm::ivec2 coord(floor_div(tile.x, chunk_size), floor_div(tile.y, chunk_size));
     const int cell = pmod(tile.y, chunk_size) * chunk_size + pmod(tile.x, chunk_size);
@@ -255,9 +281,7 @@ bool Streaming::is_wall(glm::ivec2 tile) const {
     if (auto parked = cancelled_.find(key(coord)); parked != cancelled_.end())
         for (auto edit = parked->second.pending_edits.rbegin(); edit != parked->second.pending_edits.rend(); ++edit)
             if (edit->first == cell) return edit->second;
-    std::uint8_t cells[cells_per_chunk];
-    source_->generate(coord, cells);
-    return cells[cell] != 0;
+    return source_->is_wall(tile);
 }
 
 } // namespace lantern::systems

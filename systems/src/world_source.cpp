@@ -1,6 +1,14 @@
 #include "lantern/systems/world_source.hpp"
 
+#include "lantern/systems/streaming.hpp"
+
 namespace lantern::systems {
+
+bool WorldSource::is_wall(glm::ivec2 tile) const {
+    std::uint8_t cells[chunk_size * chunk_size];
+    generate({floor_div(tile.x, chunk_size), floor_div(tile.y, chunk_size)}, cells);
+    return cells[pmod(tile.y, chunk_size) * chunk_size + pmod(tile.x, chunk_size)] != 0;
+}
 
 void CaveSource::generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const {
     for (int r = 0; r < chunk_size; ++r)

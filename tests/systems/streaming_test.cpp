@@ -100,6 +100,12 @@ TEST(Streaming, EditsSurviveUnloadAndReload) {
     EXPECT_EQ(s.view().is_wall(b.x, b.y), !was_b);
     EXPECT_EQ(s.view().is_wall(c.x, c.y), !was_c);
     EXPECT_EQ(s.stats().edited_chunks_stored, 0u); // all back in resident chunks
+    // A second round trip keeps them too (a chunk reloaded from edits stays edited).
+    s.load_all(w, jobs, window_at({2000.0f, 2000.0f}));
+    s.load_all(w, jobs, window_at({0.0f, 0.0f}));
+    EXPECT_EQ(s.view().is_wall(a.x, a.y), !was_a);
+    EXPECT_EQ(s.view().is_wall(c.x, c.y), !was_c);
+    EXPECT_EQ(s.edited_chunks(w).size(), 3u);
 }
 
 TEST(Streaming, EditWhileLoadingLandsWhenTheChunkArrives) {

@@ -6,8 +6,8 @@
 //
 // Each system is a job with declared reads and writes; the Schedule runs independent ones
 // in parallel. The cache keys are per pass, so an unchanged frame submits no GI work and a
-// change reruns exactly the passes that depend on it. Game systems are added to schedule()
-// before the first step (they run before the GI systems they conflict with when added first).
+// change reruns exactly the passes that depend on it. Game systems come in through
+// GiFrameOptions::add_game_systems (they run before the GI systems they conflict with).
 //
 // Threads: construct and step() on the job system's main thread.
 #pragma once
@@ -19,6 +19,7 @@
 #include "lantern/systems/streaming.hpp"
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -73,6 +74,10 @@ struct FrameReport {
 
 struct GiFrameOptions {
     StreamingConfig streaming;
+    // Adds the game's systems to the schedule before the GI systems, so that (where their
+    // access conflicts) they run first: a camera moved or a light changed this frame is
+    // seen by this frame's GI.
+    std::function<void(ecs::Schedule&, Streaming&)> add_game_systems;
 };
 
 class GiFrame {

@@ -71,6 +71,15 @@ class Streaming {
     // Bumped whenever the resident walls change (loads, unloads, edits).
     std::uint64_t version() const { return version_; }
     StreamingStats stats() const;
+
+    // Every chunk that differs from the source (resident or stored), for save files.
+    struct EditedChunk {
+        glm::ivec2 coord;
+        std::vector<std::uint8_t> cells; // chunk_size^2, row-major
+    };
+    std::vector<EditedChunk> edited_chunks(const ecs::World& world) const;
+    // Replaces the stored edits with `chunks` (a loaded save). Call before the first update.
+    void restore_edits(std::vector<EditedChunk> chunks);
     const WorldSource& source() const { return *source_; }
     glm::ivec2 resident_min() const { return rect_min_; }
     glm::ivec2 resident_size() const { return size_; }

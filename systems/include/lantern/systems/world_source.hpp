@@ -19,12 +19,16 @@ class WorldSource {
     virtual ~WorldSource() = default;
     // Fills `cells` (chunk_size^2, row-major, 1 = wall) with chunk `coord`.
     virtual void generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const = 0;
+    // One tile of the source (the default generates its chunk).
+    virtual bool is_wall(glm::ivec2 tile) const;
 };
 
 class CaveSource final : public WorldSource {
   public:
     explicit CaveSource(const scene::CaveParams& params) : params_(params) {}
     void generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const override;
+    bool is_wall(glm::ivec2 tile) const override { return scene::cave_wall(tile.x, tile.y, params_); }
+    const scene::CaveParams& params() const { return params_; }
 
   private:
     scene::CaveParams params_;
@@ -34,6 +38,7 @@ class GridSource final : public WorldSource {
   public:
     explicit GridSource(scene::WallGrid grid) : grid_(std::move(grid)) {}
     void generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const override;
+    bool is_wall(glm::ivec2 tile) const override { return grid_.is_wall_tile(tile.x, tile.y); }
     const scene::WallGrid& grid() const { return grid_; }
 
   private:

@@ -1,0 +1,74 @@
+// The sandbox game's components and resources (plain data; the engine's lights, proxies and
+// camera are in components/). docs/game.md describes the game.
+#pragma once
+
+#include "lantern/components/components.hpp"
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace lantern::game {
+
+// The player: a circle of `radius` tiles on the ground, at Transform.position (x, y, z).
+struct Player {
+    float speed = 5.0f;  // tiles per second
+    float radius = 0.3f; // collision radius, tiles
+    glm::vec2 facing{0.0f, 1.0f};
+};
+
+// A torch: a PointLight whose intensity flickers around `base_intensity`.
+struct Torch {
+    float base_intensity = 1.6f;
+    float phase = 0.0f; // decorrelates torches
+};
+
+enum class PropKind : std::uint8_t { crystal, tree, lamp_post };
+
+// A placed object (drawn by the renderer; its light or proxy is on the same entity).
+struct Prop {
+    PropKind kind = PropKind::crystal;
+    glm::vec2 position{0.0f};
+};
+
+// The sun (with a DirectionalLight on the same entity).
+struct Sun {};
+
+// What the player asked for this frame, whatever produced it (window input or a script).
+struct Controls {
+    glm::vec2 move{0.0f};          // x, z in [-1, 1]
+    bool has_cursor = false;
+    glm::vec2 cursor_ndc{0.0f};    // [0, 1]^2 over the game view, y down
+    bool mine = false;             // pressed this frame
+    bool place_wall = false;
+    bool place_torch = false;
+    bool place_crystal = false;
+    bool place_tree = false;
+    bool place_lamp = false;
+    bool toggle_day_cycle = false;
+};
+
+struct GameClock {
+    double time = 0.0; // seconds since start
+    float dt = 1.0f / 60.0f;
+};
+
+struct DayCycle {
+    bool running = false;
+    float time_of_day = 0.35f;   // 0 midnight, 0.25 sunrise, 0.5 noon, 0.75 sunset
+    float day_length = 60.0f;    // seconds per day when running
+};
+
+// How the camera follows the player: a tilted top-down view (docs/game.md).
+struct CameraRig {
+    float height = 14.0f;
+    float back = 9.0f;          // tiles behind the player along +z (the camera looks towards -z)
+    float fov_deg = 40.0f;
+    float aspect = 16.0f / 9.0f;
+};
+
+// Reach of the player's hands, tiles.
+inline constexpr float interaction_range = 5.0f;
+
+} // namespace lantern::game

@@ -1,0 +1,52 @@
+// The sandbox game's rules: movement with wall collision, the following camera, picking
+// tiles under the cursor, mining and placing, torch flicker, the day/night cycle. Pure
+// functions (unit-tested) and the systems that apply them each frame.
+#pragma once
+
+#include "lantern/ecs/schedule.hpp"
+#include "lantern/game/game_components.hpp"
+#include "lantern/systems/gi_frame.hpp"
+#include "lantern/systems/streaming.hpp"
+
+#include <functional>
+#include <optional>
+
+namespace lantern::game {
+
+using IsWall = std::function<bool(int x, int z)>;
+
+// Moves a circle of `radius` by `delta` (x, z), one axis at a time, stopping at wall tiles.
+glm::vec2 move_with_collision(glm::vec2 position, glm::vec2 delta, float radius, const IsWall& is_wall);
+
+// The camera that follows a player standing at `player` (world x, y, z).
+scene::PerspectiveCamera follow_camera(glm::vec3 player, const CameraRig& rig);
+
+struct Ray {
+    glm::vec3 origin{0.0f};
+    glm::vec3 direction{0.0f, -1.0f, 0.0f}; // normalised
+};
+// The ray through `ndc` ([0, 1]^2 over the view, y down) of a perspective camera, with the
+// same basis as the GI window's footprint (gi::visible_area).
+Ray camera_ray(const scene::PerspectiveCamera& camera, glm::vec2 ndc);
+// The first wall the ray meets below `wall_height` (walls are boxes from the ground up).
+std::optional<glm::ivec2> pick_wall(const Ray& ray, float wall_height, const IsWall& is_wall, float max_distance = 200.0f);
+// Where the ray meets the ground (y = 0), as a tile.
+std::optional<glm::ivec2> pick_ground(const Ray& ray);
+
+// Torch flicker: a smooth deterministic factor in [0.8, 1.05].
+float flicker(double time, float phase);
+
+// The sun by time of day (0 midnight, 0.5 noon): travel direction, colour * intensity.
+glm::vec3 sun_direction(float time_of_day);
+glm::vec3 sun_light(float time_of_day);
+
+// Adds the game systems (input-driven movement and camera, interaction, flicker, day
+// cycle) to a GI frame's schedule; they run before the GI systems.
+void add_gameplay_systems(ecs::Schedule& schedule, systems::Streaming& streaming);
+
+// Entity factories (used by interaction, world set-up and save files).
+ecs::Entity spawn_torch(ecs::World& world, glm::vec2 position, float phase);
+ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position);
+ecs::Entity spawn_player(ecs::World& world, glm::vec2 position);
+
+} // namespace lantern::game

@@ -1,0 +1,58 @@
+// Save files: the world a game was started from, the player, the time of day, every light,
+// proxy and prop (with their components), and every wall chunk the player edited.
+//
+// A save is a JSON text (docs/game.md has the format). write_save() replaces the file
+// atomically (core/file.hpp): a game killed during a save leaves the previous save intact.
+// read_save() rejects anything malformed with "<file>:<line>:<col>: <path>: <what>".
+#pragma once
+
+#include "lantern/core/result.hpp"
+#include "lantern/ecs/world.hpp"
+#include "lantern/game/game_components.hpp"
+#include "lantern/game/world_setup.hpp"
+#include "lantern/systems/streaming.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lantern::game {
+
+inline constexpr int save_format_version = 1;
+
+// The game components of one entity (player and camera excluded).
+struct SavedEntity {
+    std::optional<PointLight> point_light;
+    std::optional<EmissiveLight> emissive_light;
+    std::optional<DirectionalLight> directional_light;
+    std::optional<ShadowProxy> shadow_proxy;
+    std::optional<Torch> torch;
+    std::optional<Prop> prop;
+    bool sun = false;
+};
+
+struct SaveState {
+    WorldSpec world;
+    glm::vec2 player{0.0f};
+    DayCycle day;
+    std::vector<SavedEntity> entities;
+    std::vector<systems::Streaming::EditedChunk> edits; // sorted by chunk
+};
+
+// What to save from a running game.
+SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, const WorldSpec& spec);
+
+// The save as text, and back. Floats are written with 9 significant digits, so a state
+// reads back exactly.
+std::string format_save(const SaveState& state);
+Result<SaveState> parse_save(std::string_view text, const std::string& file_name);
+
+Result<void> write_save(const std::string& path, const SaveState& state);
+Result<SaveState> read_save(const std::string& path);
+
+// Replaces the entities of a freshly created world (create_world) with the saved ones and
+// moves the player; the caller hands state.edits to Streaming::restore_edits before the
+// first frame.
+void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player);
+
+} // namespace lantern::game

@@ -1,0 +1,54 @@
+// The worlds the sandbox game plays in: the seeded procedural caves (default), a Moving AI
+// map (`T` cells become trees with proxy shadows), or a scene file. create_world() builds
+// the wall source and GI settings and spawns the starting entities: the player, the camera
+// that follows it, the sun, and the world's lights and props.
+#pragma once
+
+#include "lantern/core/result.hpp"
+#include "lantern/ecs/world.hpp"
+#include "lantern/systems/gi_frame.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace lantern::game {
+
+enum class WorldKind : std::uint8_t { caves, map, scene };
+
+// What a world is made from; saved with the game so a save reopens the same world.
+struct WorldSpec {
+    WorldKind kind = WorldKind::caves;
+    std::string path;       // map or scene file
+    std::uint32_t seed = 1; // caves, and where the decoration is placed
+
+    friend bool operator==(const WorldSpec&, const WorldSpec&) = default;
+};
+
+const char* world_kind_name(WorldKind kind);
+
+struct GameWorld {
+    WorldSpec spec;
+    std::shared_ptr<const systems::WorldSource> source;
+    systems::GiConfig config; // the scene's GI settings; the game's defaults elsewhere
+    ecs::Entity player;
+    ecs::Entity camera;
+    glm::vec2 spawn{0.0f};
+    std::string description; // one line for logs and the HUD
+};
+
+struct WorldOptions {
+    scene::GiSettings gi;    // GI settings for caves and maps (scenes bring their own)
+    float wall_height = 2.0f; // caves and maps
+    bool decorate = true;     // torches and crystals (caves, maps); off for a bare world
+};
+
+// Builds the world in `world` (which must hold no game entities yet). Errors (a missing or
+// malformed map or scene file) carry the file, line and column.
+Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const WorldOptions& options);
+
+// The open tile nearest `from` (searched in growing squares up to `max_radius` tiles) whose
+// (2 * clearance + 1)^2 neighbourhood is free of walls; `from` itself when none is.
+glm::ivec2 find_open_tile(const systems::WorldSource& source, glm::ivec2 from, int clearance, int max_radius = 64);
+
+} // namespace lantern::game

@@ -1,0 +1,333 @@
+// The game's rules without a window or GPU: collision, the following camera and picking,
+// flicker and the sun, worlds, and save files (exact round trip, clear errors, and a kill
+// during a save that leaves the previous save loadable).
+#include "lantern/game/gameplay.hpp"
+#include "lantern/game/save.hpp"
+#include "lantern/game/world_setup.hpp"
+#include "lantern/gi/window.hpp"
+#include "lantern/core/file.hpp"
+#include "common/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <csignal>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+using namespace lantern;
+using namespace lantern::game;
+
+namespace {
+
+// A 10 x 10 room (walls on its border) with a pillar at (5, 5).
+IsWall room() {
+    return [](int x, int z) { return x <= 0 || z <= 0 || x >= 9 || z >= 9 || (x == 5 && z == 5); };
+}
+
+jobs::JobSystem::Config no_workers() {
+    jobs::JobSystem::Config c;
+    c.worker_threads = 0;
+    return c;
+}
+
+} // namespace
+
+TEST(Gameplay, MovementStopsAtWallsAndSlidesAlongThem) {
+    const float r = 0.3f;
+    // Walking east into the pillar stops the circle touching it.
+    glm::vec2 p = move_with_collision({3.5f, 5.5f}, {3.0f, 0.0f}, r, room());
+    EXPECT_NEAR(p.x, 5.0f - r, 0.01f);
+    EXPECT_FLOAT_EQ(p.y, 5.5f);
+    // Diagonal into the north wall: x keeps moving, z stops.
+    p = move_with_collision({2.5f, 7.5f}, {1.0f, 2.0f}, r, room());
+    EXPECT_FLOAT_EQ(p.x, 3.5f);
+    EXPECT_NEAR(p.y, 9.0f - r, 0.01f);
+    // A large step never tunnels through a one-tile wall.
+    p = move_with_collision({3.5f, 2.5f}, {0.0f, 50.0f}, r, room());
+    EXPECT_LT(p.y, 9.0f - r + 1e-4f);
+    // Free movement is exact.
+    p = move_with_collision({2.5f, 2.5f}, {1.25f, 0.5f}, r, room());
+    EXPECT_FLOAT_EQ(p.x, 3.75f);
+    EXPECT_FLOAT_EQ(p.y, 3.0f);
+}
+
+TEST(Gameplay, CameraRayThroughTheCentreHitsThePlayersFocus) {
+    const CameraRig rig;
+    const scene::PerspectiveCamera cam = follow_camera({12.5f, 0.0f, 7.5f}, rig);
+    const Ray centre = camera_ray(cam, {0.5f, 0.5f});
+    const auto tile = pick_ground(centre);
+    ASSERT_TRUE(tile);
+    EXPECT_EQ(*tile, glm::ivec2(12, 7));
+    // Up the screen is -z (a map's rows run down the screen), right is +x.
+    EXPECT_LT(pick_ground(camera_ray(cam, {0.5f, 0.1f}))->y, 7);
+    EXPECT_GT(pick_ground(camera_ray(cam, {0.9f, 0.5f}))->x, 12);
+    // The visible footprint of the ray corners lies in the GI window's view.
+    const auto area = gi::visible_area(scene::ViewSpec{cam});
+    ASSERT_TRUE(area);
+    const gi::CameraView view{area->min.x, area->min.y, area->size.x, area->size.y};
+    for (glm::vec2 ndc : {glm::vec2(0.0f, 0.0f), glm::vec2(1.0f, 1.0f), glm::vec2(0.0f, 1.0f), glm::vec2(1.0f, 0.0f)}) {
+        const Ray ray = camera_ray(cam, ndc);
+        const float t = -ray.origin.y / ray.direction.y;
+        const glm::vec3 g = ray.origin + ray.direction * t;
+        EXPECT_GE(g.x, view.min_x - 1e-3f);
+        EXPECT_LE(g.x, view.min_x + view.width + 1e-3f);
+        EXPECT_GE(g.z, view.min_z - 1e-3f);
+        EXPECT_LE(g.z, view.min_z + view.height + 1e-3f);
+    }
+}
+
+TEST(Gameplay, PickWallFindsTheFirstWallAlongTheRay) {
+    const CameraRig rig;
+    const scene::PerspectiveCamera cam = follow_camera({4.5f, 0.0f, 2.5f}, rig);
+    // A column of walls at x = 4..5, z = 4: looking at (4.5, 4.5) from the south-above.
+    const IsWall wall = [](int x, int z) { return x == 4 && z == 4; };
+    // Find the NDC of the wall top centre by searching the screen.
+    bool hit_any = false;
+    for (float y = 0.0f; y <= 1.0f; y += 0.02f) {
+        const auto t = pick_wall(camera_ray(cam, {0.5f, y}), 2.0f, wall);
+        if (t) {
+            EXPECT_EQ(*t, glm::ivec2(4, 4));
+            hit_any = true;
+        }
+    }
+    EXPECT_TRUE(hit_any);
+    EXPECT_FALSE(pick_wall(camera_ray(cam, {0.05f, 0.95f}), 2.0f, wall));
+}
+
+TEST(Gameplay, FlickerIsSmoothBoundedAndDecorrelated) {
+    float lo = 10.0f, hi = -10.0f, max_step = 0.0f, prev = flicker(0.0, 0.3f);
+    double differs = 0.0;
+    for (int i = 1; i < 6000; ++i) {
+        const double t = i / 60.0;
+        const float f = flicker(t, 0.3f);
+        lo = std::min(lo, f), hi = std::max(hi, f);
+        max_step = std::max(max_step, std::abs(f - prev));
+        prev = f;
+        differs += std::abs(f - flicker(t, 2.7f));
+    }
+    EXPECT_GE(lo, 0.8f);
+    EXPECT_LE(hi, 1.05f);
+    EXPECT_GT(hi - lo, 0.1f);    // it does flicker
+    EXPECT_LT(max_step, 0.06f); // gently: no jumps between 60 Hz frames
+    EXPECT_GT(differs / 6000.0, 0.02); // two torches do not flicker in step
+}
+
+TEST(Gameplay, SunRisesEastSetsWestAndIsDarkAtNight) {
+    EXPECT_LT(sun_direction(0.5f).y, -0.9f); // noon: from above
+    EXPECT_LT(sun_direction(0.3f).x, 0.0f);  // morning: travels west (rises in the east)
+    EXPECT_GT(sun_direction(0.7f).x, 0.0f);
+    EXPECT_EQ(sun_light(0.0f), glm::vec3(0.0f));
+    EXPECT_EQ(sun_light(0.9f), glm::vec3(0.0f));
+    EXPECT_GT(sun_light(0.5f).g, 0.9f);
+    EXPECT_GT(sun_light(0.28f).r, sun_light(0.28f).b); // dawn is warm
+}
+
+TEST(Worlds, CavesSpawnInTheOpenWithTorchesCrystalsAndASun) {
+    ecs::World world;
+    auto w = create_world({WorldKind::caves, "", 7}, world, {});
+    ASSERT_TRUE(w) << w.error().message;
+    for (int dz = -2; dz <= 2; ++dz)
+        for (int dx = -2; dx <= 2; ++dx)
+            EXPECT_FALSE(w->source->is_wall(glm::ivec2(glm::floor(w->spawn)) + glm::ivec2(dx, dz)));
+    int torches = 0, crystals = 0, suns = 0;
+    world.view<Torch, PointLight>().each([&](const Torch&, const PointLight& l) {
+        ++torches;
+        EXPECT_FALSE(w->source->is_wall(glm::ivec2(glm::floor(l.position))));
+    });
+    world.view<Prop, EmissiveLight>().each([&](const Prop& p, const EmissiveLight&) { crystals += p.kind == PropKind::crystal; });
+    world.view<Sun, DirectionalLight>().each([&](const Sun&, const DirectionalLight&) { ++suns; });
+    EXPECT_GE(torches, 3);
+    EXPECT_GE(crystals, 20);
+    EXPECT_EQ(suns, 1);
+    EXPECT_TRUE(world.try_get<Player>(w->player));
+    EXPECT_TRUE(world.try_get<GICache>(w->camera));
+    // Deterministic: the same seed gives the same world.
+    ecs::World again;
+    auto w2 = create_world({WorldKind::caves, "", 7}, again, {});
+    EXPECT_EQ(w2->spawn, w->spawn);
+    EXPECT_EQ(again.alive_count(), world.alive_count());
+}
+
+TEST(Worlds, MapTreesBecomeTreePropsWithProxyShadows) {
+    test::TempDir dir;
+    const std::string path = dir.file("tiny.map");
+    ASSERT_TRUE(write_file_atomic(path, std::string("type octile\nheight 4\nwidth 6\nmap\n@@@@@@\n@..T.@\n@.T..@\n@@@@@@\n")));
+    ecs::World world;
+    WorldOptions options;
+    options.decorate = false;
+    auto w = create_world({WorldKind::map, path, 1}, world, options);
+    ASSERT_TRUE(w) << w.error().message;
+    std::set<std::pair<float, float>> trees;
+    world.view<Prop, ShadowProxy>().each([&](const Prop& p, const ShadowProxy& s) {
+        EXPECT_EQ(p.kind, PropKind::tree);
+        EXPECT_EQ(s.shape.shape, scene::ProxyShape::circle);
+        trees.insert({s.shape.position.x, s.shape.position.y});
+    });
+    EXPECT_EQ(trees, (std::set<std::pair<float, float>>{{3.5f, 1.5f}, {2.5f, 2.5f}}));
+    EXPECT_FALSE(w->source->is_wall({3, 1})); // a tree cell is floor
+    EXPECT_TRUE(w->source->is_wall({0, 0}));
+    EXPECT_FALSE(w->source->is_wall(glm::ivec2(glm::floor(w->spawn))));
+}
+
+TEST(Worlds, BadWorldFilesGiveOneClearMessage) {
+    test::TempDir dir;
+    const std::string path = dir.file("bad.map");
+    ASSERT_TRUE(write_file_atomic(path, std::string("type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n")));
+    ecs::World world;
+    auto w = create_world({WorldKind::map, path, 1}, world, {});
+    ASSERT_FALSE(w);
+    EXPECT_NE(w.error().message.find("bad.map:6:2:"), std::string::npos) << w.error().message;
+    auto s = create_world({WorldKind::scene, dir.file("missing.json"), 1}, world, {});
+    ASSERT_FALSE(s);
+    EXPECT_NE(s.error().message.find("missing.json"), std::string::npos) << s.error().message;
+}
+
+namespace {
+
+// A game state with every kind of entity and some edits.
+SaveState sample_state(ecs::World& world, systems::Streaming& streaming, jobs::JobSystem& jobs) {
+    auto w = create_world({WorldKind::caves, "", 11}, world, {});
+    EXPECT_TRUE(w);
+    streaming.load_all(world, jobs, {w->spawn.x - 20.0f, w->spawn.y - 12.0f, 40.0f, 24.0f});
+    const glm::ivec2 s = glm::ivec2(glm::floor(w->spawn));
+    streaming.set_wall(world, s + glm::ivec2(1, 0), true);
+    streaming.set_wall(world, s + glm::ivec2(40, 3), true); // not resident
+    spawn_prop(world, PropKind::lamp_post, w->spawn + glm::vec2(2.0f, 1.0f));
+    spawn_prop(world, PropKind::tree, w->spawn + glm::vec2(-2.0f, 1.0f));
+    world.resource<DayCycle>() = DayCycle{true, 0.625f, 30.0f};
+    return capture_save(world, streaming, w->spec);
+}
+
+void expect_same(const SaveState& a, const SaveState& b) {
+    EXPECT_EQ(format_save(a), format_save(b));
+    EXPECT_EQ(a.world, b.world);
+    EXPECT_EQ(a.player, b.player);
+    ASSERT_EQ(a.entities.size(), b.entities.size());
+    ASSERT_EQ(a.edits.size(), b.edits.size());
+    for (std::size_t i = 0; i < a.edits.size(); ++i) {
+        EXPECT_EQ(a.edits[i].coord, b.edits[i].coord);
+        EXPECT_EQ(a.edits[i].cells, b.edits[i].cells);
+    }
+}
+
+} // namespace
+
+TEST(Saves, RoundTripIsExactAndRestoresTheWorld) {
+    jobs::JobSystem jobs(no_workers());
+    ecs::World world;
+    world.set_resource<DayCycle>();
+    auto w = create_world({WorldKind::caves, "", 11}, world, {});
+    ASSERT_TRUE(w);
+    // Build the state through a streaming object of the same world.
+    ecs::World world2;
+    world2.set_resource<DayCycle>();
+    systems::Streaming streaming(w->source);
+    const SaveState saved = sample_state(world2, streaming, jobs);
+    ASSERT_GE(saved.edits.size(), 2u);
+    test::TempDir dir;
+    const std::string path = dir.file("world.save.json");
+    ASSERT_TRUE(write_save(path, saved));
+    auto loaded = read_save(path);
+    ASSERT_TRUE(loaded) << loaded.error().message;
+    expect_same(saved, *loaded);
+
+    // Apply it to a fresh world: same entities, same walls, same player and day.
+    ecs::World fresh;
+    fresh.set_resource<DayCycle>();
+    auto fw = create_world(loaded->world, fresh, {});
+    ASSERT_TRUE(fw);
+    apply_save(*loaded, fresh, fw->player);
+    systems::Streaming restored(fw->source);
+    restored.restore_edits(loaded->edits);
+    restored.load_all(fresh, jobs, {fw->spawn.x - 20.0f, fw->spawn.y - 12.0f, 40.0f, 24.0f});
+    const SaveState again = capture_save(fresh, restored, fw->spec);
+    expect_same(saved, again);
+    EXPECT_TRUE(fresh.resource<DayCycle>().running);
+    EXPECT_FLOAT_EQ(fresh.resource<DayCycle>().time_of_day, 0.625f);
+}
+
+TEST(Saves, MalformedSavesAreRejectedWithPositions) {
+    struct Case {
+        const char* text;
+        const char* expect;
+    };
+    const Case cases[] = {
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1]}", "t.json:1:59: player: expected an array of 2 numbers"},
+        {"{\"lantern_save\": 2, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2]}", "t.json:1:18: lantern_save: save format 2 is not supported"},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"moon\"}, \"player\": [1, 2]}", "world.kind: expected one of \"caves\", \"map\", \"scene\""},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"map\"}, \"player\": [1, 2]}", "world.path: a map world needs its file"},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"bogus\": 1}", "t.json:1:67: save: unknown key 'bogus'"},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2],\n \"entities\": [{\"torch\": {}}]}",
+         "t.json:2:25: entities[0].torch: a torch needs a point_light"},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2],\n \"entities\": [{\"point_light\": {\"position\": [0, 0], \"radius\": -1}}]}",
+         "entities[0].point_light.radius: must be > 0"},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"edits\": [{\"chunk\": [0, 0], \"rows\": [\"#\"]}]}",
+         "edits[0].rows: expected an array of 32 strings"},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2],", "t.json:1:"},
+    };
+    for (const Case& c : cases) {
+        auto r = parse_save(c.text, "t.json");
+        ASSERT_FALSE(r) << c.text;
+        EXPECT_NE(r.error().message.find(c.expect), std::string::npos) << r.error().message;
+    }
+    // A bad character in a row is reported at its column.
+    std::string rows = "[";
+    for (int i = 0; i < 32; ++i) rows += std::string(i ? "," : "") + "\"" + std::string(i == 3 ? "..x" : "...") + std::string(29, '.') + "\"";
+    rows += "]";
+    auto r = parse_save("{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"edits\": [{\"chunk\": [0, 0], \"rows\": " + rows + "}]}", "t.json");
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().message.find("edits[0].rows[3]: expected '#' (wall) or '.' (floor)"), std::string::npos) << r.error().message;
+}
+
+TEST(Saves, KillDuringSaveLeavesThePreviousSaveLoadable) {
+    // A large save (many edited chunks) written over and over by a child process that is
+    // killed at random moments: the file must always read back as one whole save.
+    SaveState a;
+    a.world = {WorldKind::caves, "", 5};
+    a.player = {1.5f, 2.5f};
+    std::mt19937 rng(42);
+    for (int i = 0; i < 400; ++i) {
+        systems::Streaming::EditedChunk c{{i % 20, i / 20}, std::vector<std::uint8_t>(32 * 32)};
+        for (auto& cell : c.cells) cell = std::uint8_t(rng() & 1);
+        a.edits.push_back(std::move(c));
+    }
+    SaveState b = a;
+    b.player = {9.5f, 9.5f};
+    for (auto& c : b.edits) c.cells[0] ^= 1;
+    const std::string text_a = format_save(a), text_b = format_save(b);
+    ASSERT_GT(text_a.size(), 400000u);
+    test::TempDir dir;
+    const std::string path = dir.file("world.save.json");
+    ASSERT_TRUE(write_save(path, a));
+    int torn = 0;
+    for (int round = 0; round < 12; ++round) {
+        const pid_t child = fork();
+        ASSERT_GE(child, 0);
+        if (child == 0) {
+            for (int i = 0;; ++i)
+                if (!write_save(path, i % 2 ? a : b)) _exit(3);
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(3000 + 7919 * round % 20000));
+        kill(child, SIGKILL);
+        int status = 0;
+        waitpid(child, &status, 0);
+        ASSERT_TRUE(WIFSIGNALED(status)) << "the saving child stopped by itself";
+        const std::string on_disk = test::read_file(path);
+        if (on_disk != text_a && on_disk != text_b) ++torn;
+        auto loaded = read_save(path);
+        ASSERT_TRUE(loaded) << loaded.error().message;
+        EXPECT_EQ(loaded->edits.size(), a.edits.size());
+    }
+    EXPECT_EQ(torn, 0);
+    // The kills did land inside saves: their temporary files were left behind.
+    int leftovers = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+        leftovers += entry.path().filename().string().rfind(".world.save.json.tmp", 0) == 0;
+    EXPECT_GT(leftovers, 0);
+}
