@@ -22,7 +22,7 @@ if [ "${LANTERN_TEST_SANITIZERS:-1}" != "0" ]; then
     # on its own threads inside the process, which ASan slows tenfold and TSan reports as
     # races inside Mesa. The GPU tests then report themselves skipped; every CPU path (the
     # C++ reference backend included) still runs under the sanitizers. See docs/testing.md.
-    labels='core|profile|jobs|ecs|scene|gi_reference|gi_gpu|systems|transport'
+    labels='core|profile|jobs|ecs|scene|gi_reference|gi_gpu|systems|transport|game'
     export VK_DRIVER_FILES=/nonexistent/lantern-sanitizer-run.json
     echo "== build + test: ASan+UBSan (build-asan/, labels $labels)"
     bash scripts/build.sh build-asan -DLANTERN_SANITIZE=address -DLANTERN_BUILD_BENCHMARKS=OFF
