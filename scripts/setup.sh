@@ -10,6 +10,7 @@ PACKAGES=(
     glslang-tools glslang-dev spirv-tools
     libglfw3-dev libglm-dev libimgui-dev libstb-dev nlohmann-json3-dev
     xvfb xauth
+    xdotool x11-apps
 )
 
 missing=()

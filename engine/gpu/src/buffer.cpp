@@ -20,30 +20,6 @@ std::uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& props,
     return UINT32_MAX;
 }
 
-// device_local: DEVICE_LOCAL, else anything (integrated GPUs, lavapipe: all types qualify).
-// upload: HOST_VISIBLE | HOST_COHERENT (no flushes needed).
-// readback: as upload, preferring HOST_CACHED (CPU reads of uncached memory are very slow).
-std::uint32_t choose_memory_type(const VkPhysicalDeviceMemoryProperties& props,
-                                 std::uint32_t type_bits, MemoryKind kind) {
-    constexpr VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                           VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    switch (kind) {
-    case MemoryKind::device_local: {
-        const std::uint32_t local =
-            find_memory_type(props, type_bits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        return local != UINT32_MAX ? local : find_memory_type(props, type_bits, 0);
-    }
-    case MemoryKind::upload:
-        return find_memory_type(props, type_bits, host);
-    case MemoryKind::readback: {
-        const std::uint32_t cached =
-            find_memory_type(props, type_bits, host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
-        return cached != UINT32_MAX ? cached : find_memory_type(props, type_bits, host);
-    }
-    }
-    return UINT32_MAX;
-}
-
 // Bytes per texel of the formats Lantern views buffers as (0 = not supported here).
 VkDeviceSize texel_size(VkFormat format) {
     switch (format) {
@@ -77,6 +53,34 @@ VkDeviceSize texel_size(VkFormat format) {
 
 } // namespace
 
+namespace detail {
+
+// device_local: DEVICE_LOCAL, else anything (integrated GPUs, lavapipe: all types qualify).
+// upload: HOST_VISIBLE | HOST_COHERENT (no flushes needed).
+// readback: as upload, preferring HOST_CACHED (CPU reads of uncached memory are very slow).
+std::uint32_t choose_memory_type(const VkPhysicalDeviceMemoryProperties& props,
+                                 std::uint32_t type_bits, MemoryKind kind) {
+    constexpr VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                           VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    switch (kind) {
+    case MemoryKind::device_local: {
+        const std::uint32_t local =
+            find_memory_type(props, type_bits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        return local != UINT32_MAX ? local : find_memory_type(props, type_bits, 0);
+    }
+    case MemoryKind::upload:
+        return find_memory_type(props, type_bits, host);
+    case MemoryKind::readback: {
+        const std::uint32_t cached =
+            find_memory_type(props, type_bits, host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+        return cached != UINT32_MAX ? cached : find_memory_type(props, type_bits, host);
+    }
+    }
+    return UINT32_MAX;
+}
+
+} // namespace detail
+
 const char* to_string(MemoryKind kind) {
     switch (kind) {
     case MemoryKind::device_local: return "device_local";
@@ -103,7 +107,7 @@ Buffer Device::create_buffer(const BufferDesc& desc) {
     VkMemoryRequirements requirements{};
     vkGetBufferMemoryRequirements(device_, b.buffer_, &requirements);
     const std::uint32_t type =
-        choose_memory_type(memory_properties_, requirements.memoryTypeBits, desc.memory);
+        detail::choose_memory_type(memory_properties_, requirements.memoryTypeBits, desc.memory);
     LANTERN_VERIFY(type != UINT32_MAX, "gpu: the device has no memory type for this buffer kind");
     auto alloc = vk_struct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
     alloc.allocationSize = requirements.size;

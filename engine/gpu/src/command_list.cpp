@@ -1,4 +1,5 @@
-// CommandList recording: compute, push descriptors, barriers, transfers, labels.
+// CommandList recording: compute, push descriptors, barriers, transfers, labels. Image and
+// raster commands are in raster.cpp.
 #include "device_internal.hpp"
 
 #include "lantern/gpu/vk_check.hpp"
@@ -11,12 +12,14 @@ namespace lantern::gpu {
 
 namespace {
 
-VkBufferUsageFlags required_usage(BindingType type) {
+// The buffer usage (or, for images, image usage) flag a descriptor type needs.
+VkFlags required_usage(BindingType type) {
     switch (type) {
     case BindingType::storage_buffer: return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     case BindingType::uniform_buffer: return VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
     case BindingType::uniform_texel_buffer: return VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
     case BindingType::storage_texel_buffer: return VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
+    case BindingType::combined_image_sampler: return VK_IMAGE_USAGE_SAMPLED_BIT;
     }
     return 0;
 }
@@ -27,6 +30,7 @@ VkDescriptorType to_descriptor_type(BindingType type) {
     case BindingType::uniform_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     case BindingType::uniform_texel_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     case BindingType::storage_texel_buffer: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+    case BindingType::combined_image_sampler: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     }
     return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }
@@ -92,6 +96,19 @@ DescriptorWrites& DescriptorWrites::storage_texel_buffer(std::uint32_t binding, 
     return add(w);
 }
 
+DescriptorWrites& DescriptorWrites::combined_image_sampler(std::uint32_t binding,
+                                                           const Image& image,
+                                                           const Sampler& sampler) {
+    LANTERN_ASSERT(image && sampler, "gpu: descriptor of an empty image or sampler");
+    Write w;
+    w.binding = binding;
+    w.type = BindingType::combined_image_sampler;
+    w.image_view = image.view();
+    w.sampler = sampler.vk();
+    w.usage = image.usage();
+    return add(w);
+}
+
 // --- CommandList life -----------------------------------------------------------------------
 
 CommandList::CommandList(CommandList&& other) noexcept { *this = std::move(other); }
@@ -103,7 +120,10 @@ CommandList& CommandList::operator=(CommandList&& other) noexcept {
         cmd_ = std::exchange(other.cmd_, VK_NULL_HANDLE);
         context_ = other.context_;
         list_id_ = other.list_id_;
+        bind_point_ = other.bind_point_;
+        push_stages_ = std::exchange(other.push_stages_, 0);
         layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
+        rendering_ = std::exchange(other.rendering_, false);
         bindings_ = other.bindings_;
         binding_count_ = std::exchange(other.binding_count_, 0);
         push_constant_size_ = std::exchange(other.push_constant_size_, 0);
@@ -121,7 +141,9 @@ CommandList::~CommandList() {
 void CommandList::release() {
     device_ = nullptr;
     cmd_ = VK_NULL_HANDLE;
+    push_stages_ = 0;
     layout_ = VK_NULL_HANDLE;
+    rendering_ = false;
     binding_count_ = 0;
     push_constant_size_ = 0;
     label_depth_ = 0;
@@ -130,14 +152,23 @@ void CommandList::release() {
 
 // --- Compute ----------------------------------------------------------------------------------
 
-void CommandList::bind(const ComputePipeline& pipeline) {
-    LANTERN_ASSERT(cmd_ && pipeline, "gpu: bind on a closed list or of an empty pipeline");
-    vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.vk());
-    layout_ = pipeline.layout();
-    const auto bindings = pipeline.bindings();
+void CommandList::bind_layout(VkPipelineBindPoint point, VkPipelineLayout layout,
+                              std::span<const BindingType> bindings,
+                              std::uint32_t push_constant_size, VkShaderStageFlags push_stages) {
+    bind_point_ = point;
+    layout_ = layout;
     std::copy(bindings.begin(), bindings.end(), bindings_.begin());
     binding_count_ = static_cast<std::uint32_t>(bindings.size());
-    push_constant_size_ = pipeline.push_constant_size();
+    push_constant_size_ = push_constant_size;
+    push_stages_ = push_stages;
+}
+
+void CommandList::bind(const ComputePipeline& pipeline) {
+    LANTERN_ASSERT(cmd_ && pipeline, "gpu: bind on a closed list or of an empty pipeline");
+    LANTERN_ASSERT(!rendering_, "gpu: compute pipeline bound inside a rendering scope");
+    vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.vk());
+    bind_layout(VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), pipeline.bindings(),
+                pipeline.push_constant_size(), VK_SHADER_STAGE_COMPUTE_BIT);
 }
 
 void CommandList::push_descriptors(const DescriptorWrites& writes) {
@@ -145,6 +176,7 @@ void CommandList::push_descriptors(const DescriptorWrites& writes) {
     const Capabilities& caps = device_->capabilities();
     std::array<VkWriteDescriptorSet, ComputePipeline::max_bindings> vk_writes{};
     std::array<VkDescriptorBufferInfo, ComputePipeline::max_bindings> buffers{};
+    std::array<VkDescriptorImageInfo, ComputePipeline::max_bindings> images{};
     for (std::uint32_t i = 0; i < writes.count_; ++i) {
         const DescriptorWrites::Write& w = writes.writes_[i];
         LANTERN_ASSERT(w.binding < binding_count_ && bindings_[w.binding] == w.type,
@@ -160,6 +192,11 @@ void CommandList::push_descriptors(const DescriptorWrites& writes) {
             vk.pTexelBufferView = &w.view;
             continue;
         }
+        if (w.image_view) {
+            images[i] = {w.sampler, w.image_view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            vk.pImageInfo = &images[i];
+            continue;
+        }
         const bool uniform = w.type == BindingType::uniform_buffer;
         const VkDeviceSize alignment = uniform ? caps.min_uniform_buffer_offset_alignment
                                                : caps.min_storage_buffer_offset_alignment;
@@ -170,19 +207,20 @@ void CommandList::push_descriptors(const DescriptorWrites& writes) {
         buffers[i] = {w.buffer, w.offset, w.range};
         vk.pBufferInfo = &buffers[i];
     }
-    device_->dispatch_->cmd_push_descriptor_set(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0,
-                                                writes.count_, vk_writes.data());
+    device_->dispatch_->cmd_push_descriptor_set(cmd_, bind_point_, layout_, 0, writes.count_,
+                                                vk_writes.data());
 }
 
 void CommandList::push_constants(const void* data, std::uint32_t size, std::uint32_t offset) {
     LANTERN_ASSERT(cmd_ && layout_, "gpu: push_constants needs a bound pipeline");
     LANTERN_ASSERT(size > 0 && size % 4 == 0 && offset % 4 == 0 && offset + size <= push_constant_size_,
                    "gpu: push constants outside the pipeline's push-constant block");
-    vkCmdPushConstants(cmd_, layout_, VK_SHADER_STAGE_COMPUTE_BIT, offset, size, data);
+    vkCmdPushConstants(cmd_, layout_, push_stages_, offset, size, data);
 }
 
 void CommandList::dispatch(std::uint32_t groups_x, std::uint32_t groups_y, std::uint32_t groups_z) {
-    LANTERN_ASSERT(cmd_ && layout_, "gpu: dispatch needs a bound pipeline");
+    LANTERN_ASSERT(cmd_ && layout_ && bind_point_ == VK_PIPELINE_BIND_POINT_COMPUTE,
+                   "gpu: dispatch needs a bound compute pipeline");
     vkCmdDispatch(cmd_, groups_x, groups_y, groups_z);
 }
 
@@ -190,7 +228,8 @@ void CommandList::dispatch(std::uint32_t groups_x, std::uint32_t groups_y, std::
 
 void CommandList::memory_barrier(VkPipelineStageFlags src_stages, VkAccessFlags src_access,
                                  VkPipelineStageFlags dst_stages, VkAccessFlags dst_access) {
-    LANTERN_ASSERT(cmd_, "gpu: barrier on a closed list");
+    LANTERN_ASSERT(cmd_ && !rendering_,
+                   "gpu: barrier on a closed list or inside a rendering scope");
     auto barrier = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
     barrier.srcAccessMask = src_access;
     barrier.dstAccessMask = dst_access;
@@ -200,7 +239,8 @@ void CommandList::memory_barrier(VkPipelineStageFlags src_stages, VkAccessFlags 
 void CommandList::buffer_barrier(const Buffer& buffer, VkPipelineStageFlags src_stages,
                                  VkAccessFlags src_access, VkPipelineStageFlags dst_stages,
                                  VkAccessFlags dst_access, VkDeviceSize offset, VkDeviceSize size) {
-    LANTERN_ASSERT(cmd_ && buffer, "gpu: buffer barrier on a closed list or an empty buffer");
+    LANTERN_ASSERT(cmd_ && !rendering_ && buffer,
+                   "gpu: buffer barrier on a closed list, in a rendering scope or of no buffer");
     LANTERN_ASSERT(offset < buffer.size() && (size == VK_WHOLE_SIZE || offset + size <= buffer.size()),
                    "gpu: buffer barrier range outside the buffer");
     auto barrier = vk_struct<VkBufferMemoryBarrier>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER);
@@ -240,6 +280,20 @@ void CommandList::barrier_transfer_to_transfer() {
                    VK_PIPELINE_STAGE_TRANSFER_BIT, transfer_access);
 }
 
+void CommandList::barrier_compute_to_graphics() {
+    memory_barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT);
+}
+
+void CommandList::barrier_transfer_to_graphics() {
+    memory_barrier(VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                   VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT |
+                       VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
+}
+
 void CommandList::barrier_to_host() {
     memory_barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -250,7 +304,8 @@ void CommandList::barrier_to_host() {
 
 void CommandList::copy_buffer(const Buffer& src, VkDeviceSize src_offset, const Buffer& dst,
                               VkDeviceSize dst_offset, VkDeviceSize size) {
-    LANTERN_ASSERT(cmd_ && src && dst, "gpu: copy on a closed list or with an empty buffer");
+    LANTERN_ASSERT(cmd_ && !rendering_ && src && dst,
+                   "gpu: copy on a closed list, inside a rendering scope or with an empty buffer");
     LANTERN_ASSERT(size > 0 && src_offset + size <= src.size() && dst_offset + size <= dst.size(),
                    "gpu: copy range outside a buffer");
     const VkBufferCopy region{src_offset, dst_offset, size};
@@ -259,7 +314,8 @@ void CommandList::copy_buffer(const Buffer& src, VkDeviceSize src_offset, const 
 
 void CommandList::fill_buffer(const Buffer& dst, std::uint32_t value, VkDeviceSize offset,
                               VkDeviceSize size) {
-    LANTERN_ASSERT(cmd_ && dst, "gpu: fill on a closed list or of an empty buffer");
+    LANTERN_ASSERT(cmd_ && !rendering_ && dst,
+                   "gpu: fill on a closed list, inside a rendering scope or of an empty buffer");
     LANTERN_ASSERT(offset % 4 == 0 && offset < dst.size() &&
                        (size == VK_WHOLE_SIZE || (size % 4 == 0 && offset + size <= dst.size())),
                    "gpu: fill range misaligned or outside the buffer");
@@ -267,7 +323,8 @@ void CommandList::fill_buffer(const Buffer& dst, std::uint32_t value, VkDeviceSi
 }
 
 void CommandList::update_buffer(const Buffer& dst, VkDeviceSize offset, std::span<const std::byte> bytes) {
-    LANTERN_ASSERT(cmd_ && dst, "gpu: update on a closed list or of an empty buffer");
+    LANTERN_ASSERT(cmd_ && !rendering_ && dst,
+                   "gpu: update on a closed list, inside a rendering scope or of an empty buffer");
     LANTERN_ASSERT(!bytes.empty() && bytes.size() <= max_update_bytes && bytes.size() % 4 == 0 &&
                        offset % 4 == 0 && offset + bytes.size() <= dst.size(),
                    "gpu: update_buffer needs <= 65536 bytes, 4-byte aligned, inside the buffer");

@@ -100,10 +100,29 @@ void Device::set_object_name(VkObjectType type, std::uint64_t handle, const char
 
 // --- Deferred destruction --------------------------------------------------------------------
 
-void Device::retire(const Retired& objects) {
+void Device::count_live_object() {
     std::lock_guard lock(deletions_->mutex);
-    LANTERN_ASSERT(deletions_->live_objects > 0, "gpu: more resources destroyed than created");
-    --deletions_->live_objects;
+    ++deletions_->live_objects;
+}
+
+void Device::retire(const Retired& objects) {
+    {
+        std::lock_guard lock(deletions_->mutex);
+        LANTERN_ASSERT(deletions_->live_objects > 0, "gpu: more resources destroyed than created");
+        --deletions_->live_objects;
+    }
+    queue_deletion(objects);
+}
+
+void Device::destroy_deferred(VkFramebuffer framebuffer) {
+    if (!framebuffer) return;
+    Retired retired;
+    retired.framebuffer = framebuffer;
+    queue_deletion(retired);
+}
+
+void Device::queue_deletion(const Retired& objects) {
+    std::lock_guard lock(deletions_->mutex);
     Deletions::Entry entry;
     entry.objects = objects;
     if (deletions_->open_lists.empty()) {
@@ -150,10 +169,15 @@ std::size_t Device::pending_deletions() const {
 }
 
 void Device::destroy_retired(const Retired& o) {
-    // Views before buffers, pipelines before their layouts; null handles are ignored.
+    // Framebuffers before the views they name, views before their buffers and images,
+    // memory last, pipelines before their layouts; null handles are ignored.
+    vkDestroyFramebuffer(device_, o.framebuffer, nullptr);
     vkDestroyBufferView(device_, o.view, nullptr);
+    vkDestroyImageView(device_, o.image_view, nullptr);
     vkDestroyBuffer(device_, o.buffer, nullptr);
+    vkDestroyImage(device_, o.image, nullptr);
     vkFreeMemory(device_, o.memory, nullptr);
+    vkDestroySampler(device_, o.sampler, nullptr);
     vkDestroyPipeline(device_, o.pipeline, nullptr);
     vkDestroyPipelineLayout(device_, o.layout, nullptr);
     vkDestroyDescriptorSetLayout(device_, o.set_layout, nullptr);
@@ -272,6 +296,7 @@ struct SubmitArrays {
 std::uint64_t Device::submit(CommandList&& list, const SubmitInfo& info) {
     LANTERN_ASSERT(list.device_ == this && list.cmd_, "gpu::Device::submit of a list that is not recording");
     LANTERN_ASSERT(list.label_depth_ == 0, "gpu::Device::submit with an open debug label");
+    LANTERN_ASSERT(!list.rendering_, "gpu::Device::submit inside a rendering scope");
     Context& context = *contexts_[list.context_];
     record_timestamp_copies(list);
     VK_CHECK(vkEndCommandBuffer(context.cmd));

@@ -102,8 +102,9 @@ struct Candidate {
 };
 
 // Prefers a family that writes timestamps, then one that also does graphics (a universal
-// queue, so later rendering can share it), then the lowest index.
-void choose_queue_family(Candidate& c) {
+// queue, so later rendering can share it), then the lowest index. `need_graphics` keeps
+// only families that do graphics too.
+void choose_queue_family(Candidate& c, bool need_graphics) {
     std::uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(c.physical, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
@@ -113,6 +114,7 @@ void choose_queue_family(Candidate& c) {
         const VkQueueFamilyProperties& f = families[i];
         if (!(f.queueFlags & VK_QUEUE_COMPUTE_BIT) || f.queueCount == 0) continue;
         const bool graphics = (f.queueFlags & VK_QUEUE_GRAPHICS_BIT) != 0;
+        if (need_graphics && !graphics) continue;
         const int score = (f.timestampValidBits > 0 ? 2 : 0) + (graphics ? 1 : 0);
         if (score > best_score) {
             best_score = score;
@@ -121,7 +123,29 @@ void choose_queue_family(Candidate& c) {
             c.graphics = graphics;
         }
     }
-    if (c.queue_family == UINT32_MAX) c.problems.push_back("no queue family with compute");
+    if (c.queue_family == UINT32_MAX)
+        c.problems.push_back(need_graphics ? "no queue family with compute and graphics"
+                                           : "no queue family with compute");
+}
+
+// Why `physical` cannot do DeviceOptions::graphics (empty: it can).
+std::vector<std::string> raster_problems(VkPhysicalDevice physical,
+                                         const std::vector<VkExtensionProperties>& extensions) {
+    if (!has_extension(extensions, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME))
+        return {std::string("missing ") + VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME};
+    auto dynamic_rendering = vk_struct<VkPhysicalDeviceDynamicRenderingFeaturesKHR>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES_KHR);
+    auto v12 = vk_struct<VkPhysicalDeviceVulkan12Features>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
+    v12.pNext = &dynamic_rendering;
+    auto features =
+        vk_struct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+    features.pNext = &v12;
+    vkGetPhysicalDeviceFeatures2(physical, &features);
+    std::vector<std::string> problems;
+    if (!dynamic_rendering.dynamicRendering) problems.push_back("no dynamicRendering feature");
+    if (!v12.imagelessFramebuffer) problems.push_back("no imagelessFramebuffer feature");
+    return problems;
 }
 
 bool supports_calibration(VkInstance instance, VkPhysicalDevice physical) {
@@ -153,9 +177,13 @@ Candidate evaluate(VkInstance instance, VkPhysicalDevice physical, std::uint32_t
     vkGetPhysicalDeviceProperties(physical, &c.properties);
     if (c.properties.apiVersion < min_api_version)
         c.problems.push_back("Vulkan " + version_string(c.properties.apiVersion) + " < 1.2");
-    choose_queue_family(c);
+    choose_queue_family(c, options.graphics);
 
     const auto extensions = device_extensions(physical);
+    if (options.graphics) {
+        for (std::string& problem : raster_problems(physical, extensions))
+            c.problems.push_back(std::move(problem));
+    }
     std::vector<const char*> required = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     required.insert(required.end(), options.device_extensions.begin(),
                     options.device_extensions.end());
@@ -337,6 +365,15 @@ Result<void> DeviceBuilder::create_logical(Device& d, const DeviceOptions& optio
 
     std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     if (d.caps_.calibrated_timestamps) extensions.push_back(VK_EXT_CALIBRATED_TIMESTAMPS_EXTENSION_NAME);
+    // Raster: checked present by evaluate().
+    auto dynamic_rendering = vk_struct<VkPhysicalDeviceDynamicRenderingFeaturesKHR>(
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES_KHR);
+    if (options.graphics) {
+        extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
+        dynamic_rendering.dynamicRendering = VK_TRUE;
+        enabled.v12.pNext = &dynamic_rendering;
+        enabled.v12.imagelessFramebuffer = VK_TRUE;
+    }
     extensions.insert(extensions.end(), options.device_extensions.begin(),
                       options.device_extensions.end());
 
@@ -365,6 +402,7 @@ Result<void> DeviceBuilder::create_logical(Device& d, const DeviceOptions& optio
     d.caps_.shader_float16 = enabled.v12.shaderFloat16;
     d.caps_.shader_int8 = enabled.v12.shaderInt8;
     d.caps_.timeline_semaphore = enabled.v12.timelineSemaphore;
+    d.caps_.graphics = options.graphics;
     return {};
 }
 
@@ -405,6 +443,15 @@ void DeviceBuilder::load_dispatch(Device& d) {
         f.get_calibrated_timestamps = reinterpret_cast<PFN_vkGetCalibratedTimestampsEXT>(
             vkGetDeviceProcAddr(d.device_, "vkGetCalibratedTimestampsEXT"));
     d.caps_.calibrated_timestamps = f.get_calibrated_timestamps != nullptr;
+    if (d.caps_.graphics) {
+        f.cmd_begin_rendering = reinterpret_cast<PFN_vkCmdBeginRenderingKHR>(
+            vkGetDeviceProcAddr(d.device_, "vkCmdBeginRenderingKHR"));
+        f.cmd_end_rendering = reinterpret_cast<PFN_vkCmdEndRenderingKHR>(
+            vkGetDeviceProcAddr(d.device_, "vkCmdEndRenderingKHR"));
+        LANTERN_VERIFY(f.cmd_begin_rendering && f.cmd_end_rendering,
+                       "vkCmdBeginRenderingKHR missing on a device that lists "
+                       "VK_KHR_dynamic_rendering");
+    }
     if (d.caps_.debug_utils) {
         // Instance-level extension: its commands come from the instance.
         f.set_object_name = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(

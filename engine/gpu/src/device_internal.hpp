@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <mutex>
 #include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@ struct Device::Dispatch {
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label = nullptr;
     PFN_vkDestroyDebugUtilsMessengerEXT destroy_messenger = nullptr;
+    PFN_vkCmdBeginRenderingKHR cmd_begin_rendering = nullptr; // DeviceOptions::graphics
+    PFN_vkCmdEndRenderingKHR cmd_end_rendering = nullptr;
 };
 
 // Messages of the debug-utils messenger. The callback runs on whatever thread the layer or
@@ -58,6 +61,10 @@ struct Device::Retired {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     VkQueryPool query_pool = VK_NULL_HANDLE;
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView image_view = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
 };
 
 // Deferred destruction. An entry is "sealed" with the serial after which it may be freed.
@@ -87,5 +94,33 @@ struct Device::Context {
     VkFence fence = VK_NULL_HANDLE;
     std::uint64_t serial = 0;
 };
+
+// Helpers shared by the files of engine/gpu/src.
+namespace detail {
+VkDescriptorSetLayout create_set_layout(VkDevice device, std::span<const BindingType> bindings,
+                                        VkShaderStageFlags stages);
+VkPipelineLayout create_pipeline_layout(VkDevice device, VkDescriptorSetLayout set_layout,
+                                        std::uint32_t push_constant_size,
+                                        VkShaderStageFlags stages);
+VkShaderModule create_shader_module(VkDevice device, std::span<const std::uint32_t> spirv);
+// The memory type for `kind` among `type_bits` (buffer.cpp), or UINT32_MAX.
+std::uint32_t choose_memory_type(const VkPhysicalDeviceMemoryProperties& props,
+                                 std::uint32_t type_bits, MemoryKind kind);
+
+// VkSpecializationInfo over a list of SpecConstants (the info points into this object).
+class Specialization {
+  public:
+    explicit Specialization(std::span<const SpecConstant> constants);
+    Specialization(const Specialization&) = delete;
+    Specialization& operator=(const Specialization&) = delete;
+    // nullptr when there are no constants.
+    const VkSpecializationInfo* info() const { return entries_.empty() ? nullptr : &info_; }
+
+  private:
+    std::vector<VkSpecializationMapEntry> entries_;
+    std::vector<std::uint32_t> values_;
+    VkSpecializationInfo info_{};
+};
+} // namespace detail
 
 } // namespace lantern::gpu

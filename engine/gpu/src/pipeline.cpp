@@ -16,18 +16,24 @@ VkDescriptorType descriptor_type(BindingType type) {
     case BindingType::uniform_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     case BindingType::uniform_texel_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     case BindingType::storage_texel_buffer: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+    case BindingType::combined_image_sampler: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     }
     return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }
 
-VkDescriptorSetLayout create_set_layout(VkDevice device, const std::vector<BindingType>& bindings) {
+} // namespace
+
+namespace detail {
+
+VkDescriptorSetLayout create_set_layout(VkDevice device, std::span<const BindingType> bindings,
+                                        VkShaderStageFlags stages) {
     std::vector<VkDescriptorSetLayoutBinding> vk_bindings;
     for (std::uint32_t i = 0; i < bindings.size(); ++i) {
         VkDescriptorSetLayoutBinding b{};
         b.binding = i;
         b.descriptorType = descriptor_type(bindings[i]);
         b.descriptorCount = 1;
-        b.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+        b.stageFlags = stages;
         vk_bindings.push_back(b);
     }
     auto info = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
@@ -40,8 +46,9 @@ VkDescriptorSetLayout create_set_layout(VkDevice device, const std::vector<Bindi
 }
 
 VkPipelineLayout create_pipeline_layout(VkDevice device, VkDescriptorSetLayout set_layout,
-                                        std::uint32_t push_constant_size) {
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_size};
+                                        std::uint32_t push_constant_size,
+                                        VkShaderStageFlags stages) {
+    VkPushConstantRange range{stages, 0, push_constant_size};
     auto info = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     info.setLayoutCount = set_layout ? 1 : 0;
     info.pSetLayouts = &set_layout;
@@ -61,7 +68,19 @@ VkShaderModule create_shader_module(VkDevice device, std::span<const std::uint32
     return module;
 }
 
-} // namespace
+Specialization::Specialization(std::span<const SpecConstant> constants) {
+    for (const SpecConstant& c : constants) {
+        const auto offset = static_cast<std::uint32_t>(values_.size() * sizeof(std::uint32_t));
+        entries_.push_back({c.id, offset, sizeof(std::uint32_t)});
+        values_.push_back(c.value);
+    }
+    info_.mapEntryCount = static_cast<std::uint32_t>(entries_.size());
+    info_.pMapEntries = entries_.data();
+    info_.dataSize = values_.size() * sizeof(std::uint32_t);
+    info_.pData = values_.data();
+}
+
+} // namespace detail
 
 const char* to_string(BindingType type) {
     switch (type) {
@@ -69,6 +88,7 @@ const char* to_string(BindingType type) {
     case BindingType::uniform_buffer: return "uniform_buffer";
     case BindingType::uniform_texel_buffer: return "uniform_texel_buffer";
     case BindingType::storage_texel_buffer: return "storage_texel_buffer";
+    case BindingType::combined_image_sampler: return "combined_image_sampler";
     }
     return "?";
 }
@@ -87,29 +107,20 @@ ComputePipeline Device::create_compute_pipeline(const ComputePipelineDesc& desc)
     p.binding_count_ = static_cast<std::uint32_t>(desc.bindings.size());
     std::copy(desc.bindings.begin(), desc.bindings.end(), p.bindings_.begin());
     p.push_constant_size_ = desc.push_constant_size;
-    if (!desc.bindings.empty()) p.set_layout_ = create_set_layout(device_, desc.bindings);
-    p.layout_ = create_pipeline_layout(device_, p.set_layout_, desc.push_constant_size);
+    if (!desc.bindings.empty())
+        p.set_layout_ =
+            detail::create_set_layout(device_, desc.bindings, VK_SHADER_STAGE_COMPUTE_BIT);
+    p.layout_ = detail::create_pipeline_layout(device_, p.set_layout_, desc.push_constant_size,
+                                               VK_SHADER_STAGE_COMPUTE_BIT);
+    const detail::Specialization specialization(desc.specialization);
 
-    std::vector<VkSpecializationMapEntry> entries;
-    std::vector<std::uint32_t> values;
-    for (const SpecConstant& c : desc.specialization) {
-        entries.push_back({c.id, static_cast<std::uint32_t>(values.size() * sizeof(std::uint32_t)),
-                           sizeof(std::uint32_t)});
-        values.push_back(c.value);
-    }
-    VkSpecializationInfo specialization{};
-    specialization.mapEntryCount = static_cast<std::uint32_t>(entries.size());
-    specialization.pMapEntries = entries.data();
-    specialization.dataSize = values.size() * sizeof(std::uint32_t);
-    specialization.pData = values.data();
-
-    const VkShaderModule module = create_shader_module(device_, desc.spirv);
+    const VkShaderModule module = detail::create_shader_module(device_, desc.spirv);
     auto info = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
-    info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
+    info.stage.pSpecializationInfo = specialization.info();
     info.layout = p.layout_;
     VK_CHECK(vkCreateComputePipelines(device_, pipeline_cache_, 1, &info, nullptr, &p.pipeline_));
     // The pipeline keeps what it needs; the module may go at once.

@@ -16,21 +16,7 @@ const float GI_CORNER_EPS = 1e-5;
 const float GI_BIG = 1e30;
 const float GI_FACE_EPS = 1e-3;
 
-// The wall grid is a pc.grid.xy rectangle of tiles from world tile pc.grid.zw, stored
-// toroidally with phase pc.grid_phase.xy (a streaming world rewrites only changed chunks):
-// engine/gi/include/lantern/gi/frame_inputs.hpp WallView.
-bool in_grid(int x, int z) {
-    int c = x - pc.grid.z, r = z - pc.grid.w;
-    return c >= 0 && r >= 0 && c < pc.grid.x && r < pc.grid.y;
-}
-bool is_wall(int x, int z) {
-    if (!in_grid(x, z)) return false; // out of bounds is air
-    int c = x - pc.grid.z + pc.grid_phase.x, r = z - pc.grid.w + pc.grid_phase.y;
-    if (c >= pc.grid.x) c -= pc.grid.x;
-    if (r >= pc.grid.y) r -= pc.grid.y;
-    return texelFetch(u_walls, r * pc.grid.x + c).r != 0u;
-}
-bool is_wall(ivec2 c) { return is_wall(c.x, c.y); }
+#include "gi_walls.glsl"
 // True when a traversal can never meet a wall again: outside the grid and stepping away
 // from it (results then do not depend on how far the grid extends).
 bool leaving_grid(ivec2 cell, ivec2 stp) {

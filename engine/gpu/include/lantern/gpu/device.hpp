@@ -1,6 +1,9 @@
 // The Vulkan device: instance, physical-device choice, one queue, resource creation,
 // submission with serials, deferred destruction, validation-message capture.
 //
+// Raster work (images as attachments, graphics pipelines, dynamic rendering) needs a device
+// created with DeviceOptions::graphics; compute, buffers, images and samplers work on any.
+//
 // Creation never crashes: no loader driver, no device, or a device without what Lantern
 // needs gives an Error whose message starts with "no Vulkan device: " and says why.
 //
@@ -9,8 +12,9 @@
 // variable is unset or empty, DeviceOptions::device) picks one instead; it is an error when
 // it matches no device or only unsuitable ones. Suitable = Vulkan 1.2+, a queue family with
 // compute, VK_KHR_push_descriptor, uniform texel buffers of R8_UNORM, R8G8_UNORM and
-// R16G16B16A16_SFLOAT, plus DeviceOptions' extra extensions. Optional features are enabled
-// when present and reported in Capabilities.
+// R16G16B16A16_SFLOAT, plus DeviceOptions' extra extensions (and, with
+// DeviceOptions::graphics, raster support). Optional features are enabled when present and
+// reported in Capabilities.
 //
 // Validation (DeviceOptions::validation or LANTERN_VK_VALIDATION=1; =sync adds the layer's
 // synchronization validation): VK_LAYER_KHRONOS_validation plus a debug-utils messenger.
@@ -38,6 +42,8 @@
 #include "lantern/core/result.hpp"
 #include "lantern/gpu/buffer.hpp"
 #include "lantern/gpu/command_list.hpp"
+#include "lantern/gpu/graphics_pipeline.hpp"
+#include "lantern/gpu/image.hpp"
 #include "lantern/gpu/pipeline.hpp"
 #include "lantern/gpu/timestamps.hpp"
 
@@ -66,6 +72,10 @@ struct DeviceOptions {
     std::string application_name = "lantern";
     std::vector<const char*> instance_extensions{}; // extra required extensions (e.g. surfaces)
     std::vector<const char*> device_extensions{};   // extra required extensions (e.g. swapchain)
+    // Raster work: the queue family must also do graphics, and VK_KHR_dynamic_rendering with
+    // its dynamicRendering feature and the imagelessFramebuffer feature (render-pass-based
+    // code such as UI backends) are required and enabled. Devices without them are unsuitable.
+    bool graphics = false;
 };
 
 // What the chosen device offers. Optional features are enabled when present.
@@ -82,6 +92,7 @@ struct Capabilities {
     double timestamp_period_ns = 0.0;        // nanoseconds per timestamp tick
     bool calibrated_timestamps = false;      // GPU and now_ns() clocks can be calibrated
     bool debug_utils = false;                // object names and labels reach debuggers
+    bool graphics = false;                   // DeviceOptions::graphics: raster commands work
     std::uint32_t subgroup_size = 0;
     VkDeviceSize min_storage_buffer_offset_alignment = 0;
     VkDeviceSize min_uniform_buffer_offset_alignment = 0;
@@ -144,6 +155,18 @@ class Device {
     // Shares the Device's VkPipelineCache, so re-creating a pipeline with other
     // specialization constants is cheap on drivers that cache.
     ComputePipeline create_compute_pipeline(const ComputePipelineDesc& desc);
+    // A 2D image with its view (see image.hpp). The format must support the usage as an
+    // optimally tiled image (asserted: query supports_image_format first for optional ones).
+    Image create_image(const ImageDesc& desc);
+    // An Image of `image`, created elsewhere (swapchain images) with desc's size, format and
+    // usage: the handle owns only its view; whoever created `image` destroys it, after the
+    // handle.
+    Image wrap_image(VkImage image, const ImageDesc& desc);
+    Sampler create_sampler(const SamplerDesc& desc = {});
+    // True when optimally tiled images of `format` have every bit of `features`.
+    bool supports_image_format(VkFormat format, VkFormatFeatureFlags features) const;
+    // Needs DeviceOptions::graphics (asserted).
+    GraphicsPipeline create_graphics_pipeline(const GraphicsPipelineDesc& desc);
     // An error when the queue writes no timestamps (capabilities().timestamps).
     Result<TimestampQueries> create_timestamp_queries(std::uint32_t max_regions,
                                                       const char* name = nullptr);
@@ -178,6 +201,20 @@ class Device {
     // (VK_WHOLE_SIZE = to the end). For tests and tools, not for frames.
     std::vector<std::byte> read_back(const Buffer& src, VkDeviceSize offset = 0,
                                      VkDeviceSize size = VK_WHOLE_SIZE);
+    // Writes the whole colour image `dst` from tightly packed rows (top row first,
+    // width * height * image_texel_size bytes) in its own submission, ordered after earlier
+    // work; the image's old contents are discarded and it is left in `final_layout` (e.g.
+    // SHADER_READ_ONLY_OPTIMAL for textures). Returns the serial (no wait).
+    std::uint64_t upload(const Image& dst, std::span<const std::byte> texels,
+                         VkImageLayout final_layout);
+    // Blocking: waits for all submitted work and returns the whole image (its depth aspect
+    // for depth formats) as tightly packed rows, top row first. `layout` is the layout the
+    // image is in; it is left in it. For tests, screenshots and tools, not for frames.
+    std::vector<std::byte> read_back(const Image& src, VkImageLayout layout);
+
+    // Deferred destruction of a framebuffer created outside engine::gpu on vk_device() (by
+    // render-pass-based code such as a UI backend), under the rule handles follow.
+    void destroy_deferred(VkFramebuffer framebuffer);
 
     // --- Clocks -----------------------------------------------------------------------------
     // A fresh calibration, or nullopt without calibrated_timestamps.
@@ -206,6 +243,9 @@ class Device {
     friend class Buffer;
     friend class BufferView;
     friend class ComputePipeline;
+    friend class GraphicsPipeline;
+    friend class Image;
+    friend class Sampler;
     friend class CommandList;
     friend class TimestampQueries;
     friend struct DeviceBuilder;
@@ -213,6 +253,9 @@ class Device {
     Device();
     // Queues `objects` for freeing after every use of them has completed.
     void retire(const Retired& objects);
+    // The same for objects the Device never counted as live (foreign objects).
+    void queue_deletion(const Retired& objects);
+    void count_live_object();
     void discard(CommandList& list);
     void record_timestamp_copies(CommandList& list);
     void close_list(std::uint64_t list_id);

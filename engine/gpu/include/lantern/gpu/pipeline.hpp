@@ -24,6 +24,7 @@ enum class BindingType : std::uint8_t {
     uniform_buffer,       // GLSL `uniform` block (std140), at most maxUniformBufferRange bytes
     uniform_texel_buffer, // GLSL `textureBuffer` / `samplerBuffer`, read with texelFetch
     storage_texel_buffer, // GLSL `imageBuffer` with a format qualifier, imageLoad/imageStore
+    combined_image_sampler, // GLSL `sampler2D`: an Image (SAMPLED usage) with a Sampler
 };
 
 const char* to_string(BindingType type);
