@@ -76,15 +76,39 @@ scene::PerspectiveCamera follow_camera(glm::vec3 player, const CameraRig& rig) {
     return c;
 }
 
+namespace {
+
+struct CameraBasis {
+    glm::vec3 forward, right, up;
+    float half_w, half_h;
+};
+
+CameraBasis basis(const scene::PerspectiveCamera& c) {
+    CameraBasis b;
+    b.forward = glm::normalize(c.target - c.position);
+    const glm::vec3 up_hint = std::abs(b.forward.y) > 0.999f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    b.right = glm::normalize(glm::cross(b.forward, up_hint));
+    b.up = glm::cross(b.right, b.forward);
+    b.half_h = std::tan(glm::radians(c.fov_deg) * 0.5f);
+    b.half_w = b.half_h * c.aspect;
+    return b;
+}
+
+} // namespace
+
 Ray camera_ray(const scene::PerspectiveCamera& c, glm::vec2 ndc) {
-    const glm::vec3 forward = glm::normalize(c.target - c.position);
-    const glm::vec3 up_hint = std::abs(forward.y) > 0.999f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-    const glm::vec3 right = glm::normalize(glm::cross(forward, up_hint));
-    const glm::vec3 up = glm::cross(right, forward);
-    const float half_h = std::tan(glm::radians(c.fov_deg) * 0.5f);
-    const float half_w = half_h * c.aspect;
+    const CameraBasis b = basis(c);
     const float sx = ndc.x * 2.0f - 1.0f, sy = 1.0f - ndc.y * 2.0f;
-    return Ray{c.position, glm::normalize(forward + right * (sx * half_w) + up * (sy * half_h))};
+    return Ray{c.position, glm::normalize(b.forward + b.right * (sx * b.half_w) + b.up * (sy * b.half_h))};
+}
+
+std::optional<glm::vec2> project_to_ndc(const scene::PerspectiveCamera& c, glm::vec3 point) {
+    const CameraBasis b = basis(c);
+    const glm::vec3 d = point - c.position;
+    const float depth = glm::dot(d, b.forward);
+    if (depth <= 1e-4f) return std::nullopt;
+    const float sx = glm::dot(d, b.right) / depth / b.half_w, sy = glm::dot(d, b.up) / depth / b.half_h;
+    return glm::vec2(sx * 0.5f + 0.5f, 0.5f - sy * 0.5f);
 }
 
 std::optional<glm::ivec2> pick_wall(const Ray& ray, float wall_height, const IsWall& is_wall, float max_distance) {
@@ -130,46 +154,64 @@ glm::vec3 sun_light(float time_of_day) {
     const float elevation = -sun_direction(time_of_day).y;
     const float day = std::clamp(elevation * 3.0f, 0.0f, 1.0f);
     const glm::vec3 noon(1.0f, 0.95f, 0.85f), dusk(1.0f, 0.55f, 0.3f);
-    return glm::mix(dusk, noon, std::clamp(elevation * 2.0f, 0.0f, 1.0f)) * day;
+    // 0.6 at noon: with the ground's bounce on top, a full-strength sun washes the view out.
+    return glm::mix(dusk, noon, std::clamp(elevation * 2.0f, 0.0f, 1.0f)) * (day * 0.6f);
 }
 
-ecs::Entity spawn_torch(ecs::World& world, glm::vec2 position, float phase) {
-    ecs::Entity e = world.create();
-    world.emplace<PointLight>(e, PointLight{position, 1.2f, {1.0f, 0.62f, 0.28f}, 1.6f, 7.0f});
-    world.emplace<Torch>(e, Torch{1.6f, phase});
-    return e;
-}
-
-ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position) {
-    ecs::Entity e = world.create();
-    world.emplace<Prop>(e, Prop{kind, position});
+PropParts prop_parts(PropKind kind, glm::vec2 position) {
+    PropParts out;
+    out.prop = Prop{kind, position};
     scene::ShadowProxy proxy;
     proxy.position = position;
     switch (kind) {
     case PropKind::crystal:
-        world.emplace<EmissiveLight>(e, EmissiveLight{position, {0.3f, 0.6f, 1.0f}, 1.2f, 4.5f});
+        out.emissive = EmissiveLight{position, {0.3f, 0.6f, 1.0f}, 0.9f, 4.0f};
         break;
     case PropKind::tree:
         proxy.shape = scene::ProxyShape::circle;
         proxy.size = {0.45f, 0.45f};
         proxy.max_length = 3.0f;
-        world.emplace<ShadowProxy>(e, ShadowProxy{proxy});
+        out.proxy = ShadowProxy{proxy};
         break;
     case PropKind::lamp_post:
         proxy.shape = scene::ProxyShape::box;
         proxy.size = {0.15f, 0.15f};
         proxy.max_length = 2.0f;
-        world.emplace<ShadowProxy>(e, ShadowProxy{proxy});
-        world.emplace<PointLight>(e, PointLight{position + glm::vec2(0.0f, 0.4f), 2.5f, {1.0f, 0.9f, 0.7f}, 1.4f, 9.0f});
+        out.proxy = ShadowProxy{proxy};
+        out.light = PointLight{position + glm::vec2(0.0f, 0.4f), 2.5f, {1.0f, 0.9f, 0.7f}, 0.9f, 7.0f};
         break;
     }
+    return out;
+}
+
+TorchParts torch_parts(glm::vec2 position, float phase) {
+    constexpr float intensity = 1.0f;
+    return {PointLight{position, 1.2f, {1.0f, 0.62f, 0.28f}, intensity, 6.5f}, Torch{intensity, phase}};
+}
+
+ecs::Entity spawn_torch(ecs::World& world, glm::vec2 position, float phase) {
+    const TorchParts parts = torch_parts(position, phase);
+    ecs::Entity e = world.create();
+    world.emplace<PointLight>(e, parts.light);
+    world.emplace<Torch>(e, parts.torch);
     return e;
 }
 
-ecs::Entity spawn_player(ecs::World& world, glm::vec2 position) {
+ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position) {
+    const PropParts parts = prop_parts(kind, position);
+    ecs::Entity e = world.create();
+    world.emplace<Prop>(e, parts.prop);
+    if (parts.emissive) world.emplace<EmissiveLight>(e, *parts.emissive);
+    if (parts.proxy) world.emplace<ShadowProxy>(e, *parts.proxy);
+    if (parts.light) world.emplace<PointLight>(e, *parts.light);
+    return e;
+}
+
+ecs::Entity spawn_player(ecs::World& world, glm::vec2 position, bool light) {
     ecs::Entity e = world.create();
     world.emplace<Transform>(e, Transform{glm::vec3(position.x, 0.0f, position.y)});
     world.emplace<Player>(e);
+    if (light) world.emplace<PointLight>(e, PointLight{position, 1.0f, {1.0f, 0.8f, 0.55f}, 0.35f, 4.0f});
     return e;
 }
 
@@ -188,6 +230,7 @@ void move_player(ecs::SystemContext& ctx, systems::Streaming& streaming) {
         Transform& t = w.patch<Transform>(e);
         const glm::vec2 p = move_with_collision({t.position.x, t.position.z}, move * player.speed * dt, player.radius, is_wall);
         t.position = glm::vec3(p.x, 0.0f, p.y);
+        if (w.try_get<PointLight>(e)) w.patch<PointLight>(e).position = p; // the player's lantern
     });
     // The camera follows the first player.
     const CameraRig& rig = w.resource<CameraRig>();
@@ -239,27 +282,20 @@ void interact(ecs::SystemContext& ctx, systems::Streaming& streaming) {
         // Never wall the player in.
         if (glm::distance(center, glm::vec2(player->x, player->z)) > 0.9f) streaming.set_wall(w, *tile, true);
     } else if (c.place_torch) {
+        const TorchParts parts = torch_parts(center, float(tile->x * 13 + tile->y * 7) * 0.37f);
         auto& cb = ctx.commands();
         ecs::Entity e = cb.create();
-        cb.emplace<PointLight>(e, PointLight{center, 1.2f, {1.0f, 0.62f, 0.28f}, 1.6f, 7.0f});
-        cb.emplace<Torch>(e, Torch{1.6f, float(tile->x * 13 + tile->y * 7) * 0.37f});
+        cb.emplace<PointLight>(e, parts.light);
+        cb.emplace<Torch>(e, parts.torch);
     } else {
         const PropKind kind = c.place_crystal ? PropKind::crystal : c.place_tree ? PropKind::tree : PropKind::lamp_post;
+        const PropParts parts = prop_parts(kind, center);
         auto& cb = ctx.commands();
         ecs::Entity e = cb.create();
-        cb.emplace<Prop>(e, Prop{kind, center});
-        scene::ShadowProxy proxy;
-        proxy.position = center;
-        if (kind == PropKind::crystal) {
-            cb.emplace<EmissiveLight>(e, EmissiveLight{center, {0.3f, 0.6f, 1.0f}, 1.2f, 4.5f});
-        } else {
-            proxy.shape = kind == PropKind::tree ? scene::ProxyShape::circle : scene::ProxyShape::box;
-            proxy.size = kind == PropKind::tree ? glm::vec2(0.45f) : glm::vec2(0.15f);
-            proxy.max_length = kind == PropKind::tree ? 3.0f : 2.0f;
-            cb.emplace<ShadowProxy>(e, ShadowProxy{proxy});
-            if (kind == PropKind::lamp_post)
-                cb.emplace<PointLight>(e, PointLight{center + glm::vec2(0.0f, 0.4f), 2.5f, {1.0f, 0.9f, 0.7f}, 1.4f, 9.0f});
-        }
+        cb.emplace<Prop>(e, parts.prop);
+        if (parts.emissive) cb.emplace<EmissiveLight>(e, *parts.emissive);
+        if (parts.proxy) cb.emplace<ShadowProxy>(e, *parts.proxy);
+        if (parts.light) cb.emplace<PointLight>(e, *parts.light);
     }
 }
 
@@ -269,7 +305,7 @@ void add_gameplay_systems(ecs::Schedule& schedule, systems::Streaming& streaming
     schedule.add("player_move", [&streaming](ecs::SystemContext& ctx) { move_player(ctx, streaming); })
         .reads_resource<Controls, GameClock, CameraRig>()
         .reads_resource<systems::Streaming>()
-        .writes<Player, Transform, Camera>();
+        .writes<Player, Transform, Camera, PointLight>();
     schedule.add("interact", [&streaming](ecs::SystemContext& ctx) { interact(ctx, streaming); })
         .main_thread() // edits the wall mirror
         .reads_resource<Controls, systems::GiConfig>()
@@ -284,13 +320,21 @@ void add_gameplay_systems(ecs::Schedule& schedule, systems::Streaming& streaming
     schedule.add("day_cycle", [](ecs::SystemContext& ctx) {
         ecs::World& w = ctx.world;
         DayCycle& day = w.resource<DayCycle>();
-        if (w.resource<Controls>().toggle_day_cycle) day.running = !day.running;
-        if (!day.running) return;
-        day.time_of_day = std::fmod(day.time_of_day + w.resource<GameClock>().dt / day.day_length, 1.0f);
-        w.view<Sun, DirectionalLight>().patch_each<DirectionalLight>([&](const Sun&, DirectionalLight& d) {
-            d.direction = sun_direction(day.time_of_day);
-            d.color = sun_light(day.time_of_day);
-            d.intensity = 1.0f;
+        if (w.resource<Controls>().toggle_day_cycle) {
+            day.running = !day.running;
+            day.drives_sun = true;
+        }
+        if (!day.drives_sun) return; // a scene's own suns, until the cycle is switched on
+        if (day.running) day.time_of_day = std::fmod(day.time_of_day + w.resource<GameClock>().dt / day.day_length, 1.0f);
+        // The sun follows the time of day (also when it was set directly, e.g. from the HUD);
+        // an unchanged sun is not touched, so its GI passes stay cached.
+        const glm::vec3 direction = sun_direction(day.time_of_day), color = sun_light(day.time_of_day);
+        w.view<Sun, DirectionalLight>().each([&](ecs::Entity e, const Sun&, const DirectionalLight& d) {
+            if (d.direction == direction && d.color == color && d.intensity == 1.0f) return;
+            DirectionalLight& p = w.patch<DirectionalLight>(e);
+            p.direction = direction;
+            p.color = color;
+            p.intensity = 1.0f;
         });
     }).reads_resource<Controls, GameClock>().writes_resource<DayCycle>().writes<DirectionalLight>();
 }

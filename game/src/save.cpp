@@ -307,6 +307,7 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
     std::sort(entities.begin(), entities.end());
     entities.erase(std::unique(entities.begin(), entities.end()), entities.end());
     for (ecs::Entity e : entities) {
+        if (world.try_get<Player>(e)) continue; // the player's own light is the player's
         SavedEntity out;
         if (auto* c = world.try_get<PointLight>(e)) out.point_light = *c;
         if (auto* c = world.try_get<EmissiveLight>(e)) out.emissive_light = *c;
@@ -343,10 +344,11 @@ std::string format_save(const SaveState& s) {
     std::ostringstream o;
     o << "{\n  \"lantern_save\": " << save_format_version << ",\n";
     o << "  \"world\": {\"kind\": \"" << kind_names[int(s.world.kind)] << "\", \"path\": " << quoted(s.world.path)
-      << ", \"seed\": " << s.world.seed << "},\n";
+      << ", \"seed\": " << s.world.seed << ", \"cave_threshold\": " << num(s.world.cave_threshold) << "},\n";
     o << "  \"player\": " << vec(s.player) << ",\n";
     o << "  \"day\": {\"time_of_day\": " << num(s.day.time_of_day) << ", \"running\": " << (s.day.running ? "true" : "false")
-      << ", \"day_length\": " << num(s.day.day_length) << "},\n";
+      << ", \"day_length\": " << num(s.day.day_length) << ", \"drives_sun\": " << (s.day.drives_sun ? "true" : "false")
+      << "},\n";
     o << "  \"entities\": [";
     for (std::size_t i = 0; i < s.entities.size(); ++i) {
         o << (i ? ",\n" : "\n");
@@ -388,7 +390,8 @@ Result<SaveState> parse_save(std::string_view text, const std::string& file_name
     }
     const json::Value& w = *root.find("world");
     int seed = int(s.world.seed);
-    if (!r.object(w, "world", {"kind", "path", "seed"}, {"kind"}) ||
+    if (!r.object(w, "world", {"kind", "path", "seed", "cave_threshold"}, {"kind"}) ||
+        !r.field(w, "world", "cave_threshold", s.world.cave_threshold) ||
         !r.field(w, "world", "kind", s.world.kind, kind_names) || !r.field(w, "world", "path", s.world.path) ||
         !r.field(w, "world", "seed", seed, 0, 0x7FFFFFFF))
         return r.error();
@@ -399,8 +402,9 @@ Result<SaveState> parse_save(std::string_view text, const std::string& file_name
     }
     if (!r.read(*root.find("player"), "player", s.player)) return r.error();
     if (const json::Value* d = root.find("day")) {
-        if (!r.object(*d, "day", {"time_of_day", "running", "day_length"}, {}) ||
+        if (!r.object(*d, "day", {"time_of_day", "running", "day_length", "drives_sun"}, {}) ||
             !r.field(*d, "day", "time_of_day", s.day.time_of_day) || !r.field(*d, "day", "running", s.day.running) ||
+            !r.field(*d, "day", "drives_sun", s.day.drives_sun) ||
             !read_positive(r, *d, "day", "day_length", s.day.day_length))
             return r.error();
         if (s.day.time_of_day < 0.0f || s.day.time_of_day >= 1.0f) {
@@ -459,7 +463,8 @@ void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player) {
     world.view<Prop>().each([&](ecs::Entity e, const Prop&) { mark(e); });
     std::sort(doomed.begin(), doomed.end());
     doomed.erase(std::unique(doomed.begin(), doomed.end()), doomed.end());
-    for (ecs::Entity e : doomed) world.destroy(e);
+    for (ecs::Entity e : doomed)
+        if (!world.try_get<Player>(e)) world.destroy(e);
     for (const SavedEntity& s : state.entities) {
         const ecs::Entity e = world.create();
         if (s.point_light) world.emplace<PointLight>(e, *s.point_light);
@@ -470,7 +475,10 @@ void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player) {
         if (s.prop) world.emplace<Prop>(e, *s.prop);
         if (s.sun) world.emplace<Sun>(e);
     }
-    if (!player.is_null()) world.get<Transform>(player).position = glm::vec3(state.player.x, 0.0f, state.player.y);
+    if (!player.is_null()) {
+        world.get<Transform>(player).position = glm::vec3(state.player.x, 0.0f, state.player.y);
+        if (PointLight* l = world.try_get<PointLight>(player)) l->position = state.player;
+    }
     world.set_resource<DayCycle>(state.day);
 }
 

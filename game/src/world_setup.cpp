@@ -122,13 +122,13 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
     glm::ivec2 spawn_from(0);
     switch (spec.kind) {
     case WorldKind::caves: {
-        auto source = std::make_shared<systems::CaveSource>(scene::CaveParams{spec.seed, 0.52f});
+        auto source = std::make_shared<systems::CaveSource>(scene::CaveParams{spec.seed, spec.cave_threshold});
         out.source = source;
         spawn_from = find_open_tile(*source, {0, 0}, 2, 96);
         if (options.decorate) {
             scatter_crystals(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 11, 0.55f);
             // A few torches around the start, more scattered through the caves.
-            for (glm::ivec2 offset : {glm::ivec2(4, 3), glm::ivec2(-5, 1), glm::ivec2(1, -5)}) {
+            for (glm::ivec2 offset : {glm::ivec2(4, 3), glm::ivec2(-5, -2)}) {
                 const glm::ivec2 t = find_open_tile(*source, spawn_from + offset, 0, 4);
                 spawn_torch(world, glm::vec2(t) + 0.5f, float(offset.x * 7 + offset.y) * 0.31f);
             }
@@ -173,7 +173,7 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
     }
     }
     out.spawn = glm::vec2(spawn_from) + 0.5f;
-    out.player = spawn_player(world, out.spawn);
+    out.player = spawn_player(world, out.spawn, options.player_light);
     if (out.camera.is_null())
         out.camera = spawn_camera(world, out.spawn);
     else

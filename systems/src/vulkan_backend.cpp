@@ -27,6 +27,11 @@ class VulkanBackend final : public GiBackend {
         const bool walls_changed = walls.whole || !walls.ranges.empty();
         if (run.bits == 0 && !walls_changed) return {}; // an unchanged frame: no GPU work
         gpu::CommandList cmd = device.begin("gi frame");
+        // On a raster device, earlier frames' fragment shaders read these textures: their
+        // reads finish before this frame's copies and passes overwrite them.
+        if (device.capabilities().graphics)
+            cmd.memory_barrier(VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
         renderer_.begin_frame(cmd, frame);
         if (walls.whole || !uploaded_walls_)
             renderer_.upload_walls(cmd, in.walls);

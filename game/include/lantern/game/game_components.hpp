@@ -20,7 +20,7 @@ struct Player {
 
 // A torch: a PointLight whose intensity flickers around `base_intensity`.
 struct Torch {
-    float base_intensity = 1.6f;
+    float base_intensity = 1.0f;
     float phase = 0.0f; // decorrelates torches
 };
 
@@ -58,6 +58,7 @@ struct DayCycle {
     bool running = false;
     float time_of_day = 0.35f;   // 0 midnight, 0.25 sunrise, 0.5 noon, 0.75 sunset
     float day_length = 60.0f;    // seconds per day when running
+    bool drives_sun = true;      // the Sun entities follow time_of_day (false: a scene's suns stay as authored)
 };
 
 // How the camera follows the player: a tilted top-down view (docs/game.md).

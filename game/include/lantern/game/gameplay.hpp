@@ -28,6 +28,9 @@ struct Ray {
 // The ray through `ndc` ([0, 1]^2 over the view, y down) of a perspective camera, with the
 // same basis as the GI window's footprint (gi::visible_area).
 Ray camera_ray(const scene::PerspectiveCamera& camera, glm::vec2 ndc);
+// Where a world point appears on the view: [0, 1]^2, y down (the inverse of camera_ray);
+// nullopt behind the camera.
+std::optional<glm::vec2> project_to_ndc(const scene::PerspectiveCamera& camera, glm::vec3 point);
 // The first wall the ray meets below `wall_height` (walls are boxes from the ground up).
 std::optional<glm::ivec2> pick_wall(const Ray& ray, float wall_height, const IsWall& is_wall, float max_distance = 200.0f);
 // Where the ray meets the ground (y = 0), as a tile.
@@ -44,9 +47,25 @@ glm::vec3 sun_light(float time_of_day);
 // cycle) to a GI frame's schedule; they run before the GI systems.
 void add_gameplay_systems(ecs::Schedule& schedule, systems::Streaming& streaming);
 
+// What a placed prop or torch is made of (its components), in one place for the world's
+// set-up and the player's placing.
+struct PropParts {
+    Prop prop;
+    std::optional<EmissiveLight> emissive;
+    std::optional<ShadowProxy> proxy;
+    std::optional<PointLight> light;
+};
+PropParts prop_parts(PropKind kind, glm::vec2 position);
+struct TorchParts {
+    PointLight light;
+    Torch torch;
+};
+TorchParts torch_parts(glm::vec2 position, float phase);
+
 // Entity factories (used by interaction, world set-up and save files).
 ecs::Entity spawn_torch(ecs::World& world, glm::vec2 position, float phase);
 ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position);
-ecs::Entity spawn_player(ecs::World& world, glm::vec2 position);
+// The player; with `light`, it carries a small warm lantern (a PointLight that follows it).
+ecs::Entity spawn_player(ecs::World& world, glm::vec2 position, bool light = true);
 
 } // namespace lantern::game

@@ -21,6 +21,7 @@ struct WorldSpec {
     WorldKind kind = WorldKind::caves;
     std::string path;       // map or scene file
     std::uint32_t seed = 1; // caves, and where the decoration is placed
+    float cave_threshold = 0.47f; // caves: noise above it is wall (lower: more walls; scene::CaveParams)
 
     friend bool operator==(const WorldSpec&, const WorldSpec&) = default;
 };
@@ -41,6 +42,7 @@ struct WorldOptions {
     scene::GiSettings gi;    // GI settings for caves and maps (scenes bring their own)
     float wall_height = 2.0f; // caves and maps
     bool decorate = true;     // torches and crystals (caves, maps); off for a bare world
+    bool player_light = true; // the player carries a small light
 };
 
 // Builds the world in `world` (which must hold no game entities yet). Errors (a missing or

@@ -116,6 +116,21 @@ class Renderer {
 
     bool has(Tex t) const { return bool(textures_[int(t)].buffer); }
     glm::ivec2 size(Tex t) const { return {textures_[int(t)].width, textures_[int(t)].height}; }
+    // Read access for raster passes (the game's world renderer): the texture's uniform texel
+    // buffer view (R8_UNORM, R8G8_UNORM or R16G16B16A16_SFLOAT as its format is; R8G8B8A8_UNORM
+    // for the lit image and the heat tap masks), or nullptr when the texture is not allocated.
+    // Texel (x, y) is element y * pitch(t) + x; every texture of one window has the same
+    // pitch (its width rounded up to 4; heat textures at other scales have their own).
+    // Valid until the next prepare() (which may reallocate); written by the passes recorded
+    // before: put cmd.barrier_compute_to_graphics() between them and the reads.
+    const gpu::BufferView* view(Tex t) const {
+        const GpuTexture& g = textures_[int(t)];
+        return g.buffer ? &g.view : nullptr;
+    }
+    int pitch(Tex t) const { return textures_[int(t)].pitch; } // 0 when not allocated
+    // The wall grid (R8_UINT, 1 = wall) as uploaded by upload_walls/update_walls, laid out as
+    // FrameInputs::walls (toroidal, see gi_walls.glsl). An empty view before upload_walls.
+    const gpu::BufferView& walls_view() const { return walls_view_; }
     // Blocking read back into the C++ texture representation (tests and tools).
     Texture read_back(Tex t);
     Texture read_back(Tex t, const char* name);

@@ -1,0 +1,58 @@
+// The game's command line (docs/game.md): which world, windowed or headless, GI and art
+// settings. parse_options() never exits; bad arguments come back as one message.
+#pragma once
+
+#include "lantern/core/result.hpp"
+#include "lantern/game/world_setup.hpp"
+#include "lantern/scene/scene.hpp"
+
+#include <glm/vec2.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lantern::game {
+
+enum class RunMode : std::uint8_t { automatic, window, headless };
+
+struct GameOptions {
+    WorldSpec world;                 // --caves [SEED] (default), --map FILE, --scene FILE
+    std::string load;                // --load SAVE: start from a save (its world)
+    std::string save_file = "lantern-save.json"; // where F5 saves and F9 loads
+    RunMode mode = RunMode::automatic; // --window / --headless; automatic: window if a display can open
+
+    // Headless demo.
+    int frames = 900;                // --frames N
+    std::string out_dir = "lantern-demo"; // --out DIR: screenshots, report, trace
+    int screenshots = 6;             // --screenshots N, evenly spaced (0: none)
+    bool bench = false;              // --bench: print the per-system and per-pass percentiles
+
+    // Presentation.
+    glm::ivec2 window_size{1280, 720}; // --size WxH
+    glm::ivec2 internal{480, 270};   // --internal WxH (the pixel-art resolution)
+    bool vsync = true;               // --vsync on|off
+    bool hud = true;                 // --no-hud hides it at start (F1 toggles)
+    int posterize = 0;               // --posterize N
+    bool dither = false;             // --dither
+    std::string palette;             // --palette NAME
+
+    // Simulation.
+    scene::GiSettings gi;            // the game's defaults, then --set gi.KEY=VALUE overrides
+    std::vector<std::string> gi_overrides; // the --set assignments (applied again to a scene's own settings)
+    bool player_light = true;        // --no-player-light
+    int workers = -1;                // --workers N (-1: hardware threads - 1)
+    bool fixed_step = false;         // --fixed-step: dt = 1/60 whatever the frame took (headless always)
+    bool validation = false;         // --validation: Vulkan validation layers
+};
+
+// The GI settings the game plays with by default, chosen from the headless benchmark on a
+// 2-core machine with lavapipe (docs/game.md, "Performance").
+scene::GiSettings default_game_gi();
+
+// Parses argv[1..]. The help text is returned through `help` when --help is given (the
+// result then holds the defaults).
+Result<GameOptions> parse_options(int argc, const char* const* argv, bool* help = nullptr);
+std::string usage();
+
+} // namespace lantern::game

@@ -1,0 +1,159 @@
+// The game's world renderer: the world as boxes (walls, the ground, props, torches, the
+// player, the cursor highlight), drawn with one instanced raster draw into the low-resolution
+// pixel-art target (render::RenderTarget, 480x270 RGBA8 sRGB + D32 by default) and lit by the
+// GI textures that gi::vk::Renderer computed this frame. docs/game.md, "World rendering".
+//
+//   auto world = WorldRenderer::create(device);                 // an error without raster support
+//   gpu::CommandList cmd = device.begin("frame");
+//   gi.record_plan(cmd, inputs, plan);                           // this frame's GI passes
+//   world->record(cmd, {camera, &inputs, &gi, art, time}, list); // barrier, clear, boxes, art
+//   device.submit(std::move(cmd));                               // or record_upscale + present
+//
+// Shading: the shared shading library (shaders/include/lantern/shading.glsl, the twin of
+// engine/gi/src/shading.cpp) routes every lit fragment (ground, wall face, wall top) exactly
+// as the GI's lit image and the C++ reference do; the colour is
+//   tone_map(albedo * pattern * surface_light(pos, n) + color * emissive)   (ground, wall, prop)
+//   tone_map(color * emissive)                                                (glow: unlit)
+// then the art controls (dither, posterize, palette) in sRGB-encoded space.
+//
+// Ownership: move-only GPU handles (destroy before the Device). Threads: the submission
+// thread of the Device. Frames in flight: every per-frame buffer is rewritten inside the
+// frame's command list (render::StreamBuffer), so any number of frames may be in flight.
+#pragma once
+
+#include "lantern/core/result.hpp"
+#include "lantern/game/gameplay.hpp"
+#include "lantern/gi/frame_inputs.hpp"
+#include "lantern/render/render_target.hpp"
+#include "lantern/scene/scene.hpp"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace lantern::gpu {
+class CommandList;
+class Device;
+} // namespace lantern::gpu
+
+namespace lantern::gi::vk {
+class Renderer;
+}
+
+namespace lantern::game {
+
+enum class Material : int {
+    ground = 0, // lit; speckled floor pattern
+    wall = 1,   // lit; brick pattern on faces, slabs on the top
+    prop = 2,   // lit; plain hashed variation
+    glow = 3,   // unlit: color * emissive only (flames, crystals' cores, the cursor)
+};
+
+// One box of the world (48 bytes: three vec4s, read as per-instance vertex attributes).
+// The ground is a box of zero height with only its top face. Boxes are axis-aligned.
+struct BoxInstance {
+    glm::vec3 center{0.0f};
+    float material = 0.0f;  // float(Material)
+    glm::vec3 half{0.5f};   // half extents (>= 0)
+    float face_mask = 31.0f; // bits: 1 +x, 2 -x, 4 +z, 8 -z, 16 top (+y); faces not in it are not drawn
+    glm::vec3 color{1.0f};  // linear albedo (lit materials) or emission colour (glow)
+    float emissive = 0.0f;  // adds color * emissive, unlit
+};
+static_assert(sizeof(BoxInstance) == 48, "game_world.vert.glsl reads 48-byte instances");
+
+inline constexpr int face_pos_x = 1, face_neg_x = 2, face_pos_z = 4, face_neg_z = 8, face_top = 16, face_all = 31;
+
+struct DrawList {
+    std::vector<BoxInstance> boxes;
+};
+
+// Building blocks for a DrawList.
+// The ground over [min, max] (world x, z): a box of zero height at y = 0, top face only.
+BoxInstance ground_box(glm::vec2 min, glm::vec2 max, glm::vec3 color);
+// One wall box per wall tile in [min_tile, max_tile) from the ground up to `height`, each with
+// only the faces that border air (interior faces are never seen; a tile walled in on all
+// four sides keeps its top).
+void append_wall_boxes(DrawList& list, const IsWall& is_wall, glm::ivec2 min_tile, glm::ivec2 max_tile,
+                       float height, glm::vec3 color);
+
+// A named palette of 2..16 colours, sRGB-encoded in [0, 1] (hex / 255: how palettes are
+// authored), applied by nearest colour.
+struct Palette {
+    const char* name = "";
+    std::vector<glm::vec3> colors;
+};
+inline constexpr int max_palette_colors = 16;
+
+// The built-in palettes, indexed by ArtSettings::palette: 0 "off" (no colours: no palette
+// swap; a HUD can list the names as they are), 1 "cave" (12 warm browns and ambers with a
+// little cold blue), 2 "gameboy" (the four greens), 3 "pico" (PICO-8's 16), 4 "dusk" (8
+// purples, blues and oranges).
+std::span<const Palette> builtin_palettes();
+
+// The pixel-art controls, applied after tone mapping in this order: dither, posterize,
+// palette. All of them work on the sRGB-encoded colour (what the player sees: posterize N
+// gives N evenly spaced encoded levels), which is converted back to linear for the sRGB
+// target to re-encode.
+struct ArtSettings {
+    int posterize = 0;          // 0 off, else levels per channel (clamped to 2..64)
+    bool dither = false;        // 4x4 ordered (Bayer) dither before posterize/palette, by one
+                                // quantisation step (posterize), 1/8 (palette only) or
+                                // 1/255 (neither: de-banding the 8-bit target)
+    int palette = 0;            // index into builtin_palettes() (0: off; out of range: off):
+                                // nearest colour by weighted (2, 4, 3) distance in
+                                // sRGB-encoded space
+    bool texture_pattern = true; // the procedural per-texel pixel-art pattern (tests turn it off)
+};
+
+struct WorldView {
+    scene::PerspectiveCamera camera;           // the tilted top-down camera (game::follow_camera)
+    const gi::FrameInputs* gi = nullptr;       // this frame's GI inputs; nullptr: no GI (lit
+                                               // surfaces black, emission still shows)
+    const gi::vk::Renderer* renderer = nullptr; // the GI textures, prepared and recorded for `gi`
+                                               // earlier in the same command list (or an earlier
+                                               // submission); nullptr: no GI
+    ArtSettings art;
+    float time = 0.0f; // seconds; unused for now (no animated glow: output is a function of the view)
+};
+
+class WorldRenderer {
+  public:
+    // Pipelines and buffers for a target of `size` pixels. An error when the device was
+    // created without DeviceOptions::graphics.
+    static Result<std::unique_ptr<WorldRenderer>> create(gpu::Device& device, glm::ivec2 size = {480, 270});
+    ~WorldRenderer();
+    WorldRenderer(const WorldRenderer&) = delete;
+    WorldRenderer& operator=(const WorldRenderer&) = delete;
+
+    // Records the world into target(): a barrier after the GI compute (and transfer) writes,
+    // the instance and frame-constant uploads, then one rendering scope: clear, the boxes in
+    // one instanced draw (ground boxes last so walls reject the floor behind them early),
+    // the art controls in the fragment shader. Outside any rendering scope; the caller submits.
+    // The target's colour image is left in TRANSFER_SRC_OPTIMAL (render::RenderTarget).
+    void record(gpu::CommandList& cmd, const WorldView& view, const DrawList& list);
+
+    render::RenderTarget& target();
+    // Box faces the last record() drew: in the view, in their box's mask and turned towards
+    // the camera (the HUD shows it; the rest never reach the GPU).
+    std::size_t faces_drawn() const;
+
+    // The view-projection the raster uses: right-handed look-at with world +y as the up hint
+    // (the basis of game::camera_ray and gi::visible_area), vertical fov_deg, aspect =
+    // width / height, depth 0..1 from near_plane to far_plane, and y flipped for Vulkan clip
+    // space (y down in the framebuffer). A world point projected with it lands on the pixel
+    // whose camera_ray (ndc = pixel / size, y down) passes through the point.
+    static glm::mat4 view_projection(const scene::PerspectiveCamera& camera);
+    static constexpr float near_plane = 0.1f;
+    static constexpr float far_plane = 1000.0f;
+
+  private:
+    struct Impl;
+    explicit WorldRenderer(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace lantern::game

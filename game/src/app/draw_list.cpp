@@ -1,0 +1,119 @@
+#include "app/draw_list.hpp"
+
+#include "lantern/gi/window.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lantern::game {
+namespace {
+
+BoxInstance box(glm::vec3 center, glm::vec3 half, glm::vec3 color, Material m, float emissive = 0.0f,
+                float mask = float(face_all)) {
+    return BoxInstance{center, float(int(m)), half, mask, color, emissive};
+}
+
+bool in_rect(glm::vec2 p, glm::vec2 lo, glm::vec2 hi) { return p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y; }
+
+} // namespace
+
+std::optional<std::pair<glm::ivec2, bool>> cursor_target(const Controls& c, const scene::PerspectiveCamera& camera,
+                                                         glm::vec2 player, float wall_height, const IsWall& is_wall) {
+    if (!c.has_cursor) return std::nullopt;
+    const Ray ray = camera_ray(camera, c.cursor_ndc);
+    auto reach = [&](glm::ivec2 t) { return glm::distance(glm::vec2(t) + 0.5f, player) <= interaction_range; };
+    if (auto w = pick_wall(ray, wall_height, is_wall)) {
+        if (reach(*w)) return std::pair{*w, true};
+        return std::nullopt;
+    }
+    if (auto g = pick_ground(ray); g && reach(*g)) return std::pair{*g, false};
+    return std::nullopt;
+}
+
+void build_draw_list(ecs::World& world, const systems::Streaming& streaming, const DrawContext& ctx, DrawList& out) {
+    // The tiles in view: the camera's ground footprint, widened by the walls' height (a
+    // wall top is seen nearer the camera than its foot).
+    const auto area = gi::visible_area(scene::ViewSpec{ctx.camera});
+    if (!area) return;
+    const glm::vec2 lo = glm::floor(area->min) - 2.0f;
+    const glm::vec2 hi = glm::ceil(area->min + area->size) + glm::vec2(2.0f, 2.0f + ctx.wall_height * 2.0f);
+    const float h = ctx.wall_height;
+
+    // The ground: one flat box with only its top face.
+    const glm::vec2 mid = (lo + hi) * 0.5f, half = (hi - lo) * 0.5f;
+    out.boxes.push_back(box({mid.x, 0.0f, mid.y}, {half.x, 0.0f, half.y}, {0.38f, 0.33f, 0.28f}, Material::ground, 0.0f,
+                            float(face_top)));
+
+    // Walls: one box per wall tile, with only the faces that border air.
+    auto wall = [&](int x, int z) { return streaming.is_wall({x, z}); };
+    for (int z = int(lo.y); z < int(hi.y); ++z)
+        for (int x = int(lo.x); x < int(hi.x); ++x) {
+            if (!wall(x, z)) continue;
+            int mask = face_top;
+            if (!wall(x + 1, z)) mask |= face_pos_x;
+            if (!wall(x - 1, z)) mask |= face_neg_x;
+            if (!wall(x, z + 1)) mask |= face_pos_z;
+            if (!wall(x, z - 1)) mask |= face_neg_z;
+            out.boxes.push_back(box({float(x) + 0.5f, h * 0.5f, float(z) + 0.5f}, {0.5f, h * 0.5f, 0.5f},
+                                    {0.46f, 0.42f, 0.4f}, Material::wall, 0.0f, float(mask)));
+        }
+
+    // Props.
+    world.view<Prop>().each([&](ecs::Entity e, const Prop& p) {
+        if (!in_rect(p.position, lo, hi)) return;
+        const glm::vec3 at(p.position.x, 0.0f, p.position.y);
+        switch (p.kind) {
+        case PropKind::crystal: {
+            glm::vec3 color(0.4f, 0.7f, 1.0f);
+            if (const EmissiveLight* l = world.try_get<EmissiveLight>(e)) color = l->color;
+            out.boxes.push_back(box(at + glm::vec3(0, 0.28f, 0), {0.12f, 0.28f, 0.12f}, color, Material::glow, 1.6f));
+            out.boxes.push_back(box(at + glm::vec3(0.14f, 0.14f, 0.05f), {0.07f, 0.14f, 0.07f}, color, Material::glow, 1.2f));
+            break;
+        }
+        case PropKind::tree:
+            out.boxes.push_back(box(at + glm::vec3(0, 0.45f, 0), {0.1f, 0.45f, 0.1f}, {0.36f, 0.23f, 0.12f}, Material::prop));
+            out.boxes.push_back(box(at + glm::vec3(0, 1.25f, 0), {0.42f, 0.38f, 0.42f}, {0.2f, 0.42f, 0.16f}, Material::prop));
+            break;
+        case PropKind::lamp_post:
+            out.boxes.push_back(box(at + glm::vec3(0, 0.7f, 0), {0.06f, 0.7f, 0.06f}, {0.2f, 0.2f, 0.23f}, Material::prop));
+            out.boxes.push_back(box(at + glm::vec3(0, 1.5f, 0), {0.14f, 0.12f, 0.14f}, {1.0f, 0.9f, 0.7f}, Material::glow, 2.0f));
+            break;
+        }
+    });
+
+    // Torches: a stick and a flame that flickers with the light.
+    world.view<Torch, PointLight>().each([&](const Torch& t, const PointLight& l) {
+        if (!in_rect(l.position, lo, hi)) return;
+        const glm::vec3 at(l.position.x, 0.0f, l.position.y);
+        const float f = l.intensity / std::max(t.base_intensity, 1e-3f);
+        out.boxes.push_back(box(at + glm::vec3(0, 0.25f, 0), {0.04f, 0.25f, 0.04f}, {0.35f, 0.22f, 0.1f}, Material::prop));
+        out.boxes.push_back(box(at + glm::vec3(0, 0.58f, 0), glm::vec3(0.08f, 0.1f * f, 0.08f), {1.0f, 0.6f, 0.25f},
+                                Material::glow, 2.2f * f));
+    });
+
+    // The player.
+    world.view<Player, Transform>().each([&](const Player& p, const Transform& t) {
+        const glm::vec3 at(t.position.x, 0.0f, t.position.z);
+        out.boxes.push_back(box(at + glm::vec3(0, 0.42f, 0), {0.26f, 0.42f, 0.2f}, {0.22f, 0.36f, 0.72f}, Material::prop));
+        out.boxes.push_back(box(at + glm::vec3(0, 1.04f, 0), {0.22f, 0.2f, 0.22f}, {0.9f, 0.72f, 0.56f}, Material::prop));
+        // Which way it faces: a small backpack on the other side.
+        const glm::vec2 back = -p.facing * 0.2f;
+        out.boxes.push_back(box(at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.14f, 0.18f, 0.14f}, {0.45f, 0.3f, 0.15f}, Material::prop));
+    });
+
+    // The cursor: a thin glowing frame on the tile (on the wall's top for a wall).
+    if (ctx.cursor_tile) {
+        const glm::vec2 c = glm::vec2(*ctx.cursor_tile) + 0.5f;
+        const float y = ctx.cursor_on_wall ? h + 0.01f : 0.01f;
+        const glm::vec3 color(1.0f, 0.95f, 0.7f);
+        const float w = 0.035f;
+        out.boxes.push_back(box({c.x, y, c.y - 0.5f + w}, {0.5f, 0.0f, w}, color, Material::glow, 0.9f, float(face_top)));
+        out.boxes.push_back(box({c.x, y, c.y + 0.5f - w}, {0.5f, 0.0f, w}, color, Material::glow, 0.9f, float(face_top)));
+        out.boxes.push_back(box({c.x - 0.5f + w, y, c.y}, {w, 0.0f, 0.5f}, color, Material::glow, 0.9f, float(face_top)));
+        out.boxes.push_back(box({c.x + 0.5f - w, y, c.y}, {w, 0.0f, 0.5f}, color, Material::glow, 0.9f, float(face_top)));
+    }
+}
+
+} // namespace lantern::game

@@ -1,0 +1,189 @@
+#include "app/hud.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+namespace lantern::game {
+namespace {
+
+constexpr const char* tone_maps[] = {"none", "reinhard", "reinhard_white", "aces"};
+constexpr const char* heat_scales[] = {"full", "half", "quarter"};
+
+void stat_row(const profile::ScopeStats& s) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(s.name);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.2f", s.last_ms);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.2f", s.p50_ms);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.2f", s.p95_ms);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.2f", s.p99_ms);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.2f", s.max_ms);
+}
+
+bool begin_stat_table(const char* id, const char* first) {
+    if (!ImGui::BeginTable(id, 6, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingFixedFit))
+        return false;
+    ImGui::TableSetupColumn(first);
+    for (const char* c : {"last", "p50", "p95", "p99", "max"}) ImGui::TableSetupColumn(c);
+    ImGui::TableHeadersRow();
+    return true;
+}
+
+} // namespace
+
+void Hud::refresh_stats() {
+    // Percentiles over the history: recomputed a few times a second, not every frame.
+    const std::uint64_t now = profile::frame_index();
+    if (!stats_.empty() && now - stats_frame_ < 10) return;
+    stats_frame_ = now;
+    stats_ = profile::stats();
+    frame_ms_ = profile::frame_time_ms();
+}
+
+HudActions Hud::draw(const HudInputs& in) {
+    HudActions actions;
+    if (!visible) return actions;
+    refresh_stats();
+
+    // Frame-time graph from the history (the frames that ended).
+    const auto history = profile::history();
+    graph_.clear();
+    const std::size_t first = history.size() > std::size_t(graph_frames) ? history.size() - std::size_t(graph_frames) : 0;
+    for (std::size_t i = first; i < history.size(); ++i)
+        graph_.push_back(float(double(history[i]->end_ns - history[i]->start_ns) * 1e-6));
+
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(470, 680), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.82f);
+    if (!ImGui::Begin("Lantern timer HUD  (F1 hides, F2 exports a trace)")) {
+        ImGui::End();
+        return actions;
+    }
+    ImGui::Text("%s", in.world.c_str());
+    ImGui::Text("%s   vsync %s", in.device.c_str(), in.vsync ? "on" : "off");
+    const float last = graph_.empty() ? 0.0f : graph_.back();
+    char overlay[96];
+    std::snprintf(overlay, sizeof(overlay), "%.1f ms (%.0f fps)", last, last > 0.0f ? 1000.0f / last : 0.0f);
+    float top = 50.0f;
+    for (float v : graph_) top = std::max(top, v * 1.1f);
+    ImGui::PlotLines("##frames", graph_.data(), int(graph_.size()), 0, overlay, 0.0f, top, ImVec2(-1, 70));
+    ImGui::Text("frame ms  p50 %.1f  p95 %.1f  p99 %.1f  max %.1f  (%u frames)", frame_ms_.p50, frame_ms_.p95,
+                frame_ms_.p99, frame_ms_.max, frame_ms_.count);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("trace")) actions.export_trace = true;
+
+    if (ImGui::CollapsingHeader("Systems (this frame, by worker lane)", ImGuiTreeNodeFlags_DefaultOpen)) {
+        // The last ended frame's job spans, with the lane each ran on.
+        if (!history.empty()) {
+            const auto lanes = profile::lanes();
+            const profile::Frame& f = *history.back();
+            std::vector<const profile::Event*> jobs;
+            for (const profile::Event& e : f.events)
+                if (e.kind == profile::EventKind::job) jobs.push_back(&e);
+            std::sort(jobs.begin(), jobs.end(), [](auto* a, auto* b) { return a->start_ns < b->start_ns; });
+            if (ImGui::BeginTable("jobs", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+                for (const char* c : {"system", "lane", "start ms", "ms"}) ImGui::TableSetupColumn(c);
+                ImGui::TableHeadersRow();
+                for (const profile::Event* e : jobs) {
+                    ImGui::TableNextRow();
+                    ImGui::TableNextColumn();
+                    ImGui::TextUnformatted(e->name);
+                    ImGui::TableNextColumn();
+                    ImGui::TextUnformatted(e->lane < lanes.size() ? lanes[e->lane].name.c_str() : "?");
+                    ImGui::TableNextColumn();
+                    ImGui::Text("%.2f", double(e->start_ns - f.start_ns) * 1e-6);
+                    ImGui::TableNextColumn();
+                    ImGui::Text("%.2f", double(e->end_ns - e->start_ns) * 1e-6);
+                }
+                ImGui::EndTable();
+            }
+        }
+    }
+    if (ImGui::CollapsingHeader("CPU percentiles (ms)")) {
+        if (begin_stat_table("cpu", "scope")) {
+            for (const auto& s : stats_)
+                if (s.kind == profile::LaneKind::cpu) stat_row(s);
+            ImGui::EndTable();
+        }
+    }
+    if (ImGui::CollapsingHeader("GPU passes (timestamps, ms)", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (begin_stat_table("gpu", "pass")) {
+            for (const auto& s : stats_)
+                if (s.kind == profile::LaneKind::gpu) stat_row(s);
+            ImGui::EndTable();
+        }
+    }
+    if (in.report && ImGui::CollapsingHeader("GI passes this frame", ImGuiTreeNodeFlags_DefaultOpen)) {
+        for (int p = 0; p < gi::pass_count; ++p) {
+            const bool ran = in.report->ran.has(gi::Pass(p));
+            const std::string& why = in.report->reason[std::size_t(p)];
+            ImGui::TextColored(ran ? ImVec4(0.5f, 1.0f, 0.5f, 1.0f) : ImVec4(0.7f, 0.7f, 0.7f, 1.0f), "%-14s %s",
+                               gi::pass_name(gi::Pass(p)), ran ? "ran" : (why.empty() ? "left out" : why.c_str()));
+        }
+        if (!in.report->window) ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "no GI window this frame");
+    }
+    if (ImGui::CollapsingHeader("Lights and proxies", ImGuiTreeNodeFlags_DefaultOpen)) {
+        if (in.lights)
+            ImGui::Text("point lights %zu kept of %u reaching (cap %d)   emissives %zu   suns %zu", in.lights->points.size(),
+                        in.lights->point_candidates, in.config ? in.config->settings.max_lights : 0,
+                        in.lights->emissives.size(), in.lights->suns.size());
+        if (in.proxies)
+            ImGui::Text("shadow proxies %zu (cap %d)", in.proxies->proxies.size(),
+                        in.config ? in.config->settings.max_shadow_proxies : 0);
+        ImGui::Text("entities %u   chunks resident %u, loading %u   edited chunks kept %llu", in.entities,
+                    in.streaming.resident_chunks, in.streaming.loading_chunks,
+                    static_cast<unsigned long long>(in.streaming.edited_chunks_stored));
+        if (in.report && in.report->window)
+            ImGui::Text("GI window %dx%d texels at %d/tile", in.report->window->width, in.report->window->height,
+                        in.report->window->resolution);
+    }
+    if (in.config && ImGui::CollapsingHeader("GI settings (live)", ImGuiTreeNodeFlags_DefaultOpen)) {
+        scene::GiSettings& g = in.config->settings;
+        ImGui::SliderInt("resolution", &g.resolution, 1, 16);
+        ImGui::SliderInt("heat rounds", &g.heat_rounds, 0, 64);
+        int scale = g.heat_scale == scene::HeatScale::full ? 0 : g.heat_scale == scene::HeatScale::half ? 1 : 2;
+        if (ImGui::Combo("heat scale", &scale, heat_scales, 3))
+            g.heat_scale = scale == 0 ? scene::HeatScale::full : scale == 1 ? scene::HeatScale::half : scene::HeatScale::quarter;
+        ImGui::Checkbox("blur", &g.blur);
+        ImGui::SameLine();
+        ImGui::Checkbox("AO", &g.ao.enabled);
+        ImGui::SameLine();
+        ImGui::Checkbox("per channel", &g.per_channel);
+        int tone = int(g.tone_map);
+        if (ImGui::Combo("tone map", &tone, tone_maps, 4)) g.tone_map = scene::ToneMap(tone);
+        ImGui::SliderFloat("emission", &g.emission_strength, 0.0f, 4.0f);
+        ImGui::SliderInt("max lights", &g.max_lights, 1, 256);
+        ImGui::SliderInt("max proxies", &g.max_shadow_proxies, 0, 256);
+    }
+    if (in.art && ImGui::CollapsingHeader("Art")) {
+        ImGui::SliderInt("posterize", &in.art->posterize, 0, 32);
+        ImGui::Checkbox("dither", &in.art->dither);
+        const auto palettes = builtin_palettes();
+        std::vector<const char*> names;
+        for (const Palette& p : palettes) names.push_back(p.name);
+        ImGui::Combo("palette", &in.art->palette, names.data(), int(names.size()));
+    }
+    if (in.day && ImGui::CollapsingHeader("World", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::Text("placing: %s   (1 wall, 2 torch, 3 crystal, 4 lamp post, 5 tree)", in.item);
+        ImGui::SliderFloat("time of day", &in.day->time_of_day, 0.0f, 0.999f);
+        ImGui::Checkbox("day cycle (N)", &in.day->running);
+        if (ImGui::Button("save (F5)")) actions.save = true;
+        ImGui::SameLine();
+        if (ImGui::Button("load (F9)")) actions.load = true;
+        ImGui::SameLine();
+        if (ImGui::Button(in.vsync ? "vsync off" : "vsync on")) actions.toggle_vsync = true;
+        if (!in.message.empty()) ImGui::TextWrapped("%s", in.message.c_str());
+    }
+    ImGui::End();
+    return actions;
+}
+
+} // namespace lantern::game

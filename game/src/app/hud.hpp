@@ -1,0 +1,55 @@
+// The timer HUD (Dear ImGui): frame-time graph and percentiles, every system job with its
+// worker lane, every GPU pass, which GI passes ran or were left out and why, live GI and
+// art settings, light and proxy counts. Drawn over the upscaled frame at window resolution.
+#pragma once
+
+#include "lantern/game/game_components.hpp"
+#include "lantern/game/world_renderer.hpp"
+#include "lantern/profile/profiler.hpp"
+#include "lantern/systems/gi_frame.hpp"
+
+#include <string>
+#include <vector>
+
+namespace lantern::game {
+
+struct HudInputs {
+    const systems::FrameReport* report = nullptr; // this frame's
+    systems::GiConfig* config = nullptr;          // edited live
+    ArtSettings* art = nullptr;                   // edited live
+    DayCycle* day = nullptr;
+    const systems::GatheredLights* lights = nullptr;
+    const systems::GatheredProxies* proxies = nullptr;
+    systems::StreamingStats streaming;
+    std::uint32_t entities = 0;
+    std::string world;        // one line
+    std::string message;      // the last action's result ("saved to ...")
+    const char* item = "";    // the selected item
+    bool vsync = true;
+    std::string device;
+};
+
+struct HudActions {
+    bool export_trace = false;
+    bool save = false;
+    bool load = false;
+    bool toggle_vsync = false;
+};
+
+class Hud {
+  public:
+    bool visible = true;
+    int graph_frames = 240; // the frame-time graph's length (the trace exports as many)
+
+    // Builds this frame's HUD windows (inside an ImGui frame).
+    HudActions draw(const HudInputs& in);
+
+  private:
+    void refresh_stats();
+    std::vector<profile::ScopeStats> stats_;
+    profile::Percentiles frame_ms_;
+    std::uint64_t stats_frame_ = 0;
+    std::vector<float> graph_;
+};
+
+} // namespace lantern::game

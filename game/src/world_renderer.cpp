@@ -1,0 +1,361 @@
+// The game's world renderer: box instances, frame constants, one instanced draw.
+#include "lantern/game/world_renderer.hpp"
+
+#include "lantern/gi/vulkan/renderer.hpp"
+#include "lantern/gpu/command_list.hpp"
+#include "lantern/gpu/device.hpp"
+#include "lantern/render/stream_buffer.hpp"
+
+#include "lantern_game_shaders.hpp"
+
+#include <glm/common.hpp>
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+namespace lantern::game {
+
+namespace {
+
+// Mirror of game_world.frag.glsl's WorldFrame block (std140: vec4 members only).
+struct alignas(16) WorldFrame {
+    glm::vec4 window{0.0f};     // min x, min z, width, height (texels)
+    glm::vec4 config{0.0f};     // resolution, tone map, white point, directional angle scale
+    glm::ivec4 grid{0};         // wall grid width, height, origin x, origin z
+    glm::ivec4 grid_phase{0};   // phase x, z
+    glm::ivec4 gi{0};           // pitch, presence bits, sun count, GI on
+    glm::ivec4 art{0};          // posterize levels, dither, palette colours, pattern
+    glm::vec4 art_params{0.0f}; // dither amplitude
+    std::array<glm::vec4, max_palette_colors> palette{};
+    std::array<gi::GpuDirectionalLight, 8> suns{};
+};
+static_assert(sizeof(WorldFrame) == 7 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors game_world.frag.glsl");
+
+// Mirror of game_world.vert.glsl's push block.
+struct alignas(16) WorldPush {
+    glm::mat4 view_projection;
+    glm::vec4 camera;
+};
+static_assert(sizeof(WorldPush) == 80);
+
+static_assert(offsetof(BoxInstance, half) == 16 && offsetof(BoxInstance, color) == 32,
+              "BoxInstance must match the vertex attributes");
+
+constexpr int face_count = 5;                 // +x, -x, +z, -z, top (shader FACE)
+constexpr int face_top_index = 4;
+// The shader's WALL_LOOKUP: what the shading library's wall test answers for a draw.
+enum Lookup : int { lookup_grid = 0, lookup_air = 1, lookup_wall = 2, lookup_count = 3 };
+
+// The draws of a frame, in order: tops (walls, props, glow), the sides of wall boxes, other
+// sides, the ground last (what stands on it hides it before it is shaded).
+struct DrawGroup {
+    int face;
+    Lookup lookup;
+};
+constexpr std::array<DrawGroup, 10> draw_groups = {{
+    {4, lookup_grid},
+    {0, lookup_wall}, {1, lookup_wall}, {2, lookup_wall}, {3, lookup_wall},
+    {0, lookup_grid}, {1, lookup_grid}, {2, lookup_grid}, {3, lookup_grid},
+    {4, lookup_air},
+}};
+// The group of a visible face of a box of `material`.
+int draw_group(int face, int material) {
+    if (face == face_top_index) return material == int(Material::ground) ? 9 : 0;
+    return (material == int(Material::wall) ? 1 : 5) + face;
+}
+constexpr std::uint32_t binding_frame = 0, binding_walls = 1, binding_first_texture = 2;
+constexpr int gi_texture_count = 12; // GI_DIRECT ... GI_WALL_INDIRECT + 3 (shading.glsl ids)
+constexpr VkDeviceSize initial_box_capacity = 4096;
+
+// Shading-library texture ids (shading.glsl GI_*) in binding order.
+constexpr std::array<gi::vk::Tex, gi_texture_count> gi_textures = {
+    gi::vk::Tex::direct,           gi::vk::Tex::indirect,         gi::vk::Tex::ao,
+    gi::vk::Tex::shadow,           gi::vk::Tex::wall_direct_px,   gi::vk::Tex::wall_direct_nx,
+    gi::vk::Tex::wall_direct_pz,   gi::vk::Tex::wall_direct_nz,   gi::vk::Tex::wall_indirect_px,
+    gi::vk::Tex::wall_indirect_nx, gi::vk::Tex::wall_indirect_pz, gi::vk::Tex::wall_indirect_nz,
+};
+
+glm::vec3 hex(std::uint32_t rgb) {
+    return glm::vec3(float((rgb >> 16) & 0xff), float((rgb >> 8) & 0xff), float(rgb & 0xff)) / 255.0f;
+}
+
+std::vector<Palette> make_palettes() {
+    auto of = [](const char* name, std::initializer_list<std::uint32_t> colors) {
+        Palette p{name, {}};
+        for (std::uint32_t c : colors) p.colors.push_back(hex(c));
+        return p;
+    };
+    return {
+        Palette{"off", {}},
+        of("cave", {0x0d0907, 0x1f1510, 0x3a261a, 0x5c3a24, 0x83552f, 0xb0773a, 0xd9a24e, 0xf5d58a, 0xfff3d0,
+                    0x1b2a3a, 0x3d6480, 0x8fc3d9}),
+        of("gameboy", {0x0f380f, 0x306230, 0x8bac0f, 0x9bbc0f}),
+        of("pico", {0x000000, 0x1d2b53, 0x7e2553, 0x008751, 0xab5236, 0x5f574f, 0xc2c3c7, 0xfff1e8, 0xff004d,
+                    0xffa300, 0xffec27, 0x00e436, 0x29adff, 0x83769c, 0xff77a8, 0xffccaa}),
+        of("dusk", {0x0b0b1a, 0x241a3d, 0x4a2c5e, 0x7d3c6b, 0xc0566b, 0xf08a5d, 0xf9c784, 0x3b5b8c}),
+    };
+}
+
+gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int face, bool gi, bool art, int lookup) {
+    gpu::GraphicsPipelineDesc p;
+    p.vertex_spirv = lantern_game_shaders_spirv("game_world.vert");
+    p.fragment_spirv = lantern_game_shaders_spirv("game_world.frag");
+    p.vertex.stride = sizeof(BoxInstance);
+    p.vertex.per_instance = true;
+    p.vertex.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(BoxInstance, center)},
+                           {1, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(BoxInstance, half)},
+                           {2, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(BoxInstance, color)}};
+    p.bindings.push_back(gpu::BindingType::uniform_buffer);
+    for (int i = 0; i <= gi_texture_count; ++i) p.bindings.push_back(gpu::BindingType::uniform_texel_buffer);
+    p.specialization = {{0, std::uint32_t(face)}, {1, gi ? 1u : 0u}, {2, art ? 1u : 0u}, {3, std::uint32_t(lookup)}};
+    p.push_constant_size = sizeof(WorldPush);
+    p.cull = VK_CULL_MODE_NONE; // faces turned away are never listed
+    p.depth = {true, true, VK_COMPARE_OP_LESS};
+    p.color_format = target.color_format();
+    p.depth_format = target.depth_format();
+    p.name = "game world";
+    return p;
+}
+
+constexpr glm::vec3 face_normal[face_count] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}, {0, 1, 0}};
+
+// The six planes of a Vulkan (0 <= z <= w) clip volume, as a * x + b * y + c * z + d >= 0.
+std::array<glm::vec4, 6> frustum_planes(const glm::mat4& m) {
+    auto row = [&](int i) { return glm::vec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
+    return {row(3) + row(0), row(3) - row(0), row(3) + row(1), row(3) - row(1), row(2), row(3) - row(2)};
+}
+
+bool outside(const std::array<glm::vec4, 6>& planes, glm::vec3 lo, glm::vec3 hi) {
+    for (const glm::vec4& p : planes) {
+        const glm::vec3 v(p.x > 0.0f ? hi.x : lo.x, p.y > 0.0f ? hi.y : lo.y, p.z > 0.0f ? hi.z : lo.z);
+        if (p.x * v.x + p.y * v.y + p.z * v.z + p.w < 0.0f) return true;
+    }
+    return false;
+}
+
+} // namespace
+
+BoxInstance ground_box(glm::vec2 min, glm::vec2 max, glm::vec3 color) {
+    BoxInstance b;
+    b.center = glm::vec3((min.x + max.x) * 0.5f, 0.0f, (min.y + max.y) * 0.5f);
+    b.material = float(int(Material::ground));
+    b.half = glm::vec3(std::abs(max.x - min.x) * 0.5f, 0.0f, std::abs(max.y - min.y) * 0.5f);
+    b.face_mask = float(face_top);
+    b.color = color;
+    b.emissive = 0.0f;
+    return b;
+}
+
+void append_wall_boxes(DrawList& list, const IsWall& is_wall, glm::ivec2 min_tile, glm::ivec2 max_tile,
+                       float height, glm::vec3 color) {
+    for (int z = min_tile.y; z < max_tile.y; ++z)
+        for (int x = min_tile.x; x < max_tile.x; ++x) {
+            if (!is_wall(x, z)) continue;
+            int mask = face_top;
+            if (!is_wall(x + 1, z)) mask |= face_pos_x;
+            if (!is_wall(x - 1, z)) mask |= face_neg_x;
+            if (!is_wall(x, z + 1)) mask |= face_pos_z;
+            if (!is_wall(x, z - 1)) mask |= face_neg_z;
+            BoxInstance b;
+            b.center = glm::vec3(float(x) + 0.5f, height * 0.5f, float(z) + 0.5f);
+            b.material = float(int(Material::wall));
+            b.half = glm::vec3(0.5f, height * 0.5f, 0.5f);
+            b.face_mask = float(mask);
+            b.color = color;
+            b.emissive = 0.0f;
+            list.boxes.push_back(b);
+        }
+}
+
+std::span<const Palette> builtin_palettes() {
+    static const std::vector<Palette> palettes = make_palettes();
+    return palettes;
+}
+
+struct WorldRenderer::Impl {
+    gpu::Device* device = nullptr;
+    render::RenderTarget target;
+    // By face, wall lookup, GI on, art on (specialisation constants), created on first use.
+    std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4> pipelines;
+    render::StreamBuffer instances;
+    render::StreamBuffer frame;
+    gpu::Buffer dummy;             // absent GI textures and walls read this (never, in fact)
+    gpu::BufferView dummy_texels;  // RGBA16F
+    gpu::BufferView dummy_walls;   // R8_UINT
+    // This frame's faces by draw group (reused).
+    std::array<std::vector<BoxInstance>, draw_groups.size()> faces;
+    std::vector<BoxInstance> upload;
+    std::size_t faces_drawn = 0;
+
+    const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art) {
+        if (!gi) lookup = lookup_grid; // no lighting: the lookup is compiled out anyway
+        const int key = face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0)));
+        gpu::GraphicsPipeline& p = pipelines[std::size_t(key)];
+        if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, gi, art, lookup));
+        return p;
+    }
+};
+
+WorldRenderer::WorldRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+WorldRenderer::~WorldRenderer() = default;
+
+render::RenderTarget& WorldRenderer::target() { return impl_->target; }
+std::size_t WorldRenderer::faces_drawn() const { return impl_->faces_drawn; }
+
+Result<std::unique_ptr<WorldRenderer>> WorldRenderer::create(gpu::Device& device, glm::ivec2 size) {
+    if (!device.capabilities().graphics)
+        return Error{"game world renderer: the Vulkan device was created without raster support "
+                     "(DeviceOptions::graphics)", 1};
+    if (size.x <= 0 || size.y <= 0) return Error{"game world renderer: empty target size", 1};
+    auto impl = std::make_unique<Impl>();
+    impl->device = &device;
+    impl->target = render::RenderTarget::create(
+        device, {std::uint32_t(size.x), std::uint32_t(size.y), VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_D32_SFLOAT,
+                 "game world"});
+    for (const DrawGroup& g : draw_groups) impl->pipeline(g.face, g.lookup, true, false); // the usual frame
+    impl->instances = render::StreamBuffer::create(device, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                                   initial_box_capacity * sizeof(BoxInstance), "game world boxes");
+    impl->frame = render::StreamBuffer::create(device, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, sizeof(WorldFrame),
+                                               "game world frame");
+    impl->dummy = device.create_buffer(
+        {16, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, gpu::MemoryKind::upload, "game world dummy"});
+    impl->dummy_texels = device.create_buffer_view(impl->dummy, VK_FORMAT_R16G16B16A16_SFLOAT, 0, VK_WHOLE_SIZE,
+                                                   "game world dummy texels");
+    impl->dummy_walls =
+        device.create_buffer_view(impl->dummy, VK_FORMAT_R8_UINT, 0, VK_WHOLE_SIZE, "game world dummy walls");
+    const std::array<std::byte, 16> zeros{};
+    device.upload(impl->dummy, zeros); // host-visible: a memcpy, no submission
+    return std::unique_ptr<WorldRenderer>(new WorldRenderer(std::move(impl)));
+}
+
+glm::mat4 WorldRenderer::view_projection(const scene::PerspectiveCamera& c) {
+    // The basis of game::camera_ray and gi::visible_area: forward, right = forward x up_hint,
+    // up = right x forward, which is exactly glm::lookAtRH's.
+    const glm::vec3 forward = glm::normalize(c.target - c.position);
+    const glm::vec3 up_hint = std::abs(forward.y) > 0.999f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    const glm::mat4 view = glm::lookAtRH(c.position, c.target, up_hint);
+    glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(c.fov_deg), c.aspect, near_plane, far_plane);
+    projection[1][1] = -projection[1][1]; // Vulkan: framebuffer y grows downwards
+    return projection * view;
+}
+
+void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const DrawList& list) {
+    Impl& m = *impl_;
+
+    // The GI passes (compute) and the wall/light uploads (transfer) recorded before this are
+    // read by the fragment shader.
+    cmd.memory_barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+
+    // Faces: outside the view, not in the mask or turned away from the camera are left out;
+    // the others are listed by draw group (one pipeline each).
+    const glm::mat4 view_projection_matrix = view_projection(view.camera);
+    const std::array<glm::vec4, 6> planes = frustum_planes(view_projection_matrix);
+    for (auto& f : m.faces) f.clear();
+    for (const BoxInstance& b : list.boxes) {
+        const glm::vec3 half = glm::max(b.half, glm::vec3(0.0f));
+        if (outside(planes, b.center - half, b.center + half)) continue;
+        const int mask = int(b.face_mask + 0.5f);
+        for (int face = 0; face < face_count; ++face) {
+            if (!((mask >> face) & 1)) continue;
+            const glm::vec3 n = face_normal[face];
+            if (glm::dot(view.camera.position - (b.center + half * n), n) <= 0.0f) continue;
+            m.faces[std::size_t(draw_group(face, int(b.material)))].push_back(b);
+        }
+    }
+    m.upload.clear();
+    for (const auto& f : m.faces) m.upload.insert(m.upload.end(), f.begin(), f.end());
+    m.faces_drawn = m.upload.size();
+    const VkDeviceSize bytes = VkDeviceSize(m.upload.size()) * sizeof(BoxInstance);
+    if (bytes > m.instances.capacity()) {
+        VkDeviceSize capacity = m.instances.capacity();
+        while (capacity < bytes) capacity *= 2;
+        // The old buffer is destroyed deferred: earlier frames still reading it are safe.
+        m.instances = render::StreamBuffer::create(*m.device, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, capacity,
+                                                   "game world boxes");
+    }
+    if (bytes) m.instances.write(cmd, std::as_bytes(std::span<const BoxInstance>(m.upload)));
+
+    // Frame constants and GI bindings.
+    WorldFrame f;
+    gpu::DescriptorWrites writes;
+    writes.uniform_buffer(binding_frame, m.frame.buffer());
+    const bool gi_on = view.gi && view.renderer;
+    scene::GiSettings no_gi;
+    const scene::GiSettings& settings = gi_on ? view.gi->settings : no_gi;
+    f.config = glm::vec4(0.0f, float(int(settings.tone_map)), settings.white_point, settings.directional_angle_scale);
+    if (gi_on) {
+        const gi::FrameInputs& in = *view.gi;
+        const gi::GiWindow& w = in.window;
+        const gi::vk::Renderer& r = *view.renderer;
+        f.window = glm::vec4(w.view.min_x, w.view.min_z, float(w.width), float(w.height));
+        f.config.x = float(w.resolution);
+        f.grid = glm::ivec4(in.walls.width, in.walls.height, in.walls.origin.x, in.walls.origin.y);
+        f.grid_phase = glm::ivec4(in.walls.phase, 0, 0);
+        int present = 0, pitch = 0;
+        for (int i = 0; i < gi_texture_count; ++i) {
+            const gi::vk::Tex t = gi_textures[std::size_t(i)];
+            const gpu::BufferView* v = r.view(t);
+            if (v) {
+                LANTERN_ASSERT(r.size(t) == glm::ivec2(w.width, w.height),
+                               "game world renderer: the GI renderer's textures are not this window's");
+                LANTERN_ASSERT(pitch == 0 || r.pitch(t) == pitch, "game world renderer: GI textures of different pitch");
+                pitch = r.pitch(t);
+                present |= 1 << i;
+            }
+            writes.uniform_texel_buffer(binding_first_texture + std::uint32_t(i), v ? *v : m.dummy_texels);
+        }
+        const int suns = int(std::min(in.directional_lights.size(), f.suns.size()));
+        for (int i = 0; i < suns; ++i) f.suns[std::size_t(i)] = in.directional_lights[std::size_t(i)];
+        f.gi = glm::ivec4(pitch, present, suns, 1);
+        const bool walls = bool(r.walls_view());
+        writes.uniform_texel_buffer(binding_walls, walls ? r.walls_view() : m.dummy_walls);
+        if (!walls) f.grid = glm::ivec4(0); // nothing uploaded: every tile is air
+    } else {
+        writes.uniform_texel_buffer(binding_walls, m.dummy_walls);
+        for (int i = 0; i < gi_texture_count; ++i)
+            writes.uniform_texel_buffer(binding_first_texture + std::uint32_t(i), m.dummy_texels);
+    }
+
+    // Art controls.
+    const ArtSettings& art = view.art;
+    const int levels = art.posterize > 0 ? std::clamp(art.posterize, 2, 64) : 0;
+    const std::span<const Palette> palettes = builtin_palettes();
+    const Palette* palette = art.palette > 0 && std::size_t(art.palette) < palettes.size()
+                                 ? &palettes[std::size_t(art.palette)]
+                                 : nullptr;
+    const int colors = palette ? int(std::min<std::size_t>(palette->colors.size(), max_palette_colors)) : 0;
+    for (int i = 0; i < colors; ++i) f.palette[std::size_t(i)] = glm::vec4(palette->colors[std::size_t(i)], 1.0f);
+    f.art = glm::ivec4(levels, art.dither ? 1 : 0, colors, art.texture_pattern ? 1 : 0);
+    const float amplitude = levels ? 1.0f / float(levels - 1)
+                            : colors ? 0.5f / std::sqrt(float(colors))
+                                     : 1.0f / 255.0f;
+    f.art_params = glm::vec4(amplitude, 0.0f, 0.0f, 0.0f);
+    m.frame.write(cmd, std::as_bytes(std::span<const WorldFrame>(&f, 1)));
+
+    const WorldPush push{view_projection_matrix, glm::vec4(view.camera.position, 1.0f)};
+    const bool art_on = levels || art.dither || colors;
+    m.target.begin(cmd, {{0.0f, 0.0f, 0.0f, 1.0f}});
+    std::uint32_t first = 0;
+    for (std::size_t d = 0; d < m.faces.size(); ++d) {
+        const auto count = std::uint32_t(m.faces[d].size());
+        if (count) {
+            cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on));
+            cmd.push_descriptors(writes);
+            cmd.push_constants(push);
+            cmd.bind_vertex_buffer(m.instances.buffer());
+            cmd.draw(6, count, 0, first);
+        }
+        first += count;
+    }
+    m.target.end(cmd);
+}
+
+} // namespace lantern::game

@@ -1,0 +1,53 @@
+#version 450
+// The game's world renderer (game/include/lantern/game/world_renderer.hpp): one box face per
+// instance, 6 vertices (two triangles). The face is the specialisation constant FACE (0 +x,
+// 1 -x, 2 +z, 3 -z, 4 top): one pipeline per face, so that the fragment stage's normal is a
+// constant and the shading library's routing folds to the branches that face can take
+// (lavapipe runs both sides of every branch). The unit-box mesh is the constant tables below,
+// indexed by FACE and gl_VertexIndex (engine::gpu pipelines take one vertex buffer layout,
+// used by the instances). The CPU lists only the boxes whose face is in the mask and turned
+// towards the camera; the same test here collapses any other face to one point outside the
+// view (a degenerate triangle, culled before rasterisation).
+
+layout(location = 0) in vec4 in_center_material; // xyz centre, w material
+layout(location = 1) in vec4 in_half_mask;       // xyz half extents, w face mask
+layout(location = 2) in vec4 in_color_emissive;  // rgb colour, w emissive strength
+
+layout(constant_id = 0) const int FACE = 4;
+
+layout(push_constant) uniform Push {
+    mat4 view_projection; // WorldRenderer::view_projection (Vulkan clip space)
+    vec4 camera;          // xyz camera position
+} push;
+
+layout(location = 0) out vec3 out_position;     // world position
+layout(location = 1) flat out int out_material;
+layout(location = 2) flat out vec4 out_color;   // rgb colour, a emissive
+layout(location = 3) flat out vec3 out_box_min; // the box, to keep interpolated positions on it
+layout(location = 4) flat out vec3 out_box_max;
+
+const vec3 face_normal[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
+const vec3 face_u[5] = vec3[](vec3(0, 0, 1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(1, 0, 0), vec3(1, 0, 0));
+const vec3 face_v[5] = vec3[](vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 0, 1));
+const vec2 quad[6] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+
+void main() {
+    const int face = FACE;
+    const vec2 corner = quad[gl_VertexIndex];
+    const vec3 n = face_normal[face];
+    const vec3 center = in_center_material.xyz, half_extent = max(in_half_mask.xyz, vec3(0.0));
+    const int mask = int(in_half_mask.w + 0.5);
+    const vec3 face_point = center + half_extent * n;
+    const bool drawn = ((mask >> face) & 1) != 0 && dot(push.camera.xyz - face_point, n) > 0.0;
+    if (!drawn) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // every vertex of the face here: zero area, outside
+        return;
+    }
+    const vec3 world = center + half_extent * (n + face_u[face] * corner.x + face_v[face] * corner.y);
+    gl_Position = push.view_projection * vec4(world, 1.0);
+    out_position = world;
+    out_material = int(in_center_material.w + 0.5);
+    out_color = in_color_emissive;
+    out_box_min = center - half_extent;
+    out_box_max = center + half_extent;
+}

@@ -1,0 +1,356 @@
+// The game executable, as a player and as CI meet it:
+//  - under Xvfb (started by the test): a real window on lavapipe; real X input (xdotool)
+//    places a torch, walks, mines; real captures (xwd) show the torch brightening its
+//    surroundings, the world moving as the player walks, the mined wall gone and light
+//    flowing through the gap; F5 saves what was done; Escape quits;
+//  - headless: the scripted demo writes its screenshots and a well-formed report;
+//  - bad input: one clear message, exit status 2, nothing written.
+#include "common/test_support.hpp"
+#include "lantern/core/file.hpp"
+#include "lantern/core/json.hpp"
+#include "lantern/game/gameplay.hpp"
+#include "lantern/game/save.hpp"
+#include "xvfb_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <fcntl.h>
+#include <filesystem>
+#include <set>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+extern char** environ;
+
+using namespace lantern;
+using namespace std::chrono_literals;
+
+namespace {
+
+const char* game_exe() { return LANTERN_GAME_EXE; }
+
+// A child process running the game; killed (and reaped) if still running at the end.
+class GameProcess {
+  public:
+    GameProcess(std::vector<std::string> args, const std::string& log_path) : log_path_(log_path) {
+        args.insert(args.begin(), game_exe());
+        std::vector<char*> argv;
+        for (std::string& a : args) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_addopen(&actions, 1, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_adddup2(&actions, 1, 2);
+        if (posix_spawn(&pid_, game_exe(), &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
+        posix_spawn_file_actions_destroy(&actions);
+    }
+    ~GameProcess() {
+        if (pid_ > 0 && !exited_) {
+            kill(pid_, SIGKILL);
+            waitpid(pid_, nullptr, 0);
+        }
+    }
+    bool started() const { return pid_ > 0; }
+    // Waits up to `timeout` for the exit; its status, or nullopt when it is still running.
+    std::optional<int> wait_exit(std::chrono::milliseconds timeout) {
+        const auto end = std::chrono::steady_clock::now() + timeout;
+        while (std::chrono::steady_clock::now() < end) {
+            int status = 0;
+            if (waitpid(pid_, &status, WNOHANG) == pid_) {
+                exited_ = true;
+                return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+            }
+            std::this_thread::sleep_for(20ms);
+        }
+        return std::nullopt;
+    }
+    std::string log() const { return test::read_file(log_path_); }
+
+  private:
+    std::string log_path_;
+    pid_t pid_ = -1;
+    bool exited_ = false;
+};
+
+int run_game(const std::vector<std::string>& args, const std::string& log) {
+    GameProcess p(args, log);
+    if (!p.started()) return -1;
+    return p.wait_exit(300s).value_or(-2);
+}
+
+double luminance(const test::RgbImage& img, glm::ivec2 lo, glm::ivec2 hi) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = std::max(lo.y, 0); y < std::min(hi.y, int(img.height)); ++y)
+        for (int x = std::max(lo.x, 0); x < std::min(hi.x, int(img.width)); ++x) {
+            const std::uint32_t c = img.at(std::uint32_t(x), std::uint32_t(y));
+            sum += 0.2126 * double((c >> 16) & 255) + 0.7152 * double((c >> 8) & 255) + 0.0722 * double(c & 255);
+            ++n;
+        }
+    return n ? sum / n : 0.0;
+}
+
+// With LANTERN_TEST_DUMP=DIR set, captures are written there as PPM (for looking at).
+void dump(const test::RgbImage& img, const char* name) {
+    const char* dir = std::getenv("LANTERN_TEST_DUMP");
+    if (!dir) return;
+    std::string ppm = "P6\n" + std::to_string(img.width) + " " + std::to_string(img.height) + "\n255\n";
+    ppm.append(reinterpret_cast<const char*>(img.rgb.data()), img.rgb.size());
+    (void)write_file_atomic(std::string(dir) + "/" + name + ".ppm", ppm);
+}
+
+// Mean absolute RGB difference per pixel over a patch.
+double patch_difference(const test::RgbImage& a, const test::RgbImage& b, glm::ivec2 lo, glm::ivec2 hi) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = std::max(lo.y, 0); y < std::min(hi.y, int(a.height)); ++y)
+        for (int x = std::max(lo.x, 0); x < std::min(hi.x, int(a.width)); ++x) {
+            const std::uint32_t ca = a.at(std::uint32_t(x), std::uint32_t(y)), cb = b.at(std::uint32_t(x), std::uint32_t(y));
+            for (int k = 0; k < 24; k += 8) sum += std::abs(int((ca >> k) & 255) - int((cb >> k) & 255));
+            ++n;
+        }
+    return n ? sum / n : 0.0;
+}
+
+// The centre of the brightest pixels (luma > 215: a flame) within `radius` of `around`.
+std::optional<glm::vec2> flame_near(const test::RgbImage& img, glm::ivec2 around, int radius) {
+    glm::dvec2 sum(0.0);
+    int n = 0;
+    for (int y = std::max(around.y - radius, 0); y < std::min(around.y + radius, int(img.height)); ++y)
+        for (int x = std::max(around.x - radius, 0); x < std::min(around.x + radius, int(img.width)); ++x) {
+            const std::uint32_t c = img.at(std::uint32_t(x), std::uint32_t(y));
+            const double l = 0.2126 * double((c >> 16) & 255) + 0.7152 * double((c >> 8) & 255) + 0.0722 * double(c & 255);
+            if (l > 215.0) sum += glm::dvec2(x, y), ++n;
+        }
+    if (n == 0) return std::nullopt;
+    return glm::vec2(sum / double(n));
+}
+
+// The test world: two rooms split by a wall column at x = 12, no door. The east room holds
+// a bright light; the west room, where the player starts at (5.5, 4.5), is dark.
+const char* two_rooms = R"({
+  "lantern_scene": 1,
+  "world": {"rows": [
+    "##########################",
+    "#...........#............#",
+    "#...........#............#",
+    "#...........#............#",
+    "#...........#............#",
+    "#...........#............#",
+    "#...........#............#",
+    "#...........#............#",
+    "##########################"]},
+  "view": {"center": [5.5, 4.5], "size": [30, 16.875]},
+  "gi": {"resolution": 4, "heat_scale": "half", "heat_rounds": 16, "padding": 1.2},
+  "point_lights": [{"position": [15.5, 4.5], "color": [1.0, 0.85, 0.6], "intensity": 3.0, "radius": 10}]
+})";
+
+// Window pixels of a world point for a player standing at `player` (the camera follows the
+// player, 480x270 shown at 2x in the 960x540 window).
+glm::ivec2 screen_of(glm::vec2 player, glm::vec3 point) {
+    game::CameraRig rig;
+    rig.aspect = 480.0f / 270.0f;
+    const auto ndc = game::project_to_ndc(game::follow_camera({player.x, 0.0f, player.y}, rig), point);
+    return glm::ivec2(glm::round(*ndc * glm::vec2(960.0f, 540.0f)));
+}
+
+std::optional<std::uint64_t> find_window(GameProcess& game) {
+    for (int attempt = 0; attempt < 200; ++attempt) {
+        auto out = test::run_tool({"xdotool", "search", "--name", "^Lantern$"});
+        if (out && !out->empty()) return std::stoull(*out);
+        if (game.wait_exit(100ms)) return std::nullopt;
+    }
+    return std::nullopt;
+}
+
+// Captures until `done(image)` holds or `timeout` passes; the last capture.
+test::RgbImage capture_until(std::uint64_t window, const std::function<bool(const test::RgbImage&)>& done,
+                             std::chrono::milliseconds timeout, bool* met = nullptr) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    test::RgbImage last;
+    while (true) {
+        if (auto img = test::capture_window(window)) {
+            last = std::move(*img);
+            if (done(last)) {
+                if (met) *met = true;
+                return last;
+            }
+        }
+        if (std::chrono::steady_clock::now() > end) break;
+        std::this_thread::sleep_for(100ms);
+    }
+    if (met) *met = false;
+    return last;
+}
+
+} // namespace
+
+TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string scene = dir.file("two_rooms.json"), save = dir.file("save.json");
+    ASSERT_TRUE(write_file_atomic(scene, std::string(two_rooms)));
+    GameProcess game({"--window", "--scene", scene, "--size", "960x540", "--no-hud", "--no-player-light", "--save-file",
+                      save},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto window = find_window(game);
+    ASSERT_TRUE(window) << "no game window; log:\n" << game.log();
+    ASSERT_TRUE(test::x_focus(*window));
+
+    // The first frames: the lit east room is visible to the right of the player.
+    const glm::vec2 spawn(5.5f, 4.5f);
+    const glm::ivec2 east = screen_of(spawn, {14.5f, 0.0f, 4.5f});
+    bool met = false;
+    const test::RgbImage first = capture_until(*window, [&](const test::RgbImage& img) {
+        return img.width == 960 && luminance(img, east - 20, east + 20) > 40.0;
+    }, 60s, &met);
+    ASSERT_TRUE(met) << "the game never showed its lit room; log:\n" << game.log();
+
+    // Place a torch two tiles west of the player (dark ground): select it (2), right click.
+    const glm::vec3 torch_at(3.5f, 0.0f, 4.5f);
+    const glm::ivec2 torch_px = screen_of(spawn, torch_at);
+    const double dark = luminance(first, torch_px - 30, torch_px + 30);
+    ASSERT_TRUE(test::x_key(*window, "2", true));
+    ASSERT_TRUE(test::x_key(*window, "2", false));
+    ASSERT_TRUE(test::x_mouse_move(*window, torch_px.x, torch_px.y));
+    std::this_thread::sleep_for(300ms); // a frame sees the cursor there
+    ASSERT_TRUE(test::x_button(3, true));
+    std::this_thread::sleep_for(100ms);
+    ASSERT_TRUE(test::x_button(3, false));
+    const test::RgbImage lit = capture_until(*window, [&](const test::RgbImage& img) {
+        return luminance(img, torch_px - 30, torch_px + 30) > dark + 25.0;
+    }, 30s, &met);
+    EXPECT_TRUE(met) << "the torch did not brighten its surroundings: " << dark << " -> "
+                     << luminance(lit, torch_px - 30, torch_px + 30);
+
+    // Walk east until the dividing wall stops the player (at x = 12 - radius).
+    ASSERT_TRUE(test::x_key(*window, "d", true));
+    std::this_thread::sleep_for(3500ms);
+    ASSERT_TRUE(test::x_key(*window, "d", false));
+    const glm::vec2 at_wall(12.0f - 0.3f, 4.5f);
+    const glm::ivec2 torch_now = screen_of(at_wall, torch_at);
+    const test::RgbImage walked = capture_until(*window, [&](const test::RgbImage& img) {
+        return flame_near(img, torch_now, 30).has_value();
+    }, 30s, &met);
+    dump(first, "1_first");
+    dump(lit, "2_torch");
+    dump(walked, "3_walked");
+    // The torch's flame moved on screen as the view followed the player to the wall.
+    const auto flame_before = flame_near(lit, torch_px, 30), flame_after = flame_near(walked, torch_now, 30);
+    ASSERT_TRUE(flame_before && flame_after) << "the torch's flame is not where expected";
+    EXPECT_NEAR(flame_after->x - flame_before->x, float(torch_now.x - torch_px.x), 14.0f)
+        << "the view did not follow the player to the wall";
+
+    // Mine the wall in front of the player: point at its top, left click.
+    const glm::vec3 wall_top(12.5f, 1.99f, 4.5f);
+    const glm::ivec2 wall_px = screen_of(at_wall, wall_top);
+    // Ground west of the wall, north and south of the player: dark until the gap opens.
+    const glm::ivec2 gap_lo = screen_of(at_wall, {10.6f, 0.0f, 3.2f}), gap_hi = screen_of(at_wall, {11.9f, 0.0f, 5.8f});
+    auto gap_light = [&](const test::RgbImage& img) {
+        return luminance(img, glm::min(gap_lo, gap_hi), glm::max(gap_lo, gap_hi));
+    };
+    const double before_gap = gap_light(walked);
+    ASSERT_TRUE(test::x_mouse_move(*window, wall_px.x, wall_px.y));
+    std::this_thread::sleep_for(300ms);
+    ASSERT_TRUE(test::x_button(1, true));
+    std::this_thread::sleep_for(100ms);
+    ASSERT_TRUE(test::x_button(1, false));
+    const test::RgbImage mined = capture_until(*window, [&](const test::RgbImage& img) {
+        return gap_light(img) > before_gap + 15.0;
+    }, 30s, &met);
+    EXPECT_TRUE(met) << "no light came through the gap: " << before_gap << " -> " << gap_light(mined);
+    dump(mined, "4_mined");
+    // Where the wall's top was, the floor of the east room shows now.
+    EXPECT_GT(patch_difference(walked, mined, wall_px - 8, wall_px + 8), 20.0) << "the mined wall still looks the same";
+
+    // Save (F5), quit (Escape).
+    ASSERT_TRUE(test::x_key(*window, "F5", true));
+    ASSERT_TRUE(test::x_key(*window, "F5", false));
+    for (int i = 0; i < 100 && !std::filesystem::exists(save); ++i) std::this_thread::sleep_for(100ms);
+    ASSERT_TRUE(test::x_key(*window, "Escape", true));
+    ASSERT_TRUE(test::x_key(*window, "Escape", false));
+    const auto status = game.wait_exit(30s);
+    ASSERT_TRUE(status) << "Escape did not quit; log:\n" << game.log();
+    EXPECT_EQ(*status, 0) << game.log();
+
+    auto state = game::read_save(save);
+    ASSERT_TRUE(state) << state.error().message;
+    EXPECT_EQ(state->world.kind, game::WorldKind::scene);
+    EXPECT_NEAR(state->player.x, at_wall.x, 0.05f);
+    bool torch = false;
+    for (const auto& e : state->entities)
+        if (e.torch && glm::distance(e.point_light->position, glm::vec2(3.5f, 4.5f)) < 0.01f) torch = true;
+    EXPECT_TRUE(torch) << "the placed torch is not in the save";
+    bool gap = false;
+    for (const auto& c : state->edits)
+        if (c.coord == glm::ivec2(0, 0)) gap = c.cells[4 * 32 + 12] == 0;
+    EXPECT_TRUE(gap) << "the mined wall is not in the save";
+}
+
+TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
+    test::TempDir dir;
+    const std::string out = dir.file("demo");
+    const int status = run_game({"--headless", "--frames", "90", "--screenshots", "2", "--out", out, "--bench"},
+                                dir.file("log.txt"));
+    const std::string log = test::read_file(dir.file("log.txt"));
+    if (status == 1 && log.find("no usable Vulkan device") != std::string::npos) GTEST_SKIP() << log;
+    ASSERT_EQ(status, 0) << log;
+    EXPECT_TRUE(std::filesystem::exists(out + "/frame_00044.png")) << log;
+    EXPECT_TRUE(std::filesystem::exists(out + "/frame_00089.png")) << log;
+    EXPECT_TRUE(std::filesystem::exists(out + "/profile.txt"));
+    auto trace = json::parse(test::read_file(out + "/trace.json"), "trace.json");
+    EXPECT_TRUE(trace) << (trace ? "" : trace.error().message);
+    auto timings = json::parse(test::read_file(out + "/timings.json"), "timings.json");
+    ASSERT_TRUE(timings) << timings.error().message;
+    const json::Value* frame_ms = timings->find("frame_ms");
+    ASSERT_TRUE(frame_ms && frame_ms->find("p95"));
+    EXPECT_GT(frame_ms->find("p95")->as_number(), 0.0);
+    // Every system and GPU pass of the frame shows up in the report.
+    std::set<std::string> names;
+    for (const json::Value& s : timings->find("scopes")->as_array()) names.insert(s.find("name")->as_string());
+    for (const char* n : {"input", "player_move", "interact", "torch_flicker", "day_cycle", "camera_view", "streaming",
+                          "light_gather", "proxy_gather", "cache_keys", "gpu_submit", "draw_list", "render", "direct",
+                          "heat", "world raster"})
+        EXPECT_TRUE(names.count(n)) << "missing from the report: " << n;
+    EXPECT_NE(log.find("frame ms while walking"), std::string::npos) << log;
+}
+
+TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
+    test::TempDir dir;
+    const std::string out = dir.file("out");
+    struct Case {
+        std::vector<std::string> args;
+        std::string expect;
+    };
+    ASSERT_TRUE(write_file_atomic(dir.file("bad.map"), std::string("type octile\nheight 1\nwidth 2\nmap\n.x\n")));
+    ASSERT_TRUE(write_file_atomic(dir.file("bad_save.json"), std::string("{\"lantern_save\": 1, \"player\": [1, 2],\n \"world\": 3}")));
+    const Case cases[] = {
+        {{"--map", dir.file("bad.map")}, "bad.map:5:2: unknown map character 'x'"},
+        {{"--scene", dir.file("nope.json")}, "nope.json"},
+        {{"--load", dir.file("bad_save.json")}, "bad_save.json:2:11: world: expected an object"},
+        {{"--frames", "0"}, "--frames must be an integer >= 1"},
+        {{"--set", "gi.resolution=99"}, "gi.resolution"},
+        {{"--palette", "neon"}, "unknown palette 'neon'"},
+        {{"--bogus"}, "unknown argument '--bogus'"},
+    };
+    for (const Case& c : cases) {
+        std::vector<std::string> args = c.args;
+        for (const char* a : {"--headless", "--frames", "5", "--out"}) args.emplace_back(a);
+        if (c.args[0] == "--frames") args.erase(args.end() - 3, args.end() - 1); // keep the bad value
+        args.push_back(out);
+        const int status = run_game(args, dir.file("log.txt"));
+        const std::string log = test::read_file(dir.file("log.txt"));
+        if (status == 1 && log.find("no usable Vulkan device") != std::string::npos) GTEST_SKIP() << log;
+        EXPECT_EQ(status, 2) << c.args[0] << ": " << log;
+        EXPECT_NE(log.find(c.expect), std::string::npos) << log;
+        EXPECT_FALSE(std::filesystem::exists(out)) << "output written despite the error";
+    }
+}

@@ -1,0 +1,838 @@
+// The game's world renderer on real Vulkan (lavapipe in CI), validation on (any message fails
+// the test): lighting against the C++ shading library on the GPU's own GI textures, the
+// projection against game::camera_ray, depth, face masks, glow, frames without GI, the art
+// controls, and the GPU time of a typical cave view. Skipped, and reported, without a device.
+#include "lantern/game/world_renderer.hpp"
+
+#include "lantern/game/gameplay.hpp"
+#include "lantern/gi/frame_inputs.hpp"
+#include "lantern/gi/passes.hpp"
+#include "lantern/gi/shading.hpp"
+#include "lantern/gi/vulkan/renderer.hpp"
+#include "lantern/gi/window.hpp"
+#include "lantern/gpu/device.hpp"
+#include "lantern/gpu/timestamps.hpp"
+#include "lantern/scene/procedural.hpp"
+#include "render/render_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace lantern;
+using game::BoxInstance;
+using game::DrawList;
+using game::Material;
+using game::WorldView;
+
+constexpr glm::ivec2 target_size{480, 270};
+
+// ---- shared GPU objects (created after the shared Device, so destroyed before it)
+
+struct Shared {
+    std::unique_ptr<game::WorldRenderer> world;
+    std::unique_ptr<gi::vk::Renderer> gi;
+};
+
+Shared& shared(gpu::Device& device) {
+    static Shared s = [&] {
+        Shared out;
+        auto world = game::WorldRenderer::create(device, target_size);
+        EXPECT_TRUE(world.ok()) << (world.ok() ? "" : world.error().message);
+        if (world.ok()) out.world = std::move(world).value();
+        auto gi = gi::vk::Renderer::create(device);
+        EXPECT_TRUE(gi.ok()) << (gi.ok() ? "" : gi.error().message);
+        if (gi.ok()) out.gi = std::move(gi).value();
+        return out;
+    }();
+    return s;
+}
+
+// ---- scenes
+
+// A GI frame: the scene (which the inputs point into: keep it where it is), its window,
+// inputs and plan.
+struct GiFrame {
+    scene::Scene scene;
+    gi::FrameInputs in;
+    gi::PassPlan plan;
+};
+
+std::unique_ptr<GiFrame> make_gi_frame(scene::Scene s, const scene::PerspectiveCamera& camera) {
+    auto f = std::make_unique<GiFrame>();
+    f->scene = std::move(s);
+    f->scene.view = camera;
+    std::string why;
+    auto window = gi::compute_window(f->scene.view, f->scene.gi.padding, f->scene.gi.resolution, &why);
+    EXPECT_TRUE(window) << why;
+    if (!window) return nullptr;
+    f->in = gi::gather_frame_inputs(f->scene, *window);
+    f->plan = gi::plan_passes(f->in, false);
+    return f;
+}
+
+scene::WallGrid grid_from_rows(const std::vector<std::string>& rows) {
+    scene::WallGrid g;
+    g.height = int(rows.size());
+    g.width = int(rows[0].size());
+    g.cells.resize(std::size_t(g.width) * std::size_t(g.height));
+    for (int r = 0; r < g.height; ++r)
+        for (int c = 0; c < g.width; ++c) g.cells[std::size_t(c + r * g.width)] = rows[std::size_t(r)][std::size_t(c)] == '#';
+    return g;
+}
+
+scene::PerspectiveCamera follow(glm::vec2 player) { return game::follow_camera({player.x, 0.0f, player.y}, game::CameraRig{}); }
+
+// Walls, two point lights, an emissive and a sun, seen by the game's camera.
+std::unique_ptr<GiFrame> lit_room_frame() {
+    scene::Scene s;
+    // 28 x 20 tiles, row r is z = r. The camera looks towards -z from z + 9: rows near 19 are
+    // at the bottom of the screen, so the +z faces of walls show.
+    s.walls = grid_from_rows({
+        "############################",
+        "#..........................#",
+        "#..........................#",
+        "#....####..........#.......#",
+        "#....#.............#.......#",
+        "#....#......##.....#.......#",
+        "#...........##.............#",
+        "#..........................#",
+        "#.........#................#",
+        "#.........#.......####.....#",
+        "#.........#................#",
+        "#..###.....................#",
+        "#..........................#",
+        "#.............#............#",
+        "#.............#.....##.....#",
+        "#..........................#",
+        "#...#######................#",
+        "#..........................#",
+        "#..........................#",
+        "############################",
+    });
+    s.wall_height = 1.5f;
+    s.gi.resolution = 4;
+    s.gi.padding = 1.1f;
+    s.gi.heat_rounds = 12;
+    s.point_lights.push_back({{8.5f, 7.5f}, 1.0f, {1.0f, 0.7f, 0.4f}, 2.5f, 10.0f});
+    s.point_lights.push_back({{20.5f, 12.2f}, 1.0f, {0.4f, 0.6f, 1.0f}, 2.0f, 9.0f});
+    s.emissive_lights.push_back({{15.5f, 16.5f}, {0.3f, 1.0f, 0.5f}, 1.5f, 5.0f});
+    scene::DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.5f, -0.7f, -0.4f));
+    sun.color = {1.0f, 0.95f, 0.85f};
+    sun.intensity = 0.25f;
+    s.directional_lights.push_back(sun);
+    return make_gi_frame(std::move(s), follow({14.0f, 10.0f}));
+}
+
+const glm::vec3 ground_albedo{0.75f, 0.7f, 0.62f};
+const glm::vec3 wall_albedo{0.6f, 0.63f, 0.72f};
+
+DrawList world_list(const GiFrame& f, bool props = true) {
+    DrawList list;
+    const gi::CameraView& v = f.in.window.view;
+    list.boxes.push_back(game::ground_box({v.min_x - 8.0f, v.min_z - 8.0f}, {v.min_x + v.width + 8.0f, v.min_z + v.height + 8.0f},
+                                          ground_albedo));
+    const gi::WallView walls = f.in.walls;
+    game::append_wall_boxes(list, [&](int x, int z) { return walls.is_wall(x, z); }, walls.origin - 1,
+                            walls.origin + glm::ivec2(walls.width, walls.height) + 1, f.in.wall_height, wall_albedo);
+    if (props) {
+        BoxInstance prop; // a lit, faintly emissive crate in the open
+        prop.center = {16.5f, 0.4f, 11.5f};
+        prop.half = {0.4f, 0.4f, 0.4f};
+        prop.material = float(int(Material::prop));
+        prop.color = {0.5f, 0.8f, 0.6f};
+        prop.emissive = 0.15f;
+        list.boxes.push_back(prop);
+        BoxInstance flame; // unlit glow
+        flame.center = {8.5f, 0.3f, 12.5f};
+        flame.half = {0.2f, 0.3f, 0.2f};
+        flame.material = float(int(Material::glow));
+        flame.color = {1.0f, 0.6f, 0.2f};
+        flame.emissive = 1.5f;
+        list.boxes.push_back(flame);
+    }
+    return list;
+}
+
+// ---- CPU side
+
+struct Hit {
+    int box = -1;
+    int face = -1; // 0 +x, 1 -x, 2 +z, 3 -z, 4 top; 5 a face that cannot be seen (bottom)
+    float t = 0.0f;
+};
+
+// The nearest box the ray enters (slab test).
+Hit trace(const game::Ray& ray, const DrawList& list) {
+    Hit best;
+    best.t = 1e30f;
+    for (std::size_t i = 0; i < list.boxes.size(); ++i) {
+        const BoxInstance& b = list.boxes[i];
+        const glm::vec3 lo = b.center - b.half, hi = b.center + b.half;
+        float t_near = -1e30f, t_far = 1e30f;
+        int face = -1;
+        bool miss = false;
+        for (int a = 0; a < 3; ++a) {
+            const float o = ray.origin[a], d = ray.direction[a];
+            if (std::abs(d) < 1e-12f) {
+                if (o < lo[a] || o > hi[a]) miss = true;
+                continue;
+            }
+            float t0 = (lo[a] - o) / d, t1 = (hi[a] - o) / d;
+            const bool entering_low = t0 < t1; // enters through the low side (the -axis face)
+            if (!entering_low) std::swap(t0, t1);
+            if (t0 > t_near) {
+                t_near = t0;
+                if (a == 0) face = entering_low ? 1 : 0;
+                else if (a == 2) face = entering_low ? 3 : 2;
+                else face = entering_low ? 5 : 4;
+            }
+            t_far = std::min(t_far, t1);
+        }
+        if (miss || t_near > t_far || t_near <= 0.0f || t_near >= best.t) continue;
+        best = {int(i), face, t_near};
+    }
+    return best;
+}
+
+constexpr std::array<glm::vec3, 5> face_normals = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1),
+                                                   glm::vec3(0, 0, -1), glm::vec3(0, 1, 0)};
+
+glm::vec2 pixel_ndc(int x, int y) {
+    return {(float(x) + 0.5f) / float(target_size.x), (float(y) + 0.5f) / float(target_size.y)};
+}
+
+std::array<int, 3> srgb8(glm::vec3 linear) {
+    return {int(gi::linear_to_srgb8(linear.r)), int(gi::linear_to_srgb8(linear.g)), int(gi::linear_to_srgb8(linear.b))};
+}
+
+std::array<int, 3> pixel(const render::Rgba8Image& image, int x, int y) {
+    const std::uint8_t* p = image.pixels.data() + (std::size_t(y) * image.width + std::size_t(x)) * 4;
+    return {p[0], p[1], p[2]};
+}
+
+int max_diff(const std::array<int, 3>& a, const std::array<int, 3>& b) {
+    return std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
+}
+
+// The pixel a world point falls on, through view_projection (y down).
+glm::ivec2 project_pixel(const scene::PerspectiveCamera& camera, glm::vec3 p) {
+    const glm::vec4 clip = game::WorldRenderer::view_projection(camera) * glm::vec4(p, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return {int(std::floor((ndc.x * 0.5f + 0.5f) * float(target_size.x))),
+            int(std::floor((ndc.y * 0.5f + 0.5f) * float(target_size.y)))};
+}
+
+void maybe_write_png(const render::Rgba8Image& image, const std::string& name) {
+    // LANTERN_WORLD_PNG_DIR=<dir>: keep the images for a look.
+    if (const char* dir = std::getenv("LANTERN_WORLD_PNG_DIR"); dir && *dir) {
+        auto ok = render::write_png(std::string(dir) + "/" + name + ".png", image);
+        EXPECT_TRUE(ok.ok());
+    }
+}
+
+// ---- fixture
+
+class WorldRendererTest : public test::RenderTest {
+  protected:
+    game::WorldRenderer& world() { return *shared(device()).world; }
+    gi::vk::Renderer& gi() { return *shared(device()).gi; }
+
+    // Records the GI of `frame` (when given) and the world in one list, submits, reads back.
+    render::Rgba8Image draw(WorldView view, const DrawList& list, const GiFrame* frame) {
+        gpu::CommandList cmd = device().begin("world renderer test");
+        if (frame) {
+            auto ok = gi().prepare(frame->in, frame->plan);
+            EXPECT_TRUE(ok.ok()) << (ok.ok() ? "" : ok.error().message);
+            gi().upload_walls(cmd, frame->in.walls);
+            gi().upload_lights(cmd, frame->in);
+            gi().record_plan(cmd, frame->in, frame->plan);
+            view.gi = &frame->in;
+            view.renderer = &gi();
+        }
+        world().record(cmd, view, list);
+        device().submit(std::move(cmd));
+        return world().target().read_back();
+    }
+
+    gi::Texture read(gi::vk::Tex t) { return gi().read_back(t); }
+};
+
+// ---- 1. lighting equals the C++ reference
+
+TEST_F(WorldRendererTest, LightingEqualsTheCppShadingLibrary) {
+    auto frame = lit_room_frame();
+    ASSERT_TRUE(frame);
+    ASSERT_TRUE(frame->plan.run.has(gi::Pass::heat) && frame->plan.run.has(gi::Pass::directional) &&
+                frame->plan.run.has(gi::Pass::wall_indirect));
+    const DrawList list = world_list(*frame);
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+    view.art.texture_pattern = false;
+    const render::Rgba8Image image = draw(view, list, frame.get());
+    maybe_write_png(image, "lighting");
+
+    // The GPU's own GI textures, through the C++ shading library.
+    using gi::vk::Tex;
+    std::map<Tex, gi::Texture> textures;
+    for (Tex t : {Tex::direct, Tex::indirect, Tex::ao, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx,
+                  Tex::wall_direct_pz, Tex::wall_direct_nz, Tex::wall_indirect_px, Tex::wall_indirect_nx,
+                  Tex::wall_indirect_pz, Tex::wall_indirect_nz}) {
+        ASSERT_TRUE(gi().has(t)) << gi::vk::tex_name(t);
+        textures[t] = read(t);
+    }
+    gi::ShadingInputs in;
+    in.frame = &frame->in;
+    in.direct = &textures[Tex::direct];
+    in.indirect = &textures[Tex::indirect];
+    in.ao = &textures[Tex::ao];
+    in.shadow = &textures[Tex::shadow];
+    for (int f = 0; f < 4; ++f) {
+        in.wall_direct[std::size_t(f)] = &textures[Tex(int(Tex::wall_direct_px) + f)];
+        in.wall_indirect[std::size_t(f)] = &textures[Tex(int(Tex::wall_indirect_px) + f)];
+    }
+    const scene::GiSettings& settings = frame->in.settings;
+    auto expected = [&](const BoxInstance& b, glm::vec3 pos, glm::vec3 n) {
+        glm::vec3 c = b.color * b.emissive;
+        if (int(b.material) != int(Material::glow)) c += b.color * gi::surface_light(in, pos, n);
+        return srgb8(gi::tone_map(c, settings.tone_map, settings.white_point));
+    };
+
+    // Per pixel: the box and face the centre ray meets; skip pixels whose neighbours meet
+    // another box or face (geometric edges). Positions within a hair of a GI texel or tile
+    // boundary may land on either side on the GPU (interpolation vs. ray hit): the reference
+    // is taken at the hit and at the hit moved by +-eps along the face, best match counted.
+    std::vector<Hit> hits(std::size_t(target_size.x * target_size.y));
+    for (int y = 0; y < target_size.y; ++y)
+        for (int x = 0; x < target_size.x; ++x)
+            hits[std::size_t(y * target_size.x + x)] = trace(game::camera_ray(view.camera, pixel_ndc(x, y)), list);
+    const float eps = 2e-3f;
+    int worst = 0, compared = 0, edges = 0, boundary = 0, over = 0;
+    double sum = 0.0;
+    std::array<int, 3> kinds{};
+    glm::ivec2 worst_at{-1};
+    std::array<int, 3> worst_gpu{}, worst_ref{};
+    for (int y = 1; y + 1 < target_size.y; ++y)
+        for (int x = 1; x + 1 < target_size.x; ++x) {
+            const Hit& h = hits[std::size_t(y * target_size.x + x)];
+            if (h.box < 0 || h.face > 4) {
+                ++edges;
+                continue;
+            }
+            bool edge = false;
+            for (glm::ivec2 d : {glm::ivec2(1, 0), glm::ivec2(-1, 0), glm::ivec2(0, 1), glm::ivec2(0, -1)}) {
+                const Hit& o = hits[std::size_t((y + d.y) * target_size.x + x + d.x)];
+                edge = edge || o.box != h.box || o.face != h.face;
+            }
+            if (edge) {
+                ++edges;
+                continue;
+            }
+            const BoxInstance& b = list.boxes[std::size_t(h.box)];
+            ASSERT_TRUE((int(b.face_mask) >> h.face) & 1) << "a ray entered a box through a face not drawn";
+            const game::Ray ray = game::camera_ray(view.camera, pixel_ndc(x, y));
+            const glm::vec3 hit = ray.origin + ray.direction * h.t;
+            const glm::vec3 n = face_normals[std::size_t(h.face)];
+            const std::array<int, 3> gpu = pixel(image, x, y);
+            int best = max_diff(gpu, expected(b, hit, n));
+            if (best > 2) {
+                ++boundary;
+                for (int dz = -1; dz <= 1; ++dz)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        glm::vec3 p = hit + glm::vec3(float(dx) * eps, 0.0f, float(dz) * eps);
+                        p = glm::clamp(p, b.center - b.half, b.center + b.half); // stay on the face
+                        best = std::min(best, max_diff(gpu, expected(b, p, n)));
+                    }
+            }
+            ++compared;
+            sum += best;
+            over += best > 2;
+            if (int(b.material) != int(Material::glow))
+                ++kinds[std::size_t(gi::classify_surface(frame->in.walls, frame->in.window, hit, n))];
+            if (best > worst) {
+                worst = best;
+                worst_at = {x, y};
+                worst_gpu = gpu;
+                worst_ref = expected(b, hit, n);
+            }
+        }
+    const double mean = compared ? sum / compared : 0.0;
+    std::printf("[ lighting ] %d pixels compared (%d ground, %d wall face, %d wall top), %d on edges skipped, "
+                "%d near texel boundaries (compared at +-eps); max error %d/255, mean %.4f/255\n",
+                compared, kinds[0], kinds[1], kinds[2], edges, boundary, worst, mean);
+    EXPECT_GT(compared, target_size.x * target_size.y / 2);
+    EXPECT_GT(kinds[0], 10000);
+    EXPECT_GT(kinds[1], 1000);
+    EXPECT_GT(kinds[2], 1000);
+    EXPECT_EQ(over, 0) << "worst at (" << worst_at.x << ", " << worst_at.y << "): gpu " << worst_gpu[0] << " "
+                       << worst_gpu[1] << " " << worst_gpu[2] << ", reference " << worst_ref[0] << " " << worst_ref[1]
+                       << " " << worst_ref[2];
+    EXPECT_LE(worst, 2);
+    EXPECT_LT(mean, 0.5);
+    // Not a dark image: the comparison saw light.
+    int lit = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4) lit += image.pixels[i] + image.pixels[i + 1] > 60;
+    EXPECT_GT(lit, target_size.x * target_size.y / 4);
+}
+
+// ---- 2. geometry
+
+TEST(WorldRendererProjection, RoundTripsThroughCameraRay) {
+    std::vector<scene::PerspectiveCamera> cameras = {follow({0.0f, 0.0f}), follow({123.4f, -57.25f})};
+    scene::PerspectiveCamera wide = follow({-3.0f, 8.0f});
+    wide.fov_deg = 70.0f;
+    wide.aspect = 4.0f / 3.0f;
+    cameras.push_back(wide);
+    scene::PerspectiveCamera down; // straight down: camera_ray's other up hint
+    down.position = {5.0f, 20.0f, 5.0f};
+    down.target = {5.0f, 0.0f, 5.0f};
+    cameras.push_back(down);
+    for (const auto& camera : cameras) {
+        const glm::mat4 vp = game::WorldRenderer::view_projection(camera);
+        int inside = 0;
+        for (int i = 0; i <= 20; ++i)
+            for (int j = 0; j <= 20; ++j)
+                for (float y : {0.0f, 0.75f, 2.0f}) {
+                    const glm::vec3 p = camera.target + glm::vec3(float(i - 10) * 1.37f, y, float(j - 10) * 0.91f);
+                    const glm::vec4 clip = vp * glm::vec4(p, 1.0f);
+                    ASSERT_GT(clip.w, 0.0f);
+                    const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+                    EXPECT_GT(ndc.z, 0.0f);
+                    EXPECT_LT(ndc.z, 1.0f);
+                    // Framebuffer [0, 1]^2, y down, as camera_ray takes it.
+                    const glm::vec2 uv(ndc.x * 0.5f + 0.5f, ndc.y * 0.5f + 0.5f);
+                    const game::Ray ray = game::camera_ray(camera, uv);
+                    const glm::vec3 to_p = p - ray.origin;
+                    const float along = glm::dot(to_p, ray.direction);
+                    const float off = glm::length(to_p - ray.direction * along);
+                    EXPECT_LT(off, 2e-5f * glm::length(to_p)) << "point " << p.x << " " << p.y << " " << p.z;
+                    inside += uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f;
+                }
+        EXPECT_GT(inside, 100);
+    }
+    // The game's camera: screen right is +x, screen up is -z.
+    const scene::PerspectiveCamera c = follow({10.0f, 10.0f});
+    const glm::vec4 clip = game::WorldRenderer::view_projection(c) * glm::vec4(10.0f, 0.0f, 10.0f, 1.0f);
+    EXPECT_NEAR(clip.x / clip.w, 0.0f, 1e-6f); // the target is the centre of the view
+    EXPECT_NEAR(clip.y / clip.w, 0.0f, 1e-6f);
+    const glm::ivec2 at = project_pixel(c, {10.0f, 0.0f, 10.0f});
+    EXPECT_GT(project_pixel(c, {12.0f, 0.0f, 10.0f}).x, at.x + 10);
+    EXPECT_LT(project_pixel(c, {10.0f, 0.0f, 8.0f}).y, at.y - 10);
+}
+
+DrawList flat_floor(glm::vec3 color) {
+    DrawList list;
+    BoxInstance floor = game::ground_box({-20.0f, -20.0f}, {40.0f, 40.0f}, color);
+    floor.material = float(int(Material::glow)); // unlit, and drawn in list order (not a ground box)
+    floor.emissive = 1.0f;
+    list.boxes.push_back(floor);
+    return list;
+}
+
+BoxInstance glow_box(glm::vec3 center, glm::vec3 half, glm::vec3 color, int mask = game::face_all) {
+    BoxInstance b;
+    b.center = center;
+    b.half = half;
+    b.material = float(int(Material::glow));
+    b.face_mask = float(mask);
+    b.color = color;
+    b.emissive = 1.0f;
+    return b;
+}
+
+// A glow colour as the target shows it without GI (default tone map, sRGB).
+std::array<int, 3> glow_pixel(glm::vec3 color) {
+    const scene::GiSettings defaults;
+    return srgb8(gi::tone_map(color, defaults.tone_map, defaults.white_point));
+}
+
+TEST_F(WorldRendererTest, WallsOccludeTheGroundBehindThem) {
+    const scene::PerspectiveCamera camera = follow({10.0f, 10.0f});
+    DrawList list;
+    list.boxes.push_back(glow_box({10.5f, 1.0f, 8.5f}, {0.5f, 1.0f, 0.5f}, {1, 0, 0}));
+    // The floor after the wall in the list: only the depth test keeps the wall in front.
+    list.boxes.push_back(flat_floor({0, 0, 1}).boxes[0]);
+    WorldView view;
+    view.camera = camera;
+    const auto image = draw(view, list, nullptr);
+    maybe_write_png(image, "occlusion");
+    const std::array<int, 3> red = glow_pixel({1, 0, 0}), blue = glow_pixel({0, 0, 1});
+    auto at = [&](glm::vec3 p) {
+        const glm::ivec2 px = project_pixel(camera, p);
+        return pixel(image, px.x, px.y);
+    };
+    EXPECT_EQ(at({10.5f, 2.0f, 8.5f}), red);  // the top
+    EXPECT_EQ(at({10.5f, 1.0f, 9.0f}), red);  // the +z face, towards the camera
+    EXPECT_EQ(at({10.5f, 0.0f, 7.85f}), red); // the floor just behind the wall: hidden
+    EXPECT_EQ(at({10.5f, 0.0f, 9.4f}), blue); // the floor in front of it
+    EXPECT_EQ(at({13.0f, 0.0f, 8.5f}), blue);
+    // And drawn the other way round.
+    std::swap(list.boxes[0], list.boxes[1]);
+    const auto again = draw(view, list, nullptr);
+    EXPECT_EQ(again.pixels, image.pixels);
+}
+
+TEST_F(WorldRendererTest, FaceMaskDropsFaces) {
+    const scene::PerspectiveCamera camera = follow({10.0f, 10.0f});
+    WorldView view;
+    view.camera = camera;
+    const glm::vec3 center{13.5f, 1.0f, 8.5f}, half{0.5f, 1.0f, 0.5f}; // right of the camera: its -x face shows
+    auto render_mask = [&](int mask) {
+        DrawList list = flat_floor({0, 0, 1});
+        list.boxes.push_back(glow_box(center, half, {1, 0, 0}, mask));
+        return draw(view, list, nullptr);
+    };
+    auto at = [&](const render::Rgba8Image& image, glm::vec3 p) {
+        const glm::ivec2 px = project_pixel(camera, p);
+        return pixel(image, px.x, px.y);
+    };
+    auto red_pixels = [](const render::Rgba8Image& image) {
+        int n = 0;
+        for (std::size_t i = 0; i < image.pixels.size(); i += 4) n += image.pixels[i] > 100;
+        return n;
+    };
+    const std::array<int, 3> red = glow_pixel({1, 0, 0}), blue = glow_pixel({0, 0, 1});
+    const auto all = render_mask(game::face_all);
+    const auto no_front = render_mask(game::face_all & ~game::face_pos_z);
+    const auto top = render_mask(game::face_top);
+    const auto none = render_mask(0);
+    maybe_write_png(no_front, "face_mask");
+    const glm::vec3 front = center + glm::vec3(0.0f, -0.3f, half.z);
+    EXPECT_EQ(at(all, front), red);
+    EXPECT_EQ(at(no_front, front), blue); // through the missing face: the floor inside the box
+    EXPECT_EQ(at(top, front), blue);
+    EXPECT_EQ(at(top, center + glm::vec3(0.0f, half.y, 0.0f)), red);
+    EXPECT_GT(red_pixels(all), red_pixels(no_front));
+    EXPECT_GT(red_pixels(no_front), red_pixels(top));
+    EXPECT_EQ(red_pixels(none), 0);
+}
+
+TEST_F(WorldRendererTest, GlowIgnoresLightAndNoGiDrawsEmissionOnly) {
+    auto frame = lit_room_frame();
+    ASSERT_TRUE(frame);
+    const DrawList list = world_list(*frame);
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+    view.art.texture_pattern = false;
+    const auto lit = draw(view, list, frame.get());
+    const auto dark = draw(view, list, nullptr); // view.gi == nullptr
+    // Without GI and with a renderer but no inputs: the same.
+    WorldView half_view = view;
+    half_view.renderer = &gi();
+    const auto dark2 = draw(half_view, list, nullptr);
+    EXPECT_EQ(dark.pixels, dark2.pixels);
+    maybe_write_png(dark, "no_gi");
+
+    const BoxInstance& prop = list.boxes[list.boxes.size() - 2];
+    const BoxInstance& flame = list.boxes.back();
+    ASSERT_EQ(int(flame.material), int(Material::glow));
+    const scene::GiSettings defaults;
+    const glm::ivec2 flame_px = project_pixel(view.camera, flame.center + glm::vec3(0.0f, flame.half.y, 0.0f));
+    const glm::ivec2 prop_px = project_pixel(view.camera, prop.center + glm::vec3(0.0f, prop.half.y, 0.0f));
+    const auto flame_ref = srgb8(gi::tone_map(flame.color * flame.emissive, frame->in.settings.tone_map,
+                                              frame->in.settings.white_point));
+    EXPECT_LE(max_diff(pixel(lit, flame_px.x, flame_px.y), flame_ref), 1);
+    EXPECT_EQ(pixel(lit, flame_px.x, flame_px.y), pixel(dark, flame_px.x, flame_px.y));
+    // No GI: lit materials show their emission only, the ground is black.
+    EXPECT_LE(max_diff(pixel(dark, prop_px.x, prop_px.y),
+                       srgb8(gi::tone_map(prop.color * prop.emissive, defaults.tone_map, defaults.white_point))),
+              1);
+    EXPECT_NE(pixel(lit, prop_px.x, prop_px.y), pixel(dark, prop_px.x, prop_px.y));
+    int black = 0;
+    for (std::size_t i = 0; i < dark.pixels.size(); i += 4)
+        black += dark.pixels[i] == 0 && dark.pixels[i + 1] == 0 && dark.pixels[i + 2] == 0;
+    EXPECT_GT(black, int(dark.pixels.size() / 4) - 2000);
+    // An empty list: cleared to black, nothing drawn, no crash.
+    const auto empty = draw(view, DrawList{}, frame.get());
+    EXPECT_TRUE(std::all_of(empty.pixels.begin(), empty.pixels.end(), [n = 0](std::uint8_t v) mutable {
+        return (n++ % 4 == 3) ? v == 255 : v == 0;
+    }));
+}
+
+// ---- 3. art controls
+
+class WorldArtTest : public WorldRendererTest {
+  protected:
+    render::Rgba8Image render_art(const game::ArtSettings& art) {
+        if (!frame_) frame_ = lit_room_frame();
+        WorldView view;
+        view.camera = std::get<scene::PerspectiveCamera>(frame_->scene.view);
+        view.art = art;
+        return draw(view, world_list(*frame_), frame_.get());
+    }
+    std::unique_ptr<GiFrame> frame_;
+};
+
+TEST_F(WorldArtTest, PosterizeGivesAtMostNLevelsPerChannel) {
+    const auto plain = render_art({});
+    std::array<std::set<int>, 3> plain_values;
+    for (std::size_t i = 0; i < plain.pixels.size(); i += 4)
+        for (int c = 0; c < 3; ++c) plain_values[std::size_t(c)].insert(plain.pixels[i + std::size_t(c)]);
+    for (int c = 0; c < 3; ++c) EXPECT_GT(plain_values[std::size_t(c)].size(), 40u);
+    for (int levels : {2, 3, 5, 8}) {
+        game::ArtSettings art;
+        art.posterize = levels;
+        const auto image = render_art(art);
+        if (levels == 5) maybe_write_png(image, "posterize5");
+        for (int c = 0; c < 3; ++c) {
+            std::set<int> values;
+            for (std::size_t i = 0; i < image.pixels.size(); i += 4) values.insert(image.pixels[i + std::size_t(c)]);
+            EXPECT_LE(values.size(), std::size_t(levels)) << levels << " levels, channel " << c;
+            EXPECT_GE(values.size(), 2u) << levels << " levels, channel " << c;
+        }
+    }
+}
+
+TEST_F(WorldArtTest, PaletteSwapUsesOnlyPaletteColours) {
+    const auto palettes = game::builtin_palettes();
+    ASSERT_GE(palettes.size(), 3u);
+    EXPECT_TRUE(palettes[0].colors.empty()); // "off"
+    for (std::size_t p = 1; p < palettes.size(); ++p) {
+        ASSERT_GE(palettes[p].colors.size(), 2u);
+        ASSERT_LE(palettes[p].colors.size(), std::size_t(game::max_palette_colors));
+        std::set<std::array<int, 3>> allowed;
+        for (glm::vec3 c : palettes[p].colors)
+            allowed.insert({int(std::lround(c.r * 255.0f)), int(std::lround(c.g * 255.0f)), int(std::lround(c.b * 255.0f))});
+        for (bool dither : {false, true}) {
+            game::ArtSettings art;
+            art.palette = int(p);
+            art.dither = dither;
+            const auto image = render_art(art);
+            if (dither) maybe_write_png(image, std::string("palette_") + palettes[p].name);
+            std::set<std::array<int, 3>> used;
+            int outside = 0;
+            for (int y = 0; y < int(image.height); ++y)
+                for (int x = 0; x < int(image.width); ++x) {
+                    const auto c = pixel(image, x, y);
+                    used.insert(c);
+                    outside += !allowed.count(c);
+                }
+            EXPECT_EQ(outside, 0) << palettes[p].name;
+            EXPECT_GE(used.size(), 2u) << palettes[p].name;
+        }
+    }
+}
+
+TEST_F(WorldArtTest, DitherMakesAnOrderedDeterministicPattern) {
+    game::ArtSettings smooth;
+    smooth.texture_pattern = false; // the light's gradient alone
+    game::ArtSettings banded = smooth;
+    banded.posterize = 4;
+    game::ArtSettings dithered = banded;
+    dithered.dither = true;
+    const auto reference = render_art(smooth);
+    const auto bands = render_art(banded);
+    const auto a = render_art(dithered);
+    const auto b = render_art(dithered);
+    maybe_write_png(a, "dither");
+    EXPECT_EQ(a.pixels, b.pixels); // deterministic
+    EXPECT_NE(a.pixels, bands.pixels);
+    // Ordered: the pattern repeats every 4 pixels, so a pixel equals the one 4 to its right
+    // far more often than its direct neighbour; the bands alone change only at band edges.
+    auto changes = [](const render::Rgba8Image& im, int step) {
+        int n = 0;
+        for (int y = 0; y < int(im.height); ++y)
+            for (int x = 0; x + step < int(im.width); ++x) n += pixel(im, x, y) != pixel(im, x + step, y);
+        return n;
+    };
+    const int dither_1 = changes(a, 1), dither_4 = changes(a, 4), bands_1 = changes(bands, 1);
+    std::printf("[ dither ] horizontal changes: dithered %d (step 1), %d (step 4); posterized only %d\n", dither_1,
+                dither_4, bands_1);
+    EXPECT_GT(dither_1, 3 * bands_1);
+    EXPECT_LT(dither_4 * 2, dither_1);
+    // A dither: 4x4 block means follow the smooth image more closely than the bands do.
+    auto block_error = [&](const render::Rgba8Image& im) {
+        double err = 0.0;
+        for (int by = 0; by + 4 <= int(im.height); by += 4)
+            for (int bx = 0; bx + 4 <= int(im.width); bx += 4)
+                for (int c = 0; c < 3; ++c) {
+                    double m = 0.0, r = 0.0;
+                    for (int y = by; y < by + 4; ++y)
+                        for (int x = bx; x < bx + 4; ++x) {
+                            m += pixel(im, x, y)[std::size_t(c)];
+                            r += pixel(reference, x, y)[std::size_t(c)];
+                        }
+                    err += std::abs(m - r) / 16.0;
+                }
+        return err;
+    };
+    const double e_dither = block_error(a), e_bands = block_error(bands);
+    std::printf("[ dither ] 4x4 block error against the smooth image: dithered %.0f, posterized only %.0f\n", e_dither,
+                e_bands);
+    EXPECT_LT(e_dither, e_bands * 0.8);
+    // Dither alone: at most one 8-bit step from the smooth image.
+    game::ArtSettings only = smooth;
+    only.dither = true;
+    const auto fine = render_art(only);
+    int worst = 0, changed = 0;
+    for (int y = 0; y < int(fine.height); ++y)
+        for (int x = 0; x < int(fine.width); ++x) {
+            const int d = max_diff(pixel(fine, x, y), pixel(reference, x, y));
+            worst = std::max(worst, d);
+            changed += d > 0;
+        }
+    EXPECT_LE(worst, 1);
+    EXPECT_GT(changed, 1000);
+}
+
+TEST_F(WorldArtTest, TexturePatternIsSubtleAndFollowsTheWorld) {
+    game::ArtSettings off;
+    off.texture_pattern = false;
+    const auto plain = render_art(off);
+    const auto patterned = render_art({});
+    maybe_write_png(patterned, "pattern");
+    int changed = 0;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < plain.pixels.size(); i += 4)
+        for (std::size_t c = 0; c < 3; ++c) {
+            const int d = std::abs(int(plain.pixels[i + c]) - int(patterned.pixels[i + c]));
+            changed += d > 0;
+            sum += d;
+        }
+    const double mean = sum / double(plain.pixels.size() / 4 * 3);
+    std::printf("[ pattern ] mean change %.2f/255 per channel\n", mean);
+    EXPECT_GT(changed, 10000); // visible
+    EXPECT_LT(mean, 12.0);     // subtle
+}
+
+// ---- timing
+
+TEST_F(WorldRendererTest, TypicalCaveViewGpuTime) {
+    // A cave around the player as the game shows it: procedural caves, walls as boxes with
+    // exposed faces, a few torches, the player; GI at resolution 4 (computed once: only the
+    // world pass is timed), 480x270.
+    scene::Scene s;
+    s.walls = scene::generate_caves({-60, -60}, {120, 120}, scene::CaveParams{1, 0.52f}); // the game's caves
+    s.wall_height = 2.0f;
+    s.gi.resolution = 4;
+    s.gi.heat_rounds = 8;
+    // An open tile whose surroundings (the view, about 30 x 20 tiles) are about 40 % wall.
+    const gi::WallView walls = gi::WallView::of(s.walls);
+    glm::vec2 player{0.5f};
+    float best = 1.0f;
+    for (int z = -40; z <= 40; z += 2)
+        for (int x = -40; x <= 40; x += 2) {
+            if (walls.is_wall(x, z)) continue;
+            int n = 0;
+            for (int dz = -12; dz < 8; ++dz)
+                for (int dx = -15; dx < 15; ++dx) n += walls.is_wall(x + dx, z + dz);
+            const float off = std::abs(float(n) / 600.0f - 0.4f);
+            if (off < best) best = off, player = {float(x) + 0.5f, float(z) + 0.5f};
+        }
+    for (int i = 0; i < 6; ++i) {
+        const glm::vec2 p = player + glm::vec2(float(i % 3) * 5.0f - 5.0f, float(i / 3) * 6.0f - 3.0f);
+        if (!walls.is_wall(int(std::floor(p.x)), int(std::floor(p.y))))
+            s.point_lights.push_back({p, 1.0f, {1.0f, 0.62f, 0.28f}, 1.6f, 7.0f});
+    }
+    auto frame = make_gi_frame(std::move(s), follow(player));
+    ASSERT_TRUE(frame);
+    DrawList list = world_list(*frame, false);
+    for (const auto& l : frame->scene.point_lights) {
+        list.boxes.push_back(glow_box({l.position.x, 0.35f, l.position.y}, {0.08f, 0.35f, 0.08f}, {0.4f, 0.25f, 0.1f}));
+        list.boxes.push_back(glow_box({l.position.x, 0.8f, l.position.y}, {0.12f, 0.12f, 0.12f}, {1.0f, 0.6f, 0.2f}));
+    }
+    list.boxes.push_back(glow_box({player.x, 0.5f, player.y}, {0.3f, 0.5f, 0.3f}, {0.2f, 0.4f, 0.9f}));
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+
+    // GI once.
+    ASSERT_TRUE(gi().prepare(frame->in, frame->plan).ok());
+    {
+        gpu::CommandList cmd = device().begin("cave gi");
+        gi().upload_walls(cmd, frame->in.walls);
+        gi().upload_lights(cmd, frame->in);
+        gi().record_plan(cmd, frame->in, frame->plan);
+        device().submit(std::move(cmd));
+    }
+    view.gi = &frame->in;
+    view.renderer = &gi();
+    auto queries = device().create_timestamp_queries(1, "world pass");
+    if (!queries) GTEST_SKIP() << queries.error().message;
+    std::vector<double> ms;
+    for (int i = 0; i < 6; ++i) {
+        gpu::CommandList cmd = device().begin("cave world");
+        queries->reset(cmd);
+        const auto region = queries->begin(cmd, "world");
+        world().record(cmd, view, list);
+        queries->end(cmd, region);
+        device().submit(std::move(cmd));
+        const gpu::TimestampResult result = queries->resolve();
+        ASSERT_EQ(result.regions.size(), 1u);
+        ms.push_back(double(result.regions[0].duration_ns) * 1e-6);
+    }
+    maybe_write_png(world().target().read_back(), "cave");
+    if (std::getenv("WR_EXPERIMENT")) {
+        auto time_it = [&](const char* what, WorldView v, const DrawList& l) {
+            std::vector<double> t;
+            for (int i = 0; i < 15; ++i) {
+                gpu::CommandList cmd = device().begin("cave world");
+                queries->reset(cmd);
+                const auto region = queries->begin(cmd, "world");
+                world().record(cmd, v, l);
+                queries->end(cmd, region);
+                device().submit(std::move(cmd));
+                t.push_back(double(queries->resolve().regions[0].duration_ns) * 1e-6);
+            }
+            std::sort(t.begin(), t.end());
+            std::printf("  %-30s %.2f ms (min)\n", what, t[0]);
+        };
+        WorldView nogi = view; nogi.gi = nullptr;
+        time_it("full", view, list);
+        time_it("no gi", nogi, list);
+        time_it("empty", view, DrawList{});
+        DrawList ground; ground.boxes.push_back(list.boxes[0]);
+        time_it("ground only", view, ground);
+        time_it("ground only no gi", nogi, ground);
+        {
+            DrawList small;
+            small.boxes.push_back(game::ground_box({player.x - 3, player.y - 3}, {player.x + 3, player.y + 3}, {1, 1, 1}));
+            time_it("small ground 6x6", view, small);
+            small.boxes[0] = game::ground_box({player.x - 12, player.y - 9}, {player.x + 12, player.y + 5}, {1, 1, 1});
+            time_it("ground 24x14", view, small);
+            small.boxes[0] = game::ground_box({player.x - 30, player.y - 30}, {player.x + 30, player.y + 30}, {1, 1, 1});
+            time_it("ground 60x60", view, small);
+            small.boxes[0] = game::ground_box({player.x - 30, player.y - 30}, {player.x + 30, player.y + 8}, {1, 1, 1});
+            time_it("ground 60x38 not behind", view, small);
+        }
+        DrawList walls_only(list); walls_only.boxes.erase(walls_only.boxes.begin());
+        time_it("no ground", view, walls_only);
+        time_it("no ground no gi", nogi, walls_only);
+        std::printf("  faces drawn (no ground): %zu\n", world().faces_drawn());
+        for (int mask : {16, 15, 1, 2, 4, 8}) {
+            DrawList l2 = walls_only;
+            for (auto& b : l2.boxes) b.face_mask = float(int(b.face_mask) & mask);
+            char name[64];
+            std::snprintf(name, sizeof name, "no ground, mask %d", mask);
+            time_it(name, view, l2);
+            std::printf("  faces drawn: %zu\n", world().faces_drawn());
+        }
+        {
+            DrawList l2 = list;
+            for (auto& b : l2.boxes) b.face_mask = float(int(b.face_mask) & 16);
+            time_it("ground + tops only", view, l2);
+        }
+    }
+    std::sort(ms.begin() + 1, ms.end()); // the first frame warms up
+    std::printf("[ timing ] world pass at %dx%d, %zu boxes, GI window %dx%d texels: median %.2f ms (min %.2f, max %.2f) "
+                "on %s\n",
+                target_size.x, target_size.y, list.boxes.size(), frame->in.window.width, frame->in.window.height,
+                ms[3], ms[1], ms.back(), device().name().c_str());
+    EXPECT_GT(ms[3], 0.0);
+}
+
+} // namespace
