@@ -5,86 +5,20 @@
 // controls (ordered dither, posterize, palette) in sRGB-encoded space. The target is sRGB:
 // the shader writes linear colour and the attachment encodes it.
 //
-// Frame constants: the uniform block `pc` (gi_walls.glsl reads pc.grid and pc.grid_phase;
-// mirrored by WorldFrame in game/src/world_renderer.cpp). GI textures: uniform texel buffers,
-// texel (x, y) at y * pitch + x (gi_common.glsl texel_index); absent ones are bound to a small
-// dummy buffer and flagged absent in pc.gi.y.
+// Bindings, frame constants and specialisation: lantern/game_world.glsl.
 #extension GL_GOOGLE_include_directive : require
-#include "lantern/gi_types.glsl"
-
-// Specialisation (lavapipe executes both sides of every branch, so what is not compiled out
-// costs every pixel): the face drawn (its normal is a constant, and the routing folds), GI
-// on or off, art controls on or off.
-layout(constant_id = 0) const int FACE = 4; // 0 +x, 1 -x, 2 +z, 3 -z, 4 top
-layout(constant_id = 1) const bool HAS_GI = true;
-layout(constant_id = 2) const bool HAS_ART = false;
-// What the wall lookup answers for this draw's geometry: 0 the wall grid; 1 open ground
-// (ground boxes: only their open tiles are ever seen, walls stand on the others); 2 wall
-// (the sides of wall boxes: they are on wall tiles). With 1 or 2 the routing folds at
-// compile time to the branch it would take for every visible pixel.
-layout(constant_id = 3) const int WALL_LOOKUP = 0;
-
-layout(std140, set = 0, binding = 0) uniform WorldFrame {
-    vec4 window;       // gi_shading.window: min x, min z (world), width, height (texels)
-    vec4 config;       // gi_shading.config: resolution, tone map, white point, angle scale
-    ivec4 grid;        // wall grid width, height, origin x, origin z
-    ivec4 grid_phase;  // toroidal phase (x, z), 0, 0
-    ivec4 gi;          // x: texel pitch, y: presence bits (bit GI_*), z: sun count, w: 1 = GI (HAS_GI)
-    ivec4 art;         // x: posterize levels (0 off), y: dither, z: palette colours (0 off), w: pattern
-                       // (x, y, z all 0: HAS_ART is false)
-    vec4 art_params;   // x: dither amplitude (encoded units)
-    vec4 palette[16];  // sRGB-encoded palette colours
-    GpuDirectionalLight suns[8];
-} pc;
-
-layout(set = 0, binding = 1) uniform usamplerBuffer u_walls;
-layout(set = 0, binding = 2) uniform samplerBuffer u_direct;
-layout(set = 0, binding = 3) uniform samplerBuffer u_indirect;
-layout(set = 0, binding = 4) uniform samplerBuffer u_ao;
-layout(set = 0, binding = 5) uniform samplerBuffer u_shadow;
-layout(set = 0, binding = 6) uniform samplerBuffer u_wall_direct_px;
-layout(set = 0, binding = 7) uniform samplerBuffer u_wall_direct_nx;
-layout(set = 0, binding = 8) uniform samplerBuffer u_wall_direct_pz;
-layout(set = 0, binding = 9) uniform samplerBuffer u_wall_direct_nz;
-layout(set = 0, binding = 10) uniform samplerBuffer u_wall_indirect_px;
-layout(set = 0, binding = 11) uniform samplerBuffer u_wall_indirect_nx;
-layout(set = 0, binding = 12) uniform samplerBuffer u_wall_indirect_pz;
-layout(set = 0, binding = 13) uniform samplerBuffer u_wall_indirect_nz;
-
-#include "lantern/gi_walls.glsl"
-#include "lantern/shading.glsl"
+#include "lantern/game_world.glsl"
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) flat in int in_material;
 layout(location = 2) flat in vec4 in_color;
 layout(location = 3) flat in vec3 in_box_min;
 layout(location = 4) flat in vec3 in_box_max;
+layout(location = 5) flat in vec3 in_face_light; // WALL_TOP_PER_FACE: the top's light
 
 layout(location = 0) out vec4 out_color;
 
 const int MATERIAL_GROUND = 0, MATERIAL_WALL = 1, MATERIAL_PROP = 2, MATERIAL_GLOW = 3;
-
-// ---- the shading library's inputs
-
-bool gi_has(int t) { return ((uint(pc.gi.y) >> uint(t)) & 1u) != 0u; }
-vec4 gi_fetch(int t, ivec2 texel) {
-    int index = texel.y * pc.gi.x + texel.x;
-    if (t == GI_DIRECT) return texelFetch(u_direct, index);
-    if (t == GI_INDIRECT) return texelFetch(u_indirect, index);
-    if (t == GI_AO) return texelFetch(u_ao, index);
-    if (t == GI_SHADOW) return texelFetch(u_shadow, index);
-    if (t == GI_WALL_DIRECT + 0) return texelFetch(u_wall_direct_px, index);
-    if (t == GI_WALL_DIRECT + 1) return texelFetch(u_wall_direct_nx, index);
-    if (t == GI_WALL_DIRECT + 2) return texelFetch(u_wall_direct_pz, index);
-    if (t == GI_WALL_DIRECT + 3) return texelFetch(u_wall_direct_nz, index);
-    if (t == GI_WALL_INDIRECT + 0) return texelFetch(u_wall_indirect_px, index);
-    if (t == GI_WALL_INDIRECT + 1) return texelFetch(u_wall_indirect_nx, index);
-    if (t == GI_WALL_INDIRECT + 2) return texelFetch(u_wall_indirect_pz, index);
-    return texelFetch(u_wall_indirect_nz, index);
-}
-bool gi_wall_tile(ivec2 tile) { return WALL_LOOKUP == 1 ? false : WALL_LOOKUP == 2 ? true : is_wall(tile); }
-int gi_sun_count() { return pc.gi.z; }
-GpuDirectionalLight gi_sun(int i) { return pc.suns[i]; }
 
 // ---- the pixel-art pattern: 8 texels per tile on every face, a function of world position
 
@@ -168,8 +102,7 @@ vec3 apply_art(vec3 c) {
 }
 
 void main() {
-    gi_shading.window = pc.window;
-    gi_shading.config = pc.config;
+    set_gi_shading();
     vec3 color;
     if (in_material == MATERIAL_GLOW) {
         color = in_color.rgb * in_color.a;
@@ -182,7 +115,7 @@ void main() {
         vec3 light = vec3(0.0);
         if (HAS_GI) {
             const vec3 normals[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
-            light = surface_light(pos, normals[FACE]);
+            light = WALL_TOP_PER_FACE ? in_face_light : surface_light(pos, normals[FACE]);
         }
         color = albedo * light + in_color.rgb * in_color.a;
     }

@@ -1,19 +1,22 @@
 #version 450
 // The game's world renderer (game/include/lantern/game/world_renderer.hpp): one box face per
-// instance, 6 vertices (two triangles). The face is the specialisation constant FACE (0 +x,
+// 6 vertices (two triangles) of a plain, non-instanced draw; the face's box is pulled from the
+// box texel buffer (three RGBA32F texels per box) at gl_VertexIndex / 6. The face is the specialisation constant FACE (0 +x,
 // 1 -x, 2 +z, 3 -z, 4 top): one pipeline per face, so that the fragment stage's normal is a
 // constant and the shading library's routing folds to the branches that face can take
 // (lavapipe runs both sides of every branch). The unit-box mesh is the constant tables below,
-// indexed by FACE and gl_VertexIndex (engine::gpu pipelines take one vertex buffer layout,
-// used by the instances). The CPU lists only the boxes whose face is in the mask and turned
+// indexed by FACE and gl_VertexIndex % 6. The CPU lists only the boxes whose face is in the mask and turned
 // towards the camera; the same test here collapses any other face to one point outside the
 // view (a degenerate triangle, culled before rasterisation).
 
-layout(location = 0) in vec4 in_center_material; // xyz centre, w material
-layout(location = 1) in vec4 in_half_mask;       // xyz half extents, w face mask
-layout(location = 2) in vec4 in_color_emissive;  // rgb colour, w emissive strength
+#extension GL_GOOGLE_include_directive : require
+#define LANTERN_GAME_WORLD_GRID_LOOKUP
+#include "lantern/game_world.glsl"
 
-layout(constant_id = 0) const int FACE = 4;
+// BoxInstance: texel 3i xyz centre, w material; 3i+1 xyz half extents, w face mask;
+// 3i+2 rgb colour, w emissive strength.
+layout(set = 0, binding = 14) uniform samplerBuffer u_boxes;
+
 
 layout(push_constant) uniform Push {
     mat4 view_projection; // WorldRenderer::view_projection (Vulkan clip space)
@@ -25,6 +28,7 @@ layout(location = 1) flat out int out_material;
 layout(location = 2) flat out vec4 out_color;   // rgb colour, a emissive
 layout(location = 3) flat out vec3 out_box_min; // the box, to keep interpolated positions on it
 layout(location = 4) flat out vec3 out_box_max;
+layout(location = 5) flat out vec3 out_face_light; // WALL_TOP_PER_FACE: the top's light
 
 const vec3 face_normal[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
 const vec3 face_u[5] = vec3[](vec3(0, 0, 1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(1, 0, 0), vec3(1, 0, 0));
@@ -33,7 +37,11 @@ const vec2 quad[6] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1),
 
 void main() {
     const int face = FACE;
-    const vec2 corner = quad[gl_VertexIndex];
+    const int box = gl_VertexIndex / 6;
+    const vec4 in_center_material = texelFetch(u_boxes, 3 * box);
+    const vec4 in_half_mask = texelFetch(u_boxes, 3 * box + 1);
+    const vec4 in_color_emissive = texelFetch(u_boxes, 3 * box + 2);
+    const vec2 corner = quad[gl_VertexIndex - 6 * box];
     const vec3 n = face_normal[face];
     const vec3 center = in_center_material.xyz, half_extent = max(in_half_mask.xyz, vec3(0.0));
     const int mask = int(in_half_mask.w + 0.5);
@@ -50,4 +58,9 @@ void main() {
     out_color = in_color_emissive;
     out_box_min = center - half_extent;
     out_box_max = center + half_extent;
+    out_face_light = vec3(0.0);
+    if (WALL_TOP_PER_FACE && HAS_GI) {
+        set_gi_shading();
+        out_face_light = surface_light(vec3(center.x, center.y + half_extent.y, center.z), vec3(0.0, 1.0, 0.0));
+    }
 }

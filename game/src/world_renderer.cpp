@@ -1,4 +1,4 @@
-// The game's world renderer: box instances, frame constants, one instanced draw.
+// The game's world renderer: box faces, frame constants, one draw per face group.
 #include "lantern/game/world_renderer.hpp"
 
 #include "lantern/gi/vulkan/renderer.hpp"
@@ -35,7 +35,7 @@ struct alignas(16) WorldFrame {
     std::array<glm::vec4, max_palette_colors> palette{};
     std::array<gi::GpuDirectionalLight, 8> suns{};
 };
-static_assert(sizeof(WorldFrame) == 7 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors game_world.frag.glsl");
+static_assert(sizeof(WorldFrame) == 7 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
 
 // Mirror of game_world.vert.glsl's push block.
 struct alignas(16) WorldPush {
@@ -52,25 +52,27 @@ constexpr int face_top_index = 4;
 // The shader's WALL_LOOKUP: what the shading library's wall test answers for a draw.
 enum Lookup : int { lookup_grid = 0, lookup_air = 1, lookup_wall = 2, lookup_count = 3 };
 
-// The draws of a frame, in order: tops (walls, props, glow), the sides of wall boxes, other
-// sides, the ground last (what stands on it hides it before it is shaded).
+// The draws of a frame, in order: tops (wall boxes' first: their light is one value per face,
+// computed by the vertex stage; then props and glow), the sides of wall boxes, other sides, the
+// ground last (what stands on it hides it before it is shaded).
 struct DrawGroup {
     int face;
     Lookup lookup;
 };
-constexpr std::array<DrawGroup, 10> draw_groups = {{
-    {4, lookup_grid},
+constexpr std::array<DrawGroup, 11> draw_groups = {{
+    {4, lookup_wall}, {4, lookup_grid},
     {0, lookup_wall}, {1, lookup_wall}, {2, lookup_wall}, {3, lookup_wall},
     {0, lookup_grid}, {1, lookup_grid}, {2, lookup_grid}, {3, lookup_grid},
     {4, lookup_air},
 }};
 // The group of a visible face of a box of `material`.
 int draw_group(int face, int material) {
-    if (face == face_top_index) return material == int(Material::ground) ? 9 : 0;
-    return (material == int(Material::wall) ? 1 : 5) + face;
+    if (face == face_top_index) return material == int(Material::ground) ? 10 : material == int(Material::wall) ? 0 : 1;
+    return (material == int(Material::wall) ? 2 : 6) + face;
 }
 constexpr std::uint32_t binding_frame = 0, binding_walls = 1, binding_first_texture = 2;
 constexpr int gi_texture_count = 12; // GI_DIRECT ... GI_WALL_INDIRECT + 3 (shading.glsl ids)
+constexpr std::uint32_t binding_boxes = binding_first_texture + gi_texture_count; // the faces' boxes
 constexpr VkDeviceSize initial_box_capacity = 4096;
 
 // Shading-library texture ids (shading.glsl GI_*) in binding order.
@@ -106,13 +108,11 @@ gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int 
     gpu::GraphicsPipelineDesc p;
     p.vertex_spirv = lantern_game_shaders_spirv("game_world.vert");
     p.fragment_spirv = lantern_game_shaders_spirv("game_world.frag");
-    p.vertex.stride = sizeof(BoxInstance);
-    p.vertex.per_instance = true;
-    p.vertex.attributes = {{0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(BoxInstance, center)},
-                           {1, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(BoxInstance, half)},
-                           {2, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(BoxInstance, color)}};
+    // No vertex input: the vertex shader pulls its face's box from the box texel buffer by
+    // gl_VertexIndex / 6, one plain draw per face group. (Measured against per-instance vertex
+    // attributes on lavapipe: the same frame time; pulling keeps the mesh in the shader.)
     p.bindings.push_back(gpu::BindingType::uniform_buffer);
-    for (int i = 0; i <= gi_texture_count; ++i) p.bindings.push_back(gpu::BindingType::uniform_texel_buffer);
+    for (int i = 0; i <= gi_texture_count + 1; ++i) p.bindings.push_back(gpu::BindingType::uniform_texel_buffer);
     p.specialization = {{0, std::uint32_t(face)}, {1, gi ? 1u : 0u}, {2, art ? 1u : 0u}, {3, std::uint32_t(lookup)}};
     p.push_constant_size = sizeof(WorldPush);
     p.cull = VK_CULL_MODE_NONE; // faces turned away are never listed
@@ -184,6 +184,7 @@ struct WorldRenderer::Impl {
     // By face, wall lookup, GI on, art on (specialisation constants), created on first use.
     std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4> pipelines;
     render::StreamBuffer instances;
+    gpu::BufferView instance_texels; // RGBA32F, three texels per box
     render::StreamBuffer frame;
     gpu::Buffer dummy;             // absent GI textures and walls read this (never, in fact)
     gpu::BufferView dummy_texels;  // RGBA16F
@@ -192,6 +193,13 @@ struct WorldRenderer::Impl {
     std::array<std::vector<BoxInstance>, draw_groups.size()> faces;
     std::vector<BoxInstance> upload;
     std::size_t faces_drawn = 0;
+
+    void create_instances(VkDeviceSize capacity) {
+        instances = render::StreamBuffer::create(*device, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, capacity,
+                                                 "game world boxes");
+        instance_texels = device->create_buffer_view(instances.buffer(), VK_FORMAT_R32G32B32A32_SFLOAT, 0,
+                                                     VK_WHOLE_SIZE, "game world box texels");
+    }
 
     const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art) {
         if (!gi) lookup = lookup_grid; // no lighting: the lookup is compiled out anyway
@@ -219,8 +227,7 @@ Result<std::unique_ptr<WorldRenderer>> WorldRenderer::create(gpu::Device& device
         device, {std::uint32_t(size.x), std::uint32_t(size.y), VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_D32_SFLOAT,
                  "game world"});
     for (const DrawGroup& g : draw_groups) impl->pipeline(g.face, g.lookup, true, false); // the usual frame
-    impl->instances = render::StreamBuffer::create(device, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                                   initial_box_capacity * sizeof(BoxInstance), "game world boxes");
+    impl->create_instances(initial_box_capacity * sizeof(BoxInstance));
     impl->frame = render::StreamBuffer::create(device, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, sizeof(WorldFrame),
                                                "game world frame");
     impl->dummy = device.create_buffer(
@@ -249,10 +256,11 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     Impl& m = *impl_;
 
     // The GI passes (compute) and the wall/light uploads (transfer) recorded before this are
-    // read by the fragment shader.
+    // read by the vertex stage (wall tops) and the fragment stage.
     cmd.memory_barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                        VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+                       VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                       VK_ACCESS_SHADER_READ_BIT);
 
     // Faces: outside the view, not in the mask or turned away from the camera are left out;
     // the others are listed by draw group (one pipeline each).
@@ -271,15 +279,14 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
         }
     }
     m.upload.clear();
-    for (const auto& f : m.faces) m.upload.insert(m.upload.end(), f.begin(), f.end());
+    for (const auto& f : m.faces) m.upload.insert(m.upload.end(), f.rbegin(), f.rend());
     m.faces_drawn = m.upload.size();
     const VkDeviceSize bytes = VkDeviceSize(m.upload.size()) * sizeof(BoxInstance);
     if (bytes > m.instances.capacity()) {
         VkDeviceSize capacity = m.instances.capacity();
         while (capacity < bytes) capacity *= 2;
         // The old buffer is destroyed deferred: earlier frames still reading it are safe.
-        m.instances = render::StreamBuffer::create(*m.device, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, capacity,
-                                                   "game world boxes");
+        m.create_instances(capacity);
     }
     if (bytes) m.instances.write(cmd, std::as_bytes(std::span<const BoxInstance>(m.upload)));
 
@@ -339,23 +346,31 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
                                      : 1.0f / 255.0f;
     f.art_params = glm::vec4(amplitude, 0.0f, 0.0f, 0.0f);
     m.frame.write(cmd, std::as_bytes(std::span<const WorldFrame>(&f, 1)));
+    writes.uniform_texel_buffer(binding_boxes, m.instance_texels);
 
     const WorldPush push{view_projection_matrix, glm::vec4(view.camera.position, 1.0f)};
     const bool art_on = levels || art.dither || colors;
     m.target.begin(cmd, {{0.0f, 0.0f, 0.0f, 1.0f}});
     std::uint32_t first = 0;
+    bool pushed = false;
     for (std::size_t d = 0; d < m.faces.size(); ++d) {
         const auto count = std::uint32_t(m.faces[d].size());
         if (count) {
             cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on));
-            cmd.push_descriptors(writes);
-            cmd.push_constants(push);
-            cmd.bind_vertex_buffer(m.instances.buffer());
-            cmd.draw(6, count, 0, first);
+            // Descriptors and push constants once: every pipeline here has the same layout, so
+            // they stay bound across the binds. (Each push cost lavapipe about 1 ms with the
+            // GI texel buffers in it, 10 ms a frame for the 10 groups.)
+            if (!pushed) {
+                cmd.push_descriptors(writes);
+                cmd.push_constants(push);
+                pushed = true;
+            }
+            cmd.draw(6 * count, 1, 6 * first, 0);
         }
         first += count;
     }
     m.target.end(cmd);
+
 }
 
 } // namespace lantern::game

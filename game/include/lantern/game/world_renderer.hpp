@@ -53,7 +53,8 @@ enum class Material : int {
     glow = 3,   // unlit: color * emissive only (flames, crystals' cores, the cursor)
 };
 
-// One box of the world (48 bytes: three vec4s, read as per-instance vertex attributes).
+// One box of the world (48 bytes: three vec4s, which game_world.vert.glsl reads as three
+// RGBA32F texels of a uniform texel buffer).
 // The ground is a box of zero height with only its top face. Boxes are axis-aligned.
 struct BoxInstance {
     glm::vec3 center{0.0f};

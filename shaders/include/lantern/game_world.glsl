@@ -1,0 +1,94 @@
+// The game world shaders' shared inputs (game_world.vert.glsl and game_world.frag.glsl): the
+// specialisation constants, the frame constants `pc` (mirrored by WorldFrame in
+// game/src/world_renderer.cpp), the GI texel buffers, and the functions the shading library
+// (shading.glsl, the twin of engine/gi/src/shading.cpp) asks its includer for. GI textures:
+// uniform texel buffers, texel (x, y) at y * pitch + x (gi_common.glsl texel_index); absent
+// ones are bound to a small dummy buffer and flagged absent in pc.gi.y.
+#ifndef LANTERN_GAME_WORLD_GLSL
+#define LANTERN_GAME_WORLD_GLSL
+#extension GL_GOOGLE_include_directive : require
+#include "lantern/gi_types.glsl"
+
+// Specialisation (lavapipe executes both sides of every branch, so what is not compiled out
+// costs every pixel): the face drawn (its normal is a constant, and the routing folds), GI
+// on or off, art controls on or off.
+layout(constant_id = 0) const int FACE = 4; // 0 +x, 1 -x, 2 +z, 3 -z, 4 top
+layout(constant_id = 1) const bool HAS_GI = true;
+layout(constant_id = 2) const bool HAS_ART = false;
+// What the wall lookup answers for this draw's geometry: 0 the wall grid; 1 open ground
+// (ground boxes: only their open tiles are ever seen, walls stand on the others); 2 wall
+// (the sides and tops of wall boxes: they are on wall tiles). With 1 or 2 the routing folds at
+// compile time to the branch it would take for every visible pixel.
+layout(constant_id = 3) const int WALL_LOOKUP = 0;
+
+layout(std140, set = 0, binding = 0) uniform WorldFrame {
+    vec4 window;       // gi_shading.window: min x, min z (world), width, height (texels)
+    vec4 config;       // gi_shading.config: resolution, tone map, white point, angle scale
+    ivec4 grid;        // wall grid width, height, origin x, origin z
+    ivec4 grid_phase;  // toroidal phase (x, z), 0, 0
+    ivec4 gi;          // x: texel pitch, y: presence bits (bit GI_*), z: sun count, w: 1 = GI (HAS_GI)
+    ivec4 art;         // x: posterize levels (0 off), y: dither, z: palette colours (0 off), w: pattern
+                       // (x, y, z all 0: HAS_ART is false)
+    vec4 art_params;   // x: dither amplitude (encoded units)
+    vec4 palette[16];  // sRGB-encoded palette colours
+    GpuDirectionalLight suns[8];
+} pc;
+
+layout(set = 0, binding = 1) uniform usamplerBuffer u_walls;
+layout(set = 0, binding = 2) uniform samplerBuffer u_direct;
+layout(set = 0, binding = 3) uniform samplerBuffer u_indirect;
+layout(set = 0, binding = 4) uniform samplerBuffer u_ao;
+layout(set = 0, binding = 5) uniform samplerBuffer u_shadow;
+layout(set = 0, binding = 6) uniform samplerBuffer u_wall_direct_px;
+layout(set = 0, binding = 7) uniform samplerBuffer u_wall_direct_nx;
+layout(set = 0, binding = 8) uniform samplerBuffer u_wall_direct_pz;
+layout(set = 0, binding = 9) uniform samplerBuffer u_wall_direct_nz;
+layout(set = 0, binding = 10) uniform samplerBuffer u_wall_indirect_px;
+layout(set = 0, binding = 11) uniform samplerBuffer u_wall_indirect_nx;
+layout(set = 0, binding = 12) uniform samplerBuffer u_wall_indirect_pz;
+layout(set = 0, binding = 13) uniform samplerBuffer u_wall_indirect_nz;
+
+#include "lantern/gi_walls.glsl"
+#include "lantern/shading.glsl"
+
+// ---- the shading library's inputs
+
+bool gi_has(int t) { return ((uint(pc.gi.y) >> uint(t)) & 1u) != 0u; }
+vec4 gi_fetch(int t, ivec2 texel) {
+    int index = texel.y * pc.gi.x + texel.x;
+    if (t == GI_DIRECT) return texelFetch(u_direct, index);
+    if (t == GI_INDIRECT) return texelFetch(u_indirect, index);
+    if (t == GI_AO) return texelFetch(u_ao, index);
+    if (t == GI_SHADOW) return texelFetch(u_shadow, index);
+    if (t == GI_WALL_DIRECT + 0) return texelFetch(u_wall_direct_px, index);
+    if (t == GI_WALL_DIRECT + 1) return texelFetch(u_wall_direct_nx, index);
+    if (t == GI_WALL_DIRECT + 2) return texelFetch(u_wall_direct_pz, index);
+    if (t == GI_WALL_DIRECT + 3) return texelFetch(u_wall_direct_nz, index);
+    if (t == GI_WALL_INDIRECT + 0) return texelFetch(u_wall_indirect_px, index);
+    if (t == GI_WALL_INDIRECT + 1) return texelFetch(u_wall_indirect_nx, index);
+    if (t == GI_WALL_INDIRECT + 2) return texelFetch(u_wall_indirect_pz, index);
+    return texelFetch(u_wall_indirect_nz, index);
+}
+// The vertex stage (the per-face wall-top light) looks at the neighbouring tiles too: it
+// always asks the grid.
+#ifdef LANTERN_GAME_WORLD_GRID_LOOKUP
+bool gi_wall_tile(ivec2 tile) { return is_wall(tile); }
+#else
+bool gi_wall_tile(ivec2 tile) { return WALL_LOOKUP == 1 ? false : WALL_LOOKUP == 2 ? true : is_wall(tile); }
+#endif
+int gi_sun_count() { return pc.gi.z; }
+GpuDirectionalLight gi_sun(int i) { return pc.suns[i]; }
+
+// The light arriving at a wall box's top: the same for the whole face (the shading library's
+// wall-top routing depends only on the tile), so the vertex stage computes it at the top's
+// centre and the fragment stage takes it as it is. (Per pixel, its nine wall lookups and nine
+// fetches made the whole frame's raster 2.5x slower on lavapipe; a compute pass per tile
+// instead measured no faster than this, its dispatch costing what it saved.)
+const bool WALL_TOP_PER_FACE = FACE == 4 && WALL_LOOKUP == 2;
+
+void set_gi_shading() {
+    gi_shading.window = pc.window;
+    gi_shading.config = pc.config;
+}
+
+#endif
