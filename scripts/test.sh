@@ -22,7 +22,12 @@ if [ "${LANTERN_TEST_SANITIZERS:-1}" != "0" ]; then
     # on its own threads inside the process, which ASan slows tenfold and TSan reports as
     # races inside Mesa. The GPU tests then report themselves skipped; every CPU path (the
     # C++ reference backend included) still runs under the sanitizers. See docs/testing.md.
-    labels='core|profile|jobs|ecs|scene|gi_reference|gi_gpu|systems|transport|game'
+    # Anchored: ctest matches labels as regular expressions ('game' alone would take in
+    # game_gpu and game_app, which run the game executable). Only these suites are built.
+    labels='^(core|profile|jobs|ecs|scene|gi_reference|gi_gpu|systems|transport|game)$'
+    export LANTERN_BUILD_TARGETS="lantern_core_tests lantern_profile_tests lantern_jobs_tests lantern_ecs_tests
+        lantern_scene_tests lantern_gi_reference_tests lantern_gi_gpu_tests lantern_systems_tests
+        lantern_transport_tests lantern_game_logic_tests"
     export VK_DRIVER_FILES=/nonexistent/lantern-sanitizer-run.json
     echo "== build + test: ASan+UBSan (build-asan/, labels $labels)"
     bash scripts/build.sh build-asan -DLANTERN_SANITIZE=address -DLANTERN_BUILD_BENCHMARKS=OFF
@@ -32,6 +37,6 @@ if [ "${LANTERN_TEST_SANITIZERS:-1}" != "0" ]; then
     bash scripts/build.sh build-tsan -DLANTERN_SANITIZE=thread -DLANTERN_BUILD_BENCHMARKS=OFF
     TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
         ctest --test-dir build-tsan --output-on-failure -j "$jobs" -L "$labels"
-    unset VK_DRIVER_FILES
+    unset VK_DRIVER_FILES LANTERN_BUILD_TARGETS
 fi
 echo "== all tests passed in $(( $(date +%s) - start )) s"
