@@ -45,7 +45,7 @@ struct alignas(16) WorldPush {
 static_assert(sizeof(WorldPush) == 80);
 
 static_assert(offsetof(BoxInstance, half) == 16 && offsetof(BoxInstance, color) == 32,
-              "BoxInstance must match the vertex attributes");
+              "BoxInstance must match game_world.vert.glsl's three texels per box");
 
 constexpr int face_count = 5;                 // +x, -x, +z, -z, top (shader FACE)
 constexpr int face_top_index = 4;

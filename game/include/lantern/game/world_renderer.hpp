@@ -1,5 +1,5 @@
 // The game's world renderer: the world as boxes (walls, the ground, props, torches, the
-// player, the cursor highlight), drawn with one instanced raster draw into the low-resolution
+// player, the cursor highlight), drawn face group by face group into the low-resolution
 // pixel-art target (render::RenderTarget, 480x270 RGBA8 sRGB + D32 by default) and lit by the
 // GI textures that gi::vk::Renderer computed this frame. docs/game.md, "World rendering".
 //
@@ -131,9 +131,10 @@ class WorldRenderer {
     WorldRenderer& operator=(const WorldRenderer&) = delete;
 
     // Records the world into target(): a barrier after the GI compute (and transfer) writes,
-    // the instance and frame-constant uploads, then one rendering scope: clear, the boxes in
-    // one instanced draw (ground boxes last so walls reject the floor behind them early),
-    // the art controls in the fragment shader. Outside any rendering scope; the caller submits.
+    // the box and frame-constant uploads, then one rendering scope: clear, the visible faces
+    // in one draw per face group (one pipeline each; the descriptors pushed once; ground
+    // last so walls reject the floor behind them early), the art controls in the fragment
+    // shader. Outside any rendering scope; the caller submits.
     // The target's colour image is left in TRANSFER_SRC_OPTIMAL (render::RenderTarget).
     void record(gpu::CommandList& cmd, const WorldView& view, const DrawList& list);
 
