@@ -25,23 +25,10 @@ layout(std430, binding = 15) writeonly buffer Out { uint texels[]; } o_lit;
 
 #include "lantern/gi_shadow.glsl"
 #include "lantern/shading.glsl"
+#include "lantern/gi_texture_fetch.glsl"
 
 bool gi_has(int t) { return ((uint(pc.params0.y) >> uint(t)) & 1u) != 0u; }
-vec4 gi_fetch(int t, ivec2 texel) {
-    int index = texel_index(texel.x, texel.y);
-    if (t == GI_DIRECT) return texelFetch(u_direct, index);
-    if (t == GI_INDIRECT) return texelFetch(u_indirect, index);
-    if (t == GI_AO) return texelFetch(u_ao, index);
-    if (t == GI_SHADOW) return texelFetch(u_shadow, index);
-    if (t == GI_WALL_DIRECT + 0) return texelFetch(u_wall_direct_px, index);
-    if (t == GI_WALL_DIRECT + 1) return texelFetch(u_wall_direct_nx, index);
-    if (t == GI_WALL_DIRECT + 2) return texelFetch(u_wall_direct_pz, index);
-    if (t == GI_WALL_DIRECT + 3) return texelFetch(u_wall_direct_nz, index);
-    if (t == GI_WALL_INDIRECT + 0) return texelFetch(u_wall_indirect_px, index);
-    if (t == GI_WALL_INDIRECT + 1) return texelFetch(u_wall_indirect_nx, index);
-    if (t == GI_WALL_INDIRECT + 2) return texelFetch(u_wall_indirect_pz, index);
-    return texelFetch(u_wall_indirect_nz, index);
-}
+vec4 gi_fetch(int t, ivec2 texel) { return gi_texture_fetch(t, texel_index(texel.x, texel.y)); }
 bool gi_wall_tile(ivec2 tile) { return is_wall(tile); }
 int gi_sun_count() { return pc.counts.z; }
 GpuDirectionalLight gi_sun(int i) { return u_suns.suns[i]; }

@@ -50,25 +50,12 @@ layout(set = 0, binding = 13) uniform samplerBuffer u_wall_indirect_nz;
 
 #include "lantern/gi_walls.glsl"
 #include "lantern/shading.glsl"
+#include "lantern/gi_texture_fetch.glsl"
 
 // ---- the shading library's inputs
 
 bool gi_has(int t) { return ((uint(pc.gi.y) >> uint(t)) & 1u) != 0u; }
-vec4 gi_fetch(int t, ivec2 texel) {
-    int index = texel.y * pc.gi.x + texel.x;
-    if (t == GI_DIRECT) return texelFetch(u_direct, index);
-    if (t == GI_INDIRECT) return texelFetch(u_indirect, index);
-    if (t == GI_AO) return texelFetch(u_ao, index);
-    if (t == GI_SHADOW) return texelFetch(u_shadow, index);
-    if (t == GI_WALL_DIRECT + 0) return texelFetch(u_wall_direct_px, index);
-    if (t == GI_WALL_DIRECT + 1) return texelFetch(u_wall_direct_nx, index);
-    if (t == GI_WALL_DIRECT + 2) return texelFetch(u_wall_direct_pz, index);
-    if (t == GI_WALL_DIRECT + 3) return texelFetch(u_wall_direct_nz, index);
-    if (t == GI_WALL_INDIRECT + 0) return texelFetch(u_wall_indirect_px, index);
-    if (t == GI_WALL_INDIRECT + 1) return texelFetch(u_wall_indirect_nx, index);
-    if (t == GI_WALL_INDIRECT + 2) return texelFetch(u_wall_indirect_pz, index);
-    return texelFetch(u_wall_indirect_nz, index);
-}
+vec4 gi_fetch(int t, ivec2 texel) { return gi_texture_fetch(t, texel.y * pc.gi.x + texel.x); }
 // The vertex stage (the per-face wall-top light) looks at the neighbouring tiles too: it
 // always asks the grid.
 #ifdef LANTERN_GAME_WORLD_GRID_LOOKUP
