@@ -9,6 +9,7 @@ PACKAGES=(
     libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
     glslang-tools glslang-dev spirv-tools
     libglfw3-dev libglm-dev libimgui-dev libstb-dev nlohmann-json3-dev
+    libxrandr-dev libxrender-dev
     xvfb xauth
     xdotool x11-apps
 )

@@ -63,6 +63,8 @@ mode (default: a window when a display can open, else the headless demo)
   --out DIR             headless output folder (default lantern-demo)
   --screenshots N       screenshots over the run (default 6, 0 for none)
   --bench               print per-system and per-pass percentiles (headless benchmark)
+  --status-file PATH    after each windowed frame, write the frame number, player position,
+                        mouse, buttons and saves as one JSON line (for scripts and tests)
 
 presentation
   --size WxH            window size (default 1280x720)
@@ -130,6 +132,10 @@ Result<GameOptions> parse_options(int argc, const char* const* argv, bool* help)
             auto v = value("--save-file");
             if (!v || v->empty()) return need("--save-file");
             o.save_file = *v;
+        } else if (a == "--status-file") {
+            auto v = value("--status-file");
+            if (!v || v->empty()) return need("--status-file");
+            o.status_file = *v;
         } else if (a == "--window") {
             o.mode = RunMode::window;
         } else if (a == "--headless") {

@@ -35,6 +35,11 @@ std::filesystem::path shared_dir() {
     return {};
 }
 
+bool gpu_required() {
+    const char* v = std::getenv("LANTERN_REQUIRE_GPU");
+    return v && std::string(v) == "1";
+}
+
 std::string read_file(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::stringstream ss;

@@ -2,6 +2,8 @@
 // ../shared (skipped cleanly when absent).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 
@@ -27,4 +29,22 @@ std::filesystem::path shared_dir();
 
 std::string read_file(const std::filesystem::path& path);
 
+// True when LANTERN_REQUIRE_GPU=1 (the README's test command sets it, since set-up always
+// installs lavapipe and Xvfb): a test that finds no Vulkan device or no X server then fails
+// instead of skipping. The sanitizer runs, which hide the Vulkan driver on purpose, leave it
+// unset and skip.
+bool gpu_required();
+
 } // namespace lantern::test
+
+// For a test that needs a Vulkan device or an X server and has none: skips with the reason
+// (CTest reports it skipped), or fails with it under LANTERN_REQUIRE_GPU=1. Returns from the
+// calling function, like GTEST_SKIP().
+#define LANTERN_SKIP_NO_GPU(reason)                                                               \
+    do {                                                                                         \
+        if (::lantern::test::gpu_required()) {                                                   \
+            GTEST_FAIL() << "LANTERN_REQUIRE_GPU=1, but: " << reason;                            \
+        } else {                                                                                 \
+            GTEST_SKIP() << reason;                                                              \
+        }                                                                                        \
+    } while (false)

@@ -305,9 +305,12 @@ TEST(Saves, KillDuringSaveLeavesThePreviousSaveLoadable) {
     test::TempDir dir;
     const std::string path = dir.file("world.save.json");
     ASSERT_TRUE(write_save(path, a));
-    // Kills are aimed inside a save: the parent waits until the child has opened a new
-    // temporary file (a save is under way) before it kills, so every round tests the
-    // window between creating the temporary file and renaming it over the save.
+    // Kills are aimed inside a save, by conditions only (no sleeps, so a busy machine changes
+    // nothing): the child reports each finished save through a pipe; on odd rounds the parent
+    // first waits for two more finished saves (both texts on disk in turn). Then it waits
+    // until the child has opened a new temporary file (a save is under way), stops the child
+    // (SIGSTOP freezes it where it is), checks that the temporary file is still there (else the
+    // save finished in between: continue the child and wait for the next one) and kills it.
     const auto temporaries = [&] {
         int n = 0;
         for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
@@ -315,24 +318,42 @@ TEST(Saves, KillDuringSaveLeavesThePreviousSaveLoadable) {
         return n;
     };
     int torn = 0;
-    int kills_inside = 0;
     for (int round = 0; round < 12; ++round) {
-        const int before = temporaries();
+        int saves[2];
+        ASSERT_EQ(pipe(saves), 0);
         const pid_t child = fork();
         ASSERT_GE(child, 0);
         if (child == 0) {
-            for (int i = 0;; ++i)
+            close(saves[0]);
+            for (int i = 0;; ++i) {
                 if (!write_save(path, i % 2 ? a : b)) _exit(3);
+                const char done = 1;
+                if (write(saves[1], &done, 1) != 1) _exit(4);
+            }
         }
-        // Let a few saves complete first on odd rounds, so both texts are on disk in turn.
-        if (round % 2) std::this_thread::sleep_for(std::chrono::milliseconds(5 + round));
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-        while (temporaries() == before && std::chrono::steady_clock::now() < deadline) {}
+        close(saves[1]);
+        for (int finished = 0; round % 2 && finished < 2; ++finished) {
+            char done = 0;
+            ASSERT_EQ(read(saves[0], &done, 1), 1) << "the saving child stopped by itself";
+        }
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+        bool inside = false;
+        while (!inside && std::chrono::steady_clock::now() < deadline) {
+            const int before = temporaries();
+            while (temporaries() == before && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+            ASSERT_EQ(kill(child, SIGSTOP), 0);
+            int stopped = 0;
+            ASSERT_EQ(waitpid(child, &stopped, WUNTRACED), child);
+            ASSERT_TRUE(WIFSTOPPED(stopped)) << "the saving child stopped by itself";
+            inside = temporaries() > before;
+            if (!inside) ASSERT_EQ(kill(child, SIGCONT), 0);
+        }
         kill(child, SIGKILL);
         int status = 0;
         waitpid(child, &status, 0);
+        close(saves[0]);
         ASSERT_TRUE(WIFSIGNALED(status)) << "the saving child stopped by itself";
-        kills_inside += temporaries() > before;
+        EXPECT_TRUE(inside) << "round " << round << ": no kill landed inside a save within 5 minutes";
         const std::string on_disk = test::read_file(path);
         if (on_disk != text_a && on_disk != text_b) ++torn;
         auto loaded = read_save(path);
@@ -340,7 +361,4 @@ TEST(Saves, KillDuringSaveLeavesThePreviousSaveLoadable) {
         EXPECT_EQ(loaded->edits.size(), a.edits.size());
     }
     EXPECT_EQ(torn, 0);
-    // The kills did land inside saves: their temporary files were left behind (a kill can
-    // still race the rename, so not every round has to leave one).
-    EXPECT_GT(kills_inside, 0);
 }

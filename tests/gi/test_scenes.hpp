@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -170,6 +171,20 @@ inline std::vector<NamedScene> comparison_scenes() {
 }
 
 // A window of a real map with lights spread over its floor (skipped without ../shared).
+// One of comparison_scenes() by its name; throws (the test fails with the name) when absent,
+// so tests never depend on the scenes' order.
+inline NamedScene comparison_scene(const std::string& name) {
+    for (NamedScene& s : comparison_scenes())
+        if (s.name == name) return std::move(s);
+    throw std::out_of_range("no comparison scene named '" + name + "'");
+}
+
+inline std::vector<std::string> comparison_scene_names() {
+    std::vector<std::string> names;
+    for (const NamedScene& s : comparison_scenes()) names.push_back(s.name);
+    return names;
+}
+
 inline std::optional<NamedScene> map_scene(const std::string& file, glm::vec2 center, std::uint32_t seed) {
     auto shared = lantern::test::shared_dir();
     if (shared.empty()) return std::nullopt;

@@ -54,7 +54,7 @@ TEST_F(Device, ReportsNameTypeAndCapabilities) {
 TEST(DeviceSelection, EnvOverrideByNameIsCaseInsensitiveAndByIndex) {
     std::string why;
     gpu::Device* shared = shared_or_skip_reason(why);
-    if (!shared) GTEST_SKIP() << why;
+    if (!shared) LANTERN_SKIP_NO_GPU(why);
     std::string upper = shared->name();
     std::transform(upper.begin(), upper.end(), upper.begin(),
                    [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
@@ -76,7 +76,7 @@ TEST(DeviceSelection, EnvOverrideByNameIsCaseInsensitiveAndByIndex) {
 TEST(DeviceSelection, EnvOverrideMatchingNothingIsAClearError) {
     std::string why;
     gpu::Device* shared = shared_or_skip_reason(why);
-    if (!shared) GTEST_SKIP() << why;
+    if (!shared) LANTERN_SKIP_NO_GPU(why);
     ScopedEnv env("LANTERN_VK_DEVICE", "no-such-gpu-4711");
     gpu::DeviceOptions options;
     options.device = shared->name(); // the environment wins over the option
@@ -91,7 +91,7 @@ TEST(DeviceSelection, EnvOverrideMatchingNothingIsAClearError) {
 TEST(DeviceSelection, OptionSelectsWhenTheEnvironmentIsUnset) {
     std::string why;
     gpu::Device* shared = shared_or_skip_reason(why);
-    if (!shared) GTEST_SKIP() << why;
+    if (!shared) LANTERN_SKIP_NO_GPU(why);
     ScopedEnv env("LANTERN_VK_DEVICE", nullptr);
     gpu::DeviceOptions options;
     options.device = "no-such-gpu-4711";

@@ -45,7 +45,7 @@ gpu::Device* shared_gpu_device(std::string* why_not) {
 void GpuTest::SetUp() {
     std::string why;
     device_ = shared_gpu_device(&why);
-    if (!device_) GTEST_SKIP() << why;
+    if (!device_) LANTERN_SKIP_NO_GPU(why);
     device_->clear_validation_messages();
 }
 

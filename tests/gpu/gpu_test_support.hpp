@@ -14,6 +14,7 @@
 // messages their destruction causes are caught too.
 #pragma once
 
+#include "common/test_support.hpp"
 #include "lantern/gpu/device.hpp"
 
 #include <gtest/gtest.h>

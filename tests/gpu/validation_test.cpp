@@ -14,7 +14,7 @@ class Validation : public lantern::test::GpuTest {};
 } // namespace
 
 TEST_F(Validation, OutOfRangeBufferBarrierIsCountedAndKept) {
-    if (!device().validation_enabled()) GTEST_SKIP() << "VK_LAYER_KHRONOS_validation is not installed";
+    if (!device().validation_enabled()) LANTERN_SKIP_NO_GPU("VK_LAYER_KHRONOS_validation is not installed");
     ASSERT_EQ(device().validation_message_count(), 0u);
     gpu::Buffer buffer = device().create_buffer({256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                  gpu::MemoryKind::device_local, "barrier target"});

@@ -150,14 +150,17 @@ INSTANTIATE_TEST_SUITE_P(Workers, JobSystemWorkers, ::testing::Values(0, 1, 2, 3
 
 TEST(JobSystem, EveryParallelForIsSharedAcrossThreads) {
     // Regression: a steal cursor that skipped victims left workers idle after their first steal.
+    // Every job holds its thread until a second thread has taken one of the round's jobs: a
+    // condition, not a time, so a busy machine only makes the test slower. The deadline turns
+    // a scheduler that never shares into a failure instead of a hang.
     JobSystem jobs(workers(2));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     for (int round = 0; round < 20; ++round) {
         std::vector<std::atomic<int>> per_thread(jobs.thread_count());
+        std::atomic<int> threads_seen{0};
         jobs.parallel_for("spin", 0, 24, 1, [&](std::uint32_t, std::uint32_t, std::uint32_t w) {
-            per_thread[w].fetch_add(1);
-            auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(500);
-            while (std::chrono::steady_clock::now() < until) {
-            }
+            if (per_thread[w].fetch_add(1) == 0) threads_seen.fetch_add(1);
+            while (threads_seen.load() < 2 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
         });
         int threads_used = 0;
         for (auto& c : per_thread) threads_used += c.load() > 0;
@@ -197,11 +200,14 @@ TEST(JobSystem, JobsRecordProfilerSpansOnWorkerLanes) {
     {
         JobSystem jobs(workers(2));
         profile::begin_frame();
-        // Long enough jobs that more than one thread takes part.
-        jobs.parallel_for("busy", 0, 64, 1, [](std::uint32_t, std::uint32_t, std::uint32_t) {
-            auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(2);
-            while (std::chrono::steady_clock::now() < until) {
-            }
+        // Every job holds its thread until a second thread has run one (a condition, not a
+        // time: see EveryParallelForIsSharedAcrossThreads), so more than one lane takes part.
+        std::vector<std::atomic<int>> per_thread(jobs.thread_count());
+        std::atomic<int> threads_seen{0};
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        jobs.parallel_for("busy", 0, 64, 1, [&](std::uint32_t, std::uint32_t, std::uint32_t w) {
+            if (per_thread[w].fetch_add(1) == 0) threads_seen.fetch_add(1);
+            while (threads_seen.load() < 2 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
         });
         profile::end_frame();
     }

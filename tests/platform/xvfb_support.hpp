@@ -21,6 +21,7 @@
 // is given explicitly (x_focus).
 #pragma once
 
+#include "common/test_support.hpp"
 #include "lantern/core/result.hpp"
 
 #include <gtest/gtest.h>
@@ -53,7 +54,7 @@ std::uint64_t x11_window(const platform::Window& window);
 // Polls `window` (Window::poll) until `done()` holds after a poll; false after `timeout`.
 // X events arrive asynchronously: tests wait for the state they expect, with a deadline.
 bool poll_until(platform::Window& window, const std::function<bool()>& done,
-                std::chrono::milliseconds timeout = std::chrono::seconds(5));
+                std::chrono::milliseconds timeout = std::chrono::seconds(60));
 
 // --- Input (xdotool; each call returns once the server processed it) ---------------------------
 // Gives `window` the keyboard focus (XSetInputFocus: no window manager needed).
@@ -93,7 +94,7 @@ Result<std::string> run_tool(const std::vector<std::string>& argv);
 #define LANTERN_REQUIRE_XVFB()                                                                     \
     do {                                                                                           \
         if (auto lantern_xvfb_ = ::lantern::test::xvfb_display(); !lantern_xvfb_)                  \
-            GTEST_SKIP() << lantern_xvfb_.error().message;                                         \
+            LANTERN_SKIP_NO_GPU(lantern_xvfb_.error().message);                                         \
         if (auto lantern_missing_ = ::lantern::test::missing_x_tools(); !lantern_missing_.empty()) \
-            GTEST_SKIP() << "missing X tools: " << lantern_missing_ << " (run scripts/setup.sh)";  \
+            LANTERN_SKIP_NO_GPU("missing X tools: " << lantern_missing_ << " (run scripts/setup.sh)");  \
     } while (false)

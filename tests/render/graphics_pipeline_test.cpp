@@ -196,7 +196,7 @@ TEST_F(GraphicsPipelineTest, DrawOutsideARenderingScopeAsserts) {
 TEST(GraphicsPipelineContracts, RasterNeedsAGraphicsDevice) {
     std::string why;
     gpu::Device* compute_only = test::shared_gpu_device(&why); // DeviceOptions::graphics off
-    if (!compute_only) GTEST_SKIP() << why;
+    if (!compute_only) LANTERN_SKIP_NO_GPU(why);
     EXPECT_FALSE(compute_only->capabilities().graphics);
     GTEST_FLAG_SET(death_test_style, "threadsafe");
     EXPECT_DEATH(

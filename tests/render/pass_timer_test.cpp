@@ -18,7 +18,7 @@ using PassTimerTest = test::RenderTest;
 
 TEST_F(PassTimerTest, EachFrameIsReportedOnceWithItsPasses) {
     auto timer = PassTimer::create(device(), 4);
-    if (!timer) GTEST_SKIP() << timer.error().message;
+    if (!timer) LANTERN_SKIP_NO_GPU(timer.error().message);
     RenderTarget target = RenderTarget::create(
         device(), {64, 32, VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT, "timed"});
     QuadBatch batch = QuadBatch::create(device(), {target.color_format(), target.depth_format()});

@@ -78,7 +78,7 @@ class PresentTest : public test::WindowedTest {
 
     // Captures the window until it shows the expected frame (presentation is asynchronous)
     // or `timeout` passes; reports the first mismatches.
-    void expect_window_shows_target(std::chrono::milliseconds timeout = 5000ms) {
+    void expect_window_shows_target(std::chrono::milliseconds timeout = 60000ms) {
         device().wait_idle();
         const Rgba8Image source = target_.read_back();
         const auto deadline = std::chrono::steady_clock::now() + timeout;
@@ -272,7 +272,7 @@ TEST_F(PresentTest, FrameLoopRecordsPassTimings) {
     if (!open({640, 360})) return;
     make_scene();
     auto timer = PassTimer::create(device());
-    if (!timer) GTEST_SKIP() << timer.error().message;
+    if (!timer) LANTERN_SKIP_NO_GPU(timer.error().message);
     std::vector<FrameTimings> timings;
     for (std::uint64_t f = 0; f < 6; ++f) {
         ASSERT_TRUE(present_frame(window().framebuffer_size(), nullptr, &*timer, f));

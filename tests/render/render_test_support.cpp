@@ -36,7 +36,7 @@ std::string describe_validation(const gpu::Device& device) {
 
 void RenderTest::SetUp() {
     SharedDevice& s = shared();
-    if (!s.device) GTEST_SKIP() << s.error;
+    if (!s.device) LANTERN_SKIP_NO_GPU(s.error);
     device_ = s.device.get();
     device_->clear_validation_messages();
 }
@@ -48,9 +48,9 @@ void RenderTest::TearDown() {
 }
 
 void WindowedTest::open_or_skip(platform::Extent size, bool vsync) {
-    if (auto display = xvfb_display(); !display) GTEST_SKIP() << display.error().message;
+    if (auto display = xvfb_display(); !display) LANTERN_SKIP_NO_GPU(display.error().message);
     if (auto missing = missing_x_tools(); !missing.empty())
-        GTEST_SKIP() << "missing X tools: " << missing << " (run scripts/setup.sh)";
+        LANTERN_SKIP_NO_GPU("missing X tools: " << missing << " (run scripts/setup.sh)");
     auto window = platform::Window::create(
         {.title = "lantern render test", .width = size.width, .height = size.height});
     if (!window) {
@@ -60,9 +60,9 @@ void WindowedTest::open_or_skip(platform::Extent size, bool vsync) {
     window_.emplace(std::move(window).value());
     gpu::DeviceOptions options{.validation = true, .application_name = "lantern windowed tests"};
     if (auto presentable = render::add_presentation(options, *window_); !presentable)
-        GTEST_SKIP() << presentable.error().message;
+        LANTERN_SKIP_NO_GPU(presentable.error().message);
     auto device = gpu::Device::create(options);
-    if (!device) GTEST_SKIP() << device.error().message;
+    if (!device) LANTERN_SKIP_NO_GPU(device.error().message);
     device_ = std::move(device).value();
     auto surface = window_->create_surface(*device_);
     if (!surface) {

@@ -9,6 +9,7 @@
 // Vulkan device are missing. Validation messages fail the test too.
 #pragma once
 
+#include "common/test_support.hpp"
 #include "lantern/gpu/device.hpp"
 #include "lantern/platform/window.hpp"
 #include "lantern/render/render_target.hpp"

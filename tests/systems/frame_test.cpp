@@ -78,7 +78,7 @@ struct Harness {
 class FrameCaching : public ::testing::TestWithParam<bool> {
   protected:
     void SetUp() override {
-        if (GetParam() && !test::shared_gpu_device()) GTEST_SKIP() << "no Vulkan device";
+        if (GetParam() && !test::shared_gpu_device()) LANTERN_SKIP_NO_GPU("no Vulkan device");
     }
     gpu::Device* device() { return GetParam() ? test::shared_gpu_device() : nullptr; }
 };
@@ -169,7 +169,7 @@ TEST(FrameDeterminism, SameTexturesForZeroOneAndTwoWorkers) {
     EXPECT_EQ(run_scripted(1, nullptr), reference);
     EXPECT_EQ(run_scripted(2, nullptr), reference);
     gpu::Device* d = test::shared_gpu_device();
-    if (!d) GTEST_SKIP() << "no Vulkan device: reference backend checked only";
+    if (!d) LANTERN_SKIP_NO_GPU("no Vulkan device: reference backend checked only");
     auto vk0 = run_scripted(0, d);
     EXPECT_EQ(run_scripted(1, d), vk0);
     EXPECT_EQ(run_scripted(2, d), vk0);
@@ -177,7 +177,7 @@ TEST(FrameDeterminism, SameTexturesForZeroOneAndTwoWorkers) {
 
 TEST(FrameProfiling, SystemsOnWorkerLanesAndPassesOnTheGpuLane) {
     gpu::Device* d = test::shared_gpu_device();
-    if (!d) GTEST_SKIP() << "no Vulkan device";
+    if (!d) LANTERN_SKIP_NO_GPU("no Vulkan device");
     profile::reset();
     profile::set_enabled(true);
     {

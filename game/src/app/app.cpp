@@ -100,6 +100,7 @@ class Game {
     void collect_raster_timings();
     void save(Session& s);
     void export_trace();
+    void write_status(Session& s);
     int run_window();
     int run_headless();
     Result<void> write_headless_report(const std::vector<double>& frame_ms, const std::vector<bool>& walking,
@@ -123,6 +124,9 @@ class Game {
     double last_mine_time_ = -1.0;
     int selected_item_ = 1; // torch
     int headless_frame_ = 0;
+    std::uint64_t window_frames_ = 0; // windowed frames stepped (--status-file)
+    int saves_done_ = 0;              // successful saves (--status-file)
+    bool status_failed_ = false;      // the status file could not be written (said once)
     bool quit_ = false;
     std::optional<SaveState> pending_load_;
     std::string message_;
@@ -440,9 +444,30 @@ void Game::save(Session& s) {
         LANTERN_LOG_ERROR("%s", message_.c_str());
         return;
     }
+    ++saves_done_;
     message_ = "saved to " + options_.save_file + " (" + std::to_string(state.entities.size()) + " lights and props, " +
                std::to_string(state.edits.size()) + " edited chunks)";
     LANTERN_LOG_INFO("%s", message_.c_str());
+}
+
+// One JSON line, replaced atomically after each windowed frame: what a script driving the game
+// through real input waits on (the frame that saw its input, where the player is) instead of
+// sleeping for a guessed time.
+void Game::write_status(Session& s) {
+    glm::vec2 player(0.0f);
+    s.world.view<Player, Transform>().each([&](const Player&, const Transform& t) { player = {t.position.x, t.position.z}; });
+    const platform::InputState& in = window_->input();
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "{\"frame\": %llu, \"player\": [%.4f, %.4f], \"mouse\": [%.1f, %.1f], \"buttons\": [%d, %d], "
+                  "\"item\": %d, \"saves\": %d}\n",
+                  static_cast<unsigned long long>(window_frames_), double(player.x), double(player.y),
+                  double(in.mouse_position().x), double(in.mouse_position().y), int(in.down(platform::MouseButton::left)),
+                  int(in.down(platform::MouseButton::right)), selected_item_ + 1, saves_done_);
+    if (auto ok = write_file_atomic(options_.status_file, std::string(line)); !ok && !status_failed_) {
+        status_failed_ = true;
+        LANTERN_LOG_ERROR("status file: %s", ok.error().message.c_str());
+    }
 }
 
 void Game::export_trace() {
@@ -462,6 +487,8 @@ int Game::run_window() {
         profile::begin_frame();
         session_->frame->step();
         profile::end_frame();
+        ++window_frames_;
+        if (!options_.status_file.empty()) write_status(*session_);
         if (pending_load_) {
             device_->wait_idle();
             const SaveState state = std::move(*pending_load_);
