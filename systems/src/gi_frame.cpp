@@ -1,5 +1,7 @@
 #include "lantern/systems/gi_frame.hpp"
 
+#include "lantern/gi/pass_table.hpp"
+
 #include "lantern/core/hash.hpp"
 #include "lantern/core/log.hpp"
 #include "lantern/profile/profiler.hpp"
@@ -23,10 +25,7 @@ bool pool_changed_since(ecs::World& w, ecs::Tick tick) {
 }
 
 std::uint64_t hash_window(const std::optional<gi::GiWindow>& w) {
-    Hasher h;
-    if (!w) return h.add(0).value();
-    return h.add(w->view.min_x).add(w->view.min_z).add(w->view.width).add(w->view.height).add(w->width)
-        .add(w->height).add(w->resolution).value();
+    return w ? gi::hash_window(*w) : Hasher().add(0).value();
 }
 
 template <typename T>
@@ -156,34 +155,9 @@ void gather_proxies(ecs::SystemContext& ctx, ProxyGatherState& state) {
 
 std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, const gi::PassPlan& plan,
                                                      std::uint64_t wall_version, std::uint64_t lights_hash,
-                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash, bool lit_image) {
-    using gi::Pass;
-    const scene::GiSettings& s = in.settings;
-    std::array<std::uint64_t, gi::pass_count> k{};
-    const std::uint64_t window = hash_window(in.window);
-    const bool suns = !in.directional_lights.empty();
-    auto key = [&](Pass p) -> std::uint64_t& { return k[std::size_t(p)]; };
-    key(Pass::conduction) = Hasher(window).add(wall_version).add(int(Pass::conduction)).value();
-    key(Pass::ao) = Hasher(key(Pass::conduction)).add(s.ao.radius).add(s.ao.power).add(s.ao.strength).add(s.ao.dither)
-                        .add(s.ao.enabled).value();
-    // The direct pass also depends on whether suns follow (it then writes the point set).
-    key(Pass::direct) = Hasher(window).add(wall_version).add(lights_hash).add(proxies_hash).add(s.light_softness)
-                            .add(suns).add(plan.has_walls_in_window).add(int(Pass::direct)).value();
-    key(Pass::directional) = Hasher(key(Pass::direct)).add(suns_hash).add(proxies_hash).add(in.wall_height)
-                                 .add(s.directional_angle_scale).value();
-    const std::uint64_t direct_result = suns ? key(Pass::directional) : key(Pass::direct);
-    key(Pass::emission) = Hasher(direct_result).add(s.emission_strength).value();
-    // Heat includes the blur flag: the blur works in place on heat's result, so turning it
-    // off must recompute the unblurred light.
-    key(Pass::heat) = Hasher(key(Pass::emission)).add(wall_version).add(s.heat_rounds).add(int(s.heat_scale))
-                          .add(s.diffusion_rate).add(s.diffusion_distance).add(s.range_boost)
-                          .add(s.intensity_multiplier).add(s.per_channel).add(s.segment_check).add(s.blur).value();
-    key(Pass::blur) = Hasher(key(Pass::heat)).add(int(Pass::blur)).value();
-    key(Pass::wall_indirect) = Hasher(key(Pass::heat)).add(int(Pass::wall_indirect)).value();
-    Hasher lit(direct_result);
-    for (int p = 0; p < gi::pass_count; ++p) lit.add(k[std::size_t(p)]);
-    key(Pass::lit) = lit.add(int(s.tone_map)).add(s.white_point).add(lit_image).value();
-    return k;
+                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash) {
+    const gi::InputKeys inputs{gi::hash_window(in.window), wall_version, lights_hash, proxies_hash, suns_hash};
+    return gi::derive_keys(in, plan, inputs);
 }
 
 GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const WorldSource> source,
@@ -263,8 +237,7 @@ void GiFrame::add_systems() {
         in.directional_lights = lights.suns;
         in.proxies = proxies.proxies;
         f.plan = gi::plan_passes(in, config.lit_image);
-        f.keys = pass_keys(in, f.plan, streaming_->version(), lights.hash, lights.suns_hash, proxies.hash,
-                           config.lit_image);
+        f.keys = pass_keys(in, f.plan, streaming_->version(), lights.hash, lights.suns_hash, proxies.hash);
         const ecs::Entity cam = camera();
         const GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
         for (int p = 0; p < gi::pass_count; ++p) {

@@ -56,14 +56,9 @@ class VulkanBackend final : public GiBackend {
     }
 
     std::optional<gi::Texture> read(const std::string& name) override {
-        for (int t = 0; t < int(Tex::direct_point); ++t) {
-            const Tex tex = Tex(t);
-            if (tex == Tex::heat_a || tex == Tex::heat_b || tex == Tex::heat_mask || tex == Tex::blur_temp ||
-                tex == Tex::lit)
-                continue;
-            if (name == gi::vk::tex_name(tex) && renderer_.has(tex)) return renderer_.read_back(tex);
-        }
-        return std::nullopt;
+        const std::optional<Tex> t = gi::texture_by_name(name);
+        if (!t || gi::texture_row(*t).internal || !renderer_.has(*t)) return std::nullopt;
+        return renderer_.read_back(*t);
     }
 
     std::optional<gi::Image> read_lit() override {
@@ -74,12 +69,9 @@ class VulkanBackend final : public GiBackend {
 
     std::vector<std::string> texture_names() const override {
         std::vector<std::string> out;
-        for (int t = 0; t < int(Tex::direct_point); ++t) {
-            const Tex tex = Tex(t);
-            if (tex == Tex::heat_a || tex == Tex::heat_b || tex == Tex::heat_mask || tex == Tex::blur_temp ||
-                tex == Tex::lit)
-                continue;
-            if (renderer_.has(tex)) out.push_back(gi::vk::tex_name(tex));
+        for (int t = 0; t < gi::tex_count; ++t) {
+            const gi::TextureRow& row = gi::texture_row(Tex(t));
+            if (!row.internal && renderer_.has(row.id)) out.emplace_back(row.name);
         }
         return out;
     }

@@ -346,7 +346,9 @@ TEST(Saves, KillDuringSaveLeavesThePreviousSaveLoadable) {
             ASSERT_EQ(waitpid(child, &stopped, WUNTRACED), child);
             ASSERT_TRUE(WIFSTOPPED(stopped)) << "the saving child stopped by itself";
             inside = temporaries() > before;
-            if (!inside) ASSERT_EQ(kill(child, SIGCONT), 0);
+            if (!inside) {
+                ASSERT_EQ(kill(child, SIGCONT), 0);
+            }
         }
         kill(child, SIGKILL);
         int status = 0;

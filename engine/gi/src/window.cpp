@@ -1,5 +1,7 @@
 #include "lantern/gi/window.hpp"
 
+#include "lantern/core/hash.hpp"
+
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -112,6 +114,11 @@ std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float paddin
     win.height = int(h);
     win.view = CameraView{float(snapped_x / res), float(snapped_z / res), float(w / res), float(h / res)};
     return win;
+}
+
+std::uint64_t hash_window(const GiWindow& w) {
+    return Hasher().add(w.view.min_x).add(w.view.min_z).add(w.view.width).add(w.view.height).add(w.width)
+        .add(w.height).add(w.resolution).value();
 }
 
 } // namespace lantern::gi

@@ -30,6 +30,10 @@ constexpr std::array<EnumName<ToneMap>, 4> tone_map_names{{
     {"aces", ToneMap::aces},
 }};
 
+constexpr std::array<EnumName<GiMethod>, 1> method_names{{
+    {"heat", GiMethod::heat},
+}};
+
 constexpr Range diffusion_rate_range{
     .min = 0.0,
     .max = 1.25,
@@ -55,7 +59,7 @@ struct EnumField {
     std::span<const EnumName<E>> names;
 };
 using FieldTarget =
-    std::variant<FloatField, IntField, BoolField, EnumField<HeatScale>, EnumField<ToneMap>>;
+    std::variant<FloatField, IntField, BoolField, EnumField<HeatScale>, EnumField<ToneMap>, EnumField<GiMethod>>;
 
 struct GiField {
     std::string_view key; // below "gi"; keys of nested objects joined by dots ("ao.radius")
@@ -64,8 +68,9 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 23> gi_fields(GiSettings& gi) {
+std::array<GiField, 24> gi_fields(GiSettings& gi) {
     return {{
+        {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
         {"padding", FloatField{&gi.padding, between(1.0, 8.0)}},
         {"heat_rounds", IntField{&gi.heat_rounds, {0, 100000}}},
@@ -202,6 +207,27 @@ bool read_gi_key(Reader& reader, std::string_view key, const json::Value& value,
 }
 
 } // namespace detail
+
+std::vector<std::string> gi_setting_keys() {
+    GiSettings gi;
+    std::vector<std::string> keys;
+    for (const detail::GiField& field : detail::gi_fields(gi)) keys.emplace_back(field.key);
+    return keys;
+}
+
+std::optional<double> gi_setting_value(const GiSettings& gi, std::string_view key) {
+    GiSettings copy = gi; // the table binds mutable fields
+    const auto fields = detail::gi_fields(copy);
+    const detail::GiField* field = detail::find_field(fields, key);
+    if (!field) return std::nullopt;
+    return std::visit(detail::Overloaded{
+                          [](const detail::FloatField& f) { return double(*f.target); },
+                          [](const detail::IntField& f) { return double(*f.target); },
+                          [](const detail::BoolField& f) { return *f.target ? 1.0 : 0.0; },
+                          [](const auto& f) { return double(int(*f.target)); },
+                      },
+                      field->target);
+}
 
 Result<void> validate_gi_settings(const GiSettings& gi) {
     GiSettings checked = gi; // the table binds mutable fields; reading back writes the same values

@@ -3,6 +3,7 @@
 #include "lantern/gi/reference_indirect.hpp"
 #include "lantern_gi_shaders.hpp"
 #include "vulkan/pass_params.hpp"
+#include "vulkan/pass_recorder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -70,16 +71,6 @@ std::span<const std::byte> bytes_of(const void* data, std::size_t size) {
 
 } // namespace
 
-const char* tex_name(Tex t) {
-    static constexpr const char* names[tex_count] = {
-        "conduction",       "ao",           "direct",           "shadow",           "wall_direct_px",
-        "wall_direct_nx",   "wall_direct_pz", "wall_direct_nz", "emission",         "heat_a",
-        "heat_b",           "heat_mask",    "indirect",     "blur_temp",        "wall_indirect_px", "wall_indirect_nx",
-        "wall_indirect_pz", "wall_indirect_nz", "lit",           "direct_point",     "shadow_point",
-        "wall_direct_point_px", "wall_direct_point_nx", "wall_direct_point_pz", "wall_direct_point_nz"};
-    return names[int(t)];
-}
-
 // Pipelines by (shader, specialisation), created on first use and kept.
 struct Renderer::Pipelines {
     gpu::Device* device = nullptr;
@@ -113,8 +104,6 @@ struct Renderer::QuerySet {
     bool pending = false;     // recorded, not yet read
     std::uint64_t frame = 0;
 };
-
-struct Renderer::PassParams : GiPassParams {};
 
 Renderer::Renderer(gpu::Device& device) : device_(device), pipelines_(new Pipelines) { pipelines_->device = &device; }
 Renderer::~Renderer() = default;
@@ -196,41 +185,17 @@ Result<void> Renderer::prepare(const FrameInputs& in, const PassPlan& plan) {
     if (in.proxies.size() > std::size_t(max_gpu_proxies))
         return make_error("GI backend: at most " + std::to_string(max_gpu_proxies) + " shadow proxies", 2);
 
-    const int W = w.width, H = w.height;
-    auto need = [&](Pass p) { return plan.run.has(p); };
-    ensure_texture(Tex::conduction, TexFormat::r8, W, H);
-    if (need(Pass::ao)) ensure_texture(Tex::ao, TexFormat::r8, W, H);
-    else drop_texture(Tex::ao);
-    ensure_texture(Tex::direct, TexFormat::rgba16f, W, H);
-    ensure_texture(Tex::shadow, TexFormat::rg8, W, H);
-    for (int f = 0; f < 4; ++f) ensure_texture(Tex(int(Tex::wall_direct_px) + f), TexFormat::rgba16f, W, H);
-    if (!in.directional_lights.empty()) {
-        ensure_texture(Tex::direct_point, TexFormat::rgba16f, W, H);
-        ensure_texture(Tex::shadow_point, TexFormat::rg8, W, H);
-        for (int f = 0; f < 4; ++f) ensure_texture(Tex(int(Tex::wall_direct_point_px) + f), TexFormat::rgba16f, W, H);
-    } else {
-        for (int t = int(Tex::direct_point); t <= int(Tex::wall_direct_point_nz); ++t) drop_texture(Tex(t));
+    // Exactly the textures the planned rows write (pass table); the others are released.
+    const TexSet written = textures_written(in, plan);
+    for (int t = 0; t < tex_count; ++t) {
+        const TextureRow& row = texture_row(Tex(t));
+        if (!written.has(row.id)) {
+            drop_texture(row.id);
+            continue;
+        }
+        const glm::ivec2 size = texture_size(row.id, in);
+        ensure_texture(row.id, row.format, size.x, size.y, row.words32);
     }
-    const bool indirect = need(Pass::emission) || need(Pass::heat);
-    if (indirect) {
-        const HeatGrid g = heat_grid(w, in.settings.heat_scale);
-        ensure_texture(Tex::emission, TexFormat::rgba16f, W, H);
-        ensure_texture(Tex::heat_a, TexFormat::rgba16f, g.width, g.height);
-        ensure_texture(Tex::heat_b, TexFormat::rgba16f, g.width, g.height);
-        ensure_texture(Tex::heat_mask, TexFormat::r8, g.width, g.height, true);
-        ensure_texture(Tex::indirect, TexFormat::rgba16f, W, H);
-    } else {
-        for (Tex t : {Tex::emission, Tex::heat_a, Tex::heat_b, Tex::heat_mask, Tex::indirect}) drop_texture(t);
-    }
-    if (need(Pass::blur)) ensure_texture(Tex::blur_temp, TexFormat::rgba16f, W, H);
-    else drop_texture(Tex::blur_temp);
-    for (int f = 0; f < 4; ++f) {
-        Tex t = Tex(int(Tex::wall_indirect_px) + f);
-        if (need(Pass::wall_indirect)) ensure_texture(t, TexFormat::rgba16f, W, H);
-        else drop_texture(t);
-    }
-    if (need(Pass::lit)) ensure_texture(Tex::lit, TexFormat::r8, W, H, true);
-    else drop_texture(Tex::lit);
     return {};
 }
 
@@ -284,11 +249,11 @@ void Renderer::upload_lights(gpu::CommandList& cmd, const FrameInputs& in) {
     cmd.barrier_transfer_to_compute();
 }
 
-Renderer::PassParams Renderer::params(const FrameInputs& in, int width, int height, int resolution) const {
-    PassParams p{};
+GiPassParams Renderer::params(const FrameInputs& in, int width, int height) const {
+    GiPassParams p{};
     const CameraView& v = in.window.view;
     p.camera_view = glm::vec4(v.min_x, v.min_z, v.width, v.height);
-    p.size = glm::ivec4(width, height, pitch_of(width), resolution);
+    p.size = glm::ivec4(width, height, pitch_of(width), in.window.resolution);
     p.grid = glm::ivec4(in.walls.width, in.walls.height, in.walls.origin.x, in.walls.origin.y);
     p.grid_phase = glm::ivec4(in.walls.phase, 0, 0);
     p.counts = glm::ivec4(int(in.point_lights.size()), int(in.emissive_lights.size()),
@@ -357,26 +322,11 @@ void Renderer::record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, c
         region = set->queries.begin(cmd, pass_name(pass));
         set->passes.push_back(pass);
     }
-    switch (pass) {
-    case Pass::conduction: record_conduction(cmd, in); break;
-    case Pass::ao: record_ao(cmd, in); break;
-    case Pass::direct: record_direct(cmd, in, plan); break;
-    case Pass::directional: record_directional(cmd, in, plan); break;
-    case Pass::emission: record_emission(cmd, in); break;
-    case Pass::heat: record_heat(cmd, in); break;
-    case Pass::blur: record_blur(cmd, in); break;
-    case Pass::wall_indirect: record_wall_indirect(cmd, in); break;
-    case Pass::lit: record_lit(cmd, in, plan); break;
-    case Pass::count: break;
-    }
+    const PassRow* row = find_row(method(in.settings.method), pass);
+    LANTERN_ASSERT(row && row->record, "record() of a pass that is not in the frame's gi.method");
+    PassRecorder recorder(*this, cmd, in, plan, *row);
+    row->record(recorder);
     if (set) set->queries.end(cmd, region);
-}
-
-std::array<Tex, 6> Renderer::direct_outputs(const FrameInputs& in) const {
-    if (in.directional_lights.empty())
-        return {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz};
-    return {Tex::direct_point,         Tex::shadow_point,         Tex::wall_direct_point_px,
-            Tex::wall_direct_point_nx, Tex::wall_direct_point_pz, Tex::wall_direct_point_nz};
 }
 
 void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
@@ -384,279 +334,14 @@ void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const P
 }
 
 void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan, PassSet subset) {
-    for (int p = 0; p < pass_count; ++p)
-        if (plan.run.has(Pass(p)) && subset.has(Pass(p))) record(cmd, Pass(p), in, plan);
+    for (const PassRow* row : method(in.settings.method).rows)
+        if (plan.run.has(row->pass) && subset.has(row->pass)) record(cmd, row->pass, in, plan);
 }
 
-// ---- issue 3 passes
-
-void Renderer::record_conduction(gpu::CommandList& cmd, const FrameInputs& in) {
-    const GiWindow& w = in.window;
-    cmd.bind(pipelines_->get("gi_conduction.comp", block_h_, group_x_, group_y_, false));
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .uniform_texel_buffer(0, walls_view_)
-                             .uniform_buffer(1, proxies_)
-                             .storage_buffer(2, textures_[int(Tex::conduction)].buffer));
-    PassParams p = params(in, w.width, w.height, w.resolution);
-    cmd.push_constants(static_cast<const GiPassParams&>(p));
-    dispatch_blocks(cmd, w.width, w.height);
-    cmd.barrier_compute_to_compute();
-}
-
-void Renderer::record_ao(gpu::CommandList& cmd, const FrameInputs& in) {
-    const GiWindow& w = in.window;
-    const scene::AoSettings& ao = in.settings.ao;
-    const auto key = std::make_tuple(w.resolution, ao.radius, ao.power);
-    if (!ao_kernel_ || ao_kernel_key_ != key) {
-        // The weight table changes only with the resolution and the AO shape: upload it then.
-        const AoKernel k = ao_kernel(w.resolution, ao);
-        std::vector<float> table(k.weights);
-        table.insert(table.end(), k.totals.begin(), k.totals.end());
-        gpu::BufferDesc desc;
-        desc.size = (table.size() * sizeof(float) + 15) & ~std::size_t(15);
-        desc.usage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-        desc.name = "ao kernel";
-        ao_kernel_ = device_.create_buffer(desc);
-        ao_kernel_view_ = device_.create_buffer_view(ao_kernel_, VK_FORMAT_R32_SFLOAT, 0, VK_WHOLE_SIZE, "ao kernel");
-        cmd.upload(ao_kernel_, 0, bytes_of(table.data(), table.size() * sizeof(float)));
-        cmd.barrier_transfer_to_compute();
-        ao_kernel_key_ = key;
-        ao_range_ = k.range;
-    }
-    cmd.bind(pipelines_->get("gi_ao.comp", block_h_, group_x_, group_y_, false));
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .uniform_texel_buffer(0, walls_view_)
-                             .uniform_buffer(1, proxies_)
-                             .uniform_texel_buffer(2, ao_kernel_view_)
-                             .storage_buffer(3, textures_[int(Tex::ao)].buffer));
-    PassParams p = params(in, w.width, w.height, w.resolution);
-    p.params0 = glm::vec4(ao.radius, ao.power, ao.strength, ao.dither ? 1.0f : 0.0f);
-    p.params1.x = float(ao_range_);
-    cmd.push_constants(static_cast<const GiPassParams&>(p));
-    dispatch_blocks(cmd, w.width, w.height);
-    cmd.barrier_compute_to_compute();
-}
-
-void Renderer::record_direct(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
-    const GiWindow& w = in.window;
-    auto tex = [&](Tex t) -> const gpu::Buffer& { return textures_[int(t)].buffer; };
-    const auto out = direct_outputs(in);
-    // No point or emissive lights: the outputs are zero. No wall in view: the shader skips
-    // the faces, which stay zero.
-    const bool no_lights = in.point_lights.empty() && in.emissive_lights.empty();
-    if (no_lights || !plan.has_walls_in_window) {
-        for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i) clear(cmd, out[i]);
-        cmd.barrier_transfer_to_compute();
-        if (no_lights) return;
-    }
-    // Light bins: one per direct-pass workgroup, a bitmask of the lights reaching it.
-    const std::uint32_t blocks_x = std::uint32_t(pitch_of(w.width) / 4);
-    const std::uint32_t blocks_y = (std::uint32_t(w.height) + block_h_ - 1) / block_h_;
-    const std::uint32_t bins_x = (blocks_x + group_x_ - 1) / group_x_, bins_y = (blocks_y + group_y_ - 1) / group_y_;
-    const std::uint32_t words = std::uint32_t((in.point_lights.size() + in.emissive_lights.size() + 31) / 32);
-    const VkDeviceSize bin_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(bins_x) * bins_y * std::max(words, 1u) * 4);
-    if (!light_bins_ || light_bins_.size() < bin_bytes) {
-        gpu::BufferDesc desc;
-        desc.size = bin_bytes;
-        desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-        desc.name = "gi light bins";
-        light_bins_ = device_.create_buffer(desc);
-    }
-    cmd.bind(pipelines_->get("gi_light_bins.comp", 1, 8, 8, false));
-    cmd.push_descriptors(gpu::DescriptorWrites().uniform_buffer(0, lights_).storage_buffer(1, light_bins_));
-    PassParams b = params(in, w.width, w.height, w.resolution);
-    b.params0 = glm::vec4(float(bins_x), float(bins_y), float(words), 0.0f);
-    b.params1 = glm::vec4(float(4 * group_x_), float(block_h_ * group_y_), 0.0f, 0.0f);
-    cmd.push_constants(static_cast<const GiPassParams&>(b));
-    cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
-    cmd.barrier_compute_to_compute();
-
-    cmd.bind(pipelines_->get("gi_direct.comp", block_h_, group_x_, group_y_, !in.proxies.empty(),
-                             plan.has_walls_in_window));
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .uniform_texel_buffer(0, walls_view_)
-                             .uniform_buffer(1, proxies_)
-                             .uniform_buffer(2, lights_)
-                             .storage_buffer(3, tex(out[0]))
-                             .storage_buffer(4, tex(out[1]))
-                             .storage_buffer(5, tex(out[2]))
-                             .storage_buffer(6, tex(out[3]))
-                             .storage_buffer(7, tex(out[4]))
-                             .storage_buffer(8, tex(out[5]))
-                             .storage_buffer(9, light_bins_));
-    PassParams p = params(in, w.width, w.height, w.resolution);
-    p.params0.x = in.settings.light_softness;
-    cmd.push_constants(static_cast<const GiPassParams&>(p));
-    dispatch_blocks(cmd, w.width, w.height);
-    cmd.barrier_compute_to_compute();
-}
-
-void Renderer::record_directional(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
-    const GiWindow& w = in.window;
-    auto tex = [&](Tex t) -> const GpuTexture& { return textures_[int(t)]; };
-    if (!plan.has_walls_in_window) { // the shader skips the faces: they stay zero
-        for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz}) clear(cmd, t);
-        cmd.barrier_transfer_to_compute();
-    }
-    cmd.bind(pipelines_->get("gi_directional.comp", block_h_, group_x_, group_y_, !in.proxies.empty(),
-                             plan.has_walls_in_window));
-    gpu::DescriptorWrites writes;
-    writes.uniform_texel_buffer(0, walls_view_).uniform_buffer(1, proxies_).uniform_buffer(2, suns_);
-    // Reads the point-light results, writes the contract textures (never in place).
-    const auto inputs = direct_outputs(in);
-    const Tex outputs[6] = {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz,
-                            Tex::wall_direct_nz};
-    for (int i = 0; i < 6; ++i) writes.uniform_texel_buffer(std::uint32_t(3 + i), tex(inputs[std::size_t(i)]).view);
-    for (int i = 0; i < 6; ++i) writes.storage_buffer(std::uint32_t(9 + i), tex(outputs[i]).buffer);
-    cmd.push_descriptors(writes);
-    PassParams p = params(in, w.width, w.height, w.resolution);
-    p.params0 = glm::vec4(in.wall_height, in.settings.directional_angle_scale, 0.0f, 0.0f);
-    cmd.push_constants(static_cast<const GiPassParams&>(p));
-    dispatch_blocks(cmd, w.width, w.height);
-    cmd.barrier_compute_to_compute();
-}
-
-// ---- issue 4 passes
-
-void Renderer::record_emission(gpu::CommandList& cmd, const FrameInputs& in) {
-    const GiWindow& w = in.window;
-    cmd.bind(pipelines_->get("gi_emission.comp", block_h_, group_x_, group_y_, false));
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .uniform_texel_buffer(0, textures_[int(Tex::direct)].view)
-                             .storage_buffer(1, textures_[int(Tex::emission)].buffer));
-    PassParams p = params(in, w.width, w.height, w.resolution);
-    p.params0.x = in.settings.emission_strength;
-    cmd.push_constants(static_cast<const GiPassParams&>(p));
-    dispatch_blocks(cmd, w.width, w.height);
-    cmd.barrier_compute_to_compute();
-}
-
-void Renderer::record_heat(gpu::CommandList& cmd, const FrameInputs& in) {
-    const GiWindow& w = in.window;
-    const scene::GiSettings& s = in.settings;
-    const HeatGrid g = heat_grid(w, s.heat_scale);
-    // Seed.
-    cmd.bind(pipelines_->get("gi_heat_seed.comp", block_h_, group_x_, group_y_, false));
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .uniform_texel_buffer(0, textures_[int(Tex::emission)].view)
-                             .uniform_texel_buffer(1, textures_[int(Tex::shadow)].view)
-                             .storage_buffer(2, textures_[int(Tex::heat_a)].buffer));
-    PassParams seed = params(in, g.width, g.height, w.resolution);
-    seed.params1 = glm::vec4(float(w.width), float(w.height), float(pitch_of(w.width)), float(g.scale));
-    cmd.push_constants(static_cast<const GiPassParams&>(seed));
-    dispatch_blocks(cmd, g.width, g.height);
-    cmd.barrier_compute_to_compute();
-    // Tap masks: which taps each heat texel may use (air, segment clear), once per frame.
-    const float distance = s.diffusion_distance * g.texels_per_unit;
-    cmd.bind(pipelines_->get("gi_heat_mask.comp", block_h_, group_x_, group_y_, false, true, true, s.segment_check));
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .uniform_texel_buffer(0, walls_view_)
-                             .uniform_buffer(1, proxies_)
-                             .storage_buffer(2, textures_[int(Tex::heat_mask)].buffer));
-    PassParams mask = params(in, g.width, g.height, w.resolution);
-    mask.params0 = glm::vec4(g.texels_per_unit, distance, s.diffusion_distance * 2.0f + 2.0f, 0.0f);
-    cmd.push_constants(static_cast<const GiPassParams&>(mask));
-    dispatch_blocks(cmd, g.width, g.height);
-    cmd.barrier_compute_to_compute();
-    // Rounds, ping-pong.
-    const auto& round_pipeline =
-        pipelines_->get("gi_heat.comp", block_h_, group_x_, group_y_, false, true, s.per_channel, true);
-    PassParams round = params(in, g.width, g.height, w.resolution);
-    round.params0 = glm::vec4(g.texels_per_unit, distance, s.diffusion_rate, s.range_boost);
-    round.params1 = glm::vec4(s.intensity_multiplier, 0.0f, 0.0f, 0.0f);
-    Tex src = Tex::heat_a, dst = Tex::heat_b;
-    for (int r = 0; r < s.heat_rounds; ++r) {
-        cmd.bind(round_pipeline);
-        cmd.push_descriptors(gpu::DescriptorWrites()
-                                 .uniform_texel_buffer(0, textures_[int(Tex::heat_mask)].view_u32)
-                                 .uniform_texel_buffer(1, textures_[int(src)].view)
-                                 .storage_buffer(2, textures_[int(dst)].buffer));
-        cmd.push_constants(static_cast<const GiPassParams&>(round));
-        dispatch_blocks(cmd, g.width, g.height);
-        cmd.barrier_compute_to_compute();
-        std::swap(src, dst);
-    }
-    // Upsample (or copy) into the indirect texture.
-    cmd.bind(pipelines_->get("gi_upsample.comp", block_h_, group_x_, group_y_, false));
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .uniform_texel_buffer(0, walls_view_)
-                             .uniform_buffer(1, proxies_)
-                             .uniform_texel_buffer(2, textures_[int(src)].view)
-                             .storage_buffer(3, textures_[int(Tex::indirect)].buffer));
-    PassParams up = params(in, w.width, w.height, w.resolution);
-    up.params0 = glm::vec4(float(g.width), float(g.height), float(pitch_of(g.width)), g.texels_per_unit);
-    up.params1.x = float(g.scale);
-    cmd.push_constants(static_cast<const GiPassParams&>(up));
-    dispatch_blocks(cmd, w.width, w.height);
-    cmd.barrier_compute_to_compute();
-}
-
-void Renderer::record_blur(gpu::CommandList& cmd, const FrameInputs& in) {
-    const GiWindow& w = in.window;
-    const auto& pipeline = pipelines_->get("gi_blur.comp", block_h_, group_x_, group_y_, false);
-    auto blur_pass = [&](Tex src, Tex dst, glm::vec2 axis) {
-        cmd.bind(pipeline);
-        cmd.push_descriptors(gpu::DescriptorWrites()
-                                 .uniform_texel_buffer(0, walls_view_)
-                                 .uniform_buffer(1, proxies_)
-                                 .uniform_texel_buffer(2, textures_[int(src)].view)
-                                 .storage_buffer(3, textures_[int(dst)].buffer));
-        PassParams p = params(in, w.width, w.height, w.resolution);
-        p.params0 = glm::vec4(axis, 0.0f, 0.0f);
-        cmd.push_constants(static_cast<const GiPassParams&>(p));
-        dispatch_blocks(cmd, w.width, w.height);
-        cmd.barrier_compute_to_compute();
-    };
-    blur_pass(Tex::indirect, Tex::blur_temp, {1.0f, 0.0f});
-    blur_pass(Tex::blur_temp, Tex::indirect, {0.0f, 1.0f});
-}
-
-void Renderer::record_wall_indirect(gpu::CommandList& cmd, const FrameInputs& in) {
-    const GiWindow& w = in.window;
-    cmd.bind(pipelines_->get("gi_wall_indirect.comp", block_h_, group_x_, group_y_, false));
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .uniform_texel_buffer(0, walls_view_)
-                             .uniform_buffer(1, proxies_)
-                             .uniform_texel_buffer(2, textures_[int(Tex::indirect)].view)
-                             .storage_buffer(3, textures_[int(Tex::wall_indirect_px)].buffer)
-                             .storage_buffer(4, textures_[int(Tex::wall_indirect_nx)].buffer)
-                             .storage_buffer(5, textures_[int(Tex::wall_indirect_pz)].buffer)
-                             .storage_buffer(6, textures_[int(Tex::wall_indirect_nz)].buffer));
-    PassParams p = params(in, w.width, w.height, w.resolution);
-    cmd.push_constants(static_cast<const GiPassParams&>(p));
-    dispatch_blocks(cmd, w.width, w.height);
-    cmd.barrier_compute_to_compute();
-}
-
-void Renderer::record_lit(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan) {
-    const GiWindow& w = in.window;
-    // Absent textures are bound as the direct texture (any valid view) and flagged absent.
-    auto view_or = [&](Tex t, std::uint32_t bit, std::uint32_t& present) -> const gpu::BufferView& {
-        if (has(t)) {
-            present |= 1u << bit;
-            return textures_[int(t)].view;
-        }
-        return textures_[int(Tex::direct)].view;
-    };
-    std::uint32_t present = 0;
-    gpu::DescriptorWrites writes;
-    writes.uniform_texel_buffer(0, walls_view_).uniform_buffer(1, proxies_).uniform_buffer(2, suns_);
-    writes.uniform_texel_buffer(3, view_or(Tex::direct, 0, present));
-    writes.uniform_texel_buffer(4, view_or(Tex::indirect, 1, present));
-    writes.uniform_texel_buffer(5, view_or(Tex::ao, 2, present));
-    writes.uniform_texel_buffer(6, view_or(Tex::shadow, 3, present));
-    for (int f = 0; f < 4; ++f) writes.uniform_texel_buffer(std::uint32_t(7 + f), view_or(Tex(int(Tex::wall_direct_px) + f), 4u + f, present));
-    for (int f = 0; f < 4; ++f)
-        writes.uniform_texel_buffer(std::uint32_t(11 + f), view_or(Tex(int(Tex::wall_indirect_px) + f), 8u + f, present));
-    writes.storage_buffer(15, textures_[int(Tex::lit)].buffer);
-    cmd.bind(pipelines_->get("gi_lit.comp", block_h_, group_x_, group_y_, false, plan.has_walls_in_window));
-    cmd.push_descriptors(writes);
-    PassParams p = params(in, w.width, w.height, w.resolution);
-    p.params0 = glm::vec4(in.wall_height, float(present), 0.0f, 0.0f);
-    p.params1 = glm::vec4(float(int(in.settings.tone_map)), in.settings.white_point, in.settings.directional_angle_scale, 0.0f);
-    cmd.push_constants(static_cast<const GiPassParams&>(p));
-    dispatch_blocks(cmd, w.width, w.height);
-    cmd.barrier_compute_to_compute();
+const gpu::ComputePipeline& Renderer::pipeline(const char* shader, const PipelineSpec& spec) {
+    return pipelines_->get(shader, spec.block_h ? spec.block_h : block_h_, spec.group_x ? spec.group_x : group_x_,
+                           spec.group_y ? spec.group_y : group_y_, spec.proxies, spec.walls, spec.per_channel,
+                           spec.segment_check);
 }
 
 // ---- read back

@@ -116,10 +116,11 @@ class GiFrame {
     FrameReport report_;
 };
 
-// Per-pass cache keys of a frame (exposed for tests and the HUD). A pass's key hashes its
-// own inputs and the keys of the passes it reads, so a change reruns exactly its dependents.
+// Per-pass cache keys of a frame (exposed for tests and the HUD): gi::derive_keys over the
+// frame's input versions. A pass's key hashes what its pass-table row lists and the keys of
+// the passes it reads, so a change reruns exactly its dependents.
 std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, const gi::PassPlan& plan,
                                                      std::uint64_t wall_version, std::uint64_t lights_hash,
-                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash, bool lit_image);
+                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash);
 
 } // namespace lantern::systems

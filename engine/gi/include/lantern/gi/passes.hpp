@@ -1,4 +1,5 @@
-// The GI passes by name, and which ones a frame needs.
+// The GI passes by name, and which ones a frame needs. The passes are rows of the pass
+// table (pass_table.hpp): Pass is a row's id; the order they run in is their method's.
 #pragma once
 
 #include "lantern/gi/frame_inputs.hpp"
@@ -37,9 +38,9 @@ struct PassSet {
     friend bool operator==(PassSet, PassSet) = default;
 };
 
-// What the scene and settings need, and for each pass left out, why ("no directional
-// lights", "AO disabled", ...). `through` limits the pipeline (e.g. Pass::directional for
-// direct light only).
+// What the scene and settings need: the rows of gi.method whose `not_needed` says nothing,
+// and for each pass left out, why ("no directional lights", "AO disabled", ...). `through`
+// limits the pipeline to the rows up to it (e.g. Pass::directional for direct light only).
 struct PassPlan {
     PassSet run;
     std::string reason[pass_count]; // empty for passes that run

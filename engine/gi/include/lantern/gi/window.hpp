@@ -11,6 +11,7 @@
 
 #include <glm/vec2.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -33,6 +34,9 @@ struct GiWindow {
     glm::vec2 center() const { return {view.min_x + view.width * 0.5f, view.min_z + view.height * 0.5f}; }
     friend bool operator==(const GiWindow&, const GiWindow&) = default;
 };
+
+// A hash of everything that places the window (its cache-key input).
+std::uint64_t hash_window(const GiWindow& w);
 
 inline constexpr int min_texture_size = 64;
 

@@ -26,6 +26,7 @@
 #include "lantern/scene/scene.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,13 @@ Result<void> apply_override(Scene& scene, std::string_view assignment);
 // and apply_override already do this), for settings built in code. Errors read
 // "gi.<key>: <what is wrong>".
 Result<void> validate_gi_settings(const GiSettings& gi);
+
+// Every gi key of the scene format, nested keys joined by dots ("ao.radius"), in the order
+// of the one table that files, `--set` and validation read (docs/scenes.md).
+std::vector<std::string> gi_setting_keys();
+// The value of one gi key as a number (bools 0 or 1, enums their value), the form the
+// pass table hashes into cache keys; nullopt for a key that is not a gi key.
+std::optional<double> gi_setting_value(const GiSettings& gi, std::string_view key);
 
 // What a Moving AI 'T' (tree) cell becomes.
 enum class TreeMode : std::uint8_t {

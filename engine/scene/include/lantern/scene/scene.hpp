@@ -32,7 +32,11 @@ struct AoSettings {
 };
 
 // Every key of a scene's "gi" object; the defaults are the documented defaults.
+// The GI method: which rows of the pass table a frame runs (engine/gi pass_table.hpp).
+enum class GiMethod : std::uint8_t { heat = 0 }; // seed 000's heat diffusion
+
 struct GiSettings {
+    GiMethod method = GiMethod::heat;
     int resolution = 8; // GI texels per world unit, 1..32
     float padding = 1.4f;
     int heat_rounds = 20;

@@ -1,6 +1,7 @@
-// The Vulkan GI backend: persistent GI textures on a gpu::Device and one recording function
-// per pass. The frame systems (and lantern-render) decide which passes to record; the
-// renderer records them with timestamps and keeps the results for the next frame.
+// The Vulkan GI backend: persistent GI textures on a gpu::Device, recorded by the rows of
+// the pass table (pass_table.hpp; each row's recorder sees a vk::PassRecorder). The frame
+// systems (and lantern-render) decide which passes to record; the renderer records them
+// with timestamps and keeps the results for the next frame.
 //
 // Storage (docs/gi.md, "Memory layout"): every GI texture is a buffer of pitch x height
 // texels (pitch = width rounded up to 4) written by the shaders as 32/64-bit words and read
@@ -11,11 +12,14 @@
 #pragma once
 
 #include "lantern/core/result.hpp"
+#include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/passes.hpp"
 #include "lantern/gi/texture.hpp"
 #include "lantern/gpu/device.hpp"
 
 #include <array>
+#include <map>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -25,39 +29,14 @@
 
 namespace lantern::gi::vk {
 
-enum class Tex : std::uint8_t {
-    conduction,
-    ao,
-    direct,
-    shadow,
-    wall_direct_px,
-    wall_direct_nx,
-    wall_direct_pz,
-    wall_direct_nz,
-    emission,
-    heat_a,
-    heat_b,
-    heat_mask, // 32-bit words: usable heat taps per heat texel (internal)
-    indirect,
-    blur_temp,
-    wall_indirect_px,
-    wall_indirect_nx,
-    wall_indirect_pz,
-    wall_indirect_nz,
-    lit, // rgba8 sRGB, one 32-bit word per texel
-    // Point and emissive light alone, when the scene has directional lights: the
-    // directional pass reads these and writes direct/shadow/wall_direct_*, so either pass
-    // can be rerun (or cached) without the other.
-    direct_point,
-    shadow_point,
-    wall_direct_point_px,
-    wall_direct_point_nx,
-    wall_direct_point_pz,
-    wall_direct_point_nz,
-    count
-};
-inline constexpr int tex_count = int(Tex::count);
-const char* tex_name(Tex t); // the --dump file stem ("wall_direct_px", ...)
+struct GiPassParams;   // vulkan/pass_params.hpp
+struct PassState;      // vulkan/pass_recorder.hpp
+struct PipelineSpec;
+
+// The textures are the pass table's (pass_table.hpp); these names keep vk:: code short.
+using gi::Tex;
+using gi::tex_count;
+using gi::tex_name;
 
 struct RendererOptions {
     std::uint32_t block_h = 0;      // texel rows per invocation; 0 = by device type
@@ -159,27 +138,16 @@ class Renderer {
     };
     struct Pipelines;
     struct QuerySet;
+    friend class PassRecorder;
     explicit Renderer(gpu::Device& device);
 
     void ensure_texture(Tex t, TexFormat format, int width, int height, bool rgba8 = false);
-    // The textures the direct pass writes: the point set when directional lights follow.
-    std::array<Tex, 6> direct_outputs(const FrameInputs& in) const;
     void drop_texture(Tex t);
     void clear(gpu::CommandList& cmd, Tex t);
-    struct PassParams;
-    PassParams params(const FrameInputs& in, int width, int height, int resolution) const;
+    GiPassParams params(const FrameInputs& in, int width, int height) const;
     void dispatch_blocks(gpu::CommandList& cmd, int width, int height);
-
+    const gpu::ComputePipeline& pipeline(const char* shader, const PipelineSpec& spec);
     static FrameTimings collect_timings(const QuerySet& set, const gpu::TimestampResult& result);
-    void record_conduction(gpu::CommandList& cmd, const FrameInputs& in);
-    void record_ao(gpu::CommandList& cmd, const FrameInputs& in);
-    void record_direct(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
-    void record_directional(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
-    void record_emission(gpu::CommandList& cmd, const FrameInputs& in);
-    void record_heat(gpu::CommandList& cmd, const FrameInputs& in);
-    void record_blur(gpu::CommandList& cmd, const FrameInputs& in);
-    void record_wall_indirect(gpu::CommandList& cmd, const FrameInputs& in);
-    void record_lit(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan);
 
     gpu::Device& device_;
     std::unique_ptr<Pipelines> pipelines_;
@@ -188,11 +156,7 @@ class Renderer {
     gpu::BufferView walls_view_;
     std::uint64_t wall_bytes_uploaded_ = 0;
     gpu::Buffer lights_, proxies_, suns_; // uniform buffers, written with update_buffer
-    gpu::Buffer light_bins_;              // per direct-pass workgroup: bitmask of reaching lights
-    gpu::Buffer ao_kernel_;               // AoKernel weights + totals (R32_SFLOAT texels)
-    gpu::BufferView ao_kernel_view_;
-    std::tuple<int, float, float> ao_kernel_key_{0, 0.0f, 0.0f}; // resolution, radius, power
-    int ao_range_ = 0;
+    std::map<const PassRow*, std::unique_ptr<PassState>> states_; // each row's own GPU state
     std::vector<QuerySet> queries_;
     std::vector<FrameTimings> resolved_; // read from a set before its reuse, not yet returned
     int frame_slot_ = -1;

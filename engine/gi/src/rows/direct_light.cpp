@@ -1,0 +1,251 @@
+// Rows of the direct-light passes (seed 000): conduction, ambient occlusion, point and
+// emissive lights ("DDA"), directional lights ("DDA_Directional"). Each row: its textures,
+// settings and inputs, its Vulkan recorder and its C++ reference.
+#include "rows/rows.hpp"
+
+#include "vulkan/pass_recorder.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <tuple>
+#include <vector>
+
+namespace lantern::gi::rows {
+namespace {
+
+using vk::PassRecorder;
+
+constexpr Tex direct_set[] = {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz};
+constexpr Tex point_set[] = {Tex::direct_point,         Tex::shadow_point,         Tex::wall_direct_point_px,
+                             Tex::wall_direct_point_nx, Tex::wall_direct_point_pz, Tex::wall_direct_point_nz};
+
+// The direct pass writes the point-light set when directional lights follow (the
+// directional pass then reads it and writes the contract textures), else the contract set.
+std::span<const Tex> direct_outputs(const FrameInputs& in) {
+    return in.directional_lights.empty() ? std::span<const Tex>(direct_set) : std::span<const Tex>(point_set);
+}
+
+TexSet direct_writes(const FrameInputs& in) {
+    TexSet set;
+    for (Tex t : direct_outputs(in)) set.add(t);
+    return set;
+}
+
+void put_direct(ReferenceStore& store, std::span<const Tex> ids, DirectTextures d) {
+    store.put(ids[0], std::move(d.direct));
+    store.put(ids[1], std::move(d.shadow));
+    for (std::size_t f = 0; f < 4; ++f) store.put(ids[2 + f], std::move(d.wall_direct[f]));
+}
+
+// ---- conduction
+
+void record_conduction(PassRecorder& r) {
+    const GiWindow& w = r.in.window;
+    r.cmd.bind(r.pipeline("gi_conduction.comp", {.proxies = false}));
+    r.cmd.push_descriptors(
+        gpu::DescriptorWrites().uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).storage_buffer(2, r.buffer(Tex::conduction)));
+    r.cmd.push_constants(r.params(w.width, w.height));
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
+void reference_conduction_row(ReferenceContext& c) { c.store.put(Tex::conduction, reference_conduction(c.in, c.options)); }
+
+// ---- ambient occlusion
+
+// The AO weight table (AoKernel) on the GPU: uploaded when the resolution or the AO shape
+// changes.
+struct AoState : vk::PassState {
+    gpu::Buffer kernel;
+    gpu::BufferView view;
+    std::tuple<int, float, float> key{0, 0.0f, 0.0f}; // resolution, radius, power
+    int range = 0;
+};
+
+void record_ao(PassRecorder& r) {
+    const GiWindow& w = r.in.window;
+    const scene::AoSettings& settings = r.in.settings.ao;
+    AoState& s = r.state<AoState>();
+    const auto key = std::make_tuple(w.resolution, settings.radius, settings.power);
+    if (!s.kernel || s.key != key) {
+        const AoKernel k = ao_kernel(w.resolution, settings);
+        std::vector<float> table(k.weights);
+        table.insert(table.end(), k.totals.begin(), k.totals.end());
+        gpu::BufferDesc desc;
+        desc.size = (table.size() * sizeof(float) + 15) & ~std::size_t(15);
+        desc.usage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+        desc.name = "ao kernel";
+        s.kernel = r.device().create_buffer(desc);
+        s.view = r.device().create_buffer_view(s.kernel, VK_FORMAT_R32_SFLOAT, 0, VK_WHOLE_SIZE, "ao kernel");
+        r.cmd.upload(s.kernel, 0, std::as_bytes(std::span<const float>(table)));
+        r.cmd.barrier_transfer_to_compute();
+        s.key = key;
+        s.range = k.range;
+    }
+    r.cmd.bind(r.pipeline("gi_ao.comp", {.proxies = false}));
+    r.cmd.push_descriptors(gpu::DescriptorWrites()
+                               .uniform_texel_buffer(0, r.walls())
+                               .uniform_buffer(1, r.proxies())
+                               .uniform_texel_buffer(2, s.view)
+                               .storage_buffer(3, r.buffer(Tex::ao)));
+    vk::GiPassParams p = r.params(w.width, w.height);
+    p.params0 = glm::vec4(settings.radius, settings.power, settings.strength, settings.dither ? 1.0f : 0.0f);
+    p.params1.x = float(s.range);
+    r.cmd.push_constants(p);
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
+void reference_ao_row(ReferenceContext& c) { c.store.put(Tex::ao, reference_ao(c.in, c.options)); }
+
+// ---- point and emissive lights
+
+// Light bins: one per direct-pass workgroup, a bitmask of the lights reaching it.
+struct DirectState : vk::PassState {
+    gpu::Buffer bins;
+};
+
+void record_direct(PassRecorder& r) {
+    const FrameInputs& in = r.in;
+    const GiWindow& w = in.window;
+    const auto out = direct_outputs(in);
+    // No point or emissive lights: the outputs are zero. No wall in view: the shader skips
+    // the faces, which stay zero.
+    const bool no_lights = in.point_lights.empty() && in.emissive_lights.empty();
+    if (no_lights || !r.plan.has_walls_in_window) {
+        for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i) r.clear(out[i]);
+        r.cmd.barrier_transfer_to_compute();
+        if (no_lights) return;
+    }
+    DirectState& s = r.state<DirectState>();
+    const std::uint32_t blocks_x = std::uint32_t(r.pitch(out[0]) / 4);
+    const std::uint32_t blocks_y = (std::uint32_t(w.height) + r.block_h() - 1) / r.block_h();
+    const std::uint32_t bins_x = (blocks_x + r.group_x() - 1) / r.group_x(), bins_y = (blocks_y + r.group_y() - 1) / r.group_y();
+    const std::uint32_t words = std::uint32_t((in.point_lights.size() + in.emissive_lights.size() + 31) / 32);
+    const VkDeviceSize bin_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(bins_x) * bins_y * std::max(words, 1u) * 4);
+    if (!s.bins || s.bins.size() < bin_bytes) {
+        gpu::BufferDesc desc;
+        desc.size = bin_bytes;
+        desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        desc.name = "gi light bins";
+        s.bins = r.device().create_buffer(desc);
+    }
+    r.cmd.bind(r.pipeline("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 8, .group_y = 8}));
+    r.cmd.push_descriptors(gpu::DescriptorWrites().uniform_buffer(0, r.lights()).storage_buffer(1, s.bins));
+    vk::GiPassParams b = r.params(w.width, w.height);
+    b.params0 = glm::vec4(float(bins_x), float(bins_y), float(words), 0.0f);
+    b.params1 = glm::vec4(float(4 * r.group_x()), float(r.block_h() * r.group_y()), 0.0f, 0.0f);
+    r.cmd.push_constants(b);
+    r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
+    r.cmd.barrier_compute_to_compute();
+
+    r.cmd.bind(r.pipeline("gi_direct.comp", {.proxies = !in.proxies.empty(), .walls = r.plan.has_walls_in_window}));
+    r.cmd.push_descriptors(gpu::DescriptorWrites()
+                               .uniform_texel_buffer(0, r.walls())
+                               .uniform_buffer(1, r.proxies())
+                               .uniform_buffer(2, r.lights())
+                               .storage_buffer(3, r.buffer(out[0]))
+                               .storage_buffer(4, r.buffer(out[1]))
+                               .storage_buffer(5, r.buffer(out[2]))
+                               .storage_buffer(6, r.buffer(out[3]))
+                               .storage_buffer(7, r.buffer(out[4]))
+                               .storage_buffer(8, r.buffer(out[5]))
+                               .storage_buffer(9, s.bins));
+    vk::GiPassParams p = r.params(w.width, w.height);
+    p.params0.x = in.settings.light_softness;
+    r.cmd.push_constants(p);
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
+void reference_direct_row(ReferenceContext& c) {
+    put_direct(c.store, direct_outputs(c.in), reference_direct(c.in, c.options));
+}
+
+// ---- directional lights
+
+void record_directional(PassRecorder& r) {
+    const FrameInputs& in = r.in;
+    const GiWindow& w = in.window;
+    if (!r.plan.has_walls_in_window) { // the shader skips the faces: they stay zero
+        for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz}) r.clear(t);
+        r.cmd.barrier_transfer_to_compute();
+    }
+    r.cmd.bind(r.pipeline("gi_directional.comp", {.proxies = !in.proxies.empty(), .walls = r.plan.has_walls_in_window}));
+    gpu::DescriptorWrites writes;
+    writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
+    // Reads the point-light results, writes the contract textures (never in place).
+    for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(point_set[i]));
+    for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(direct_set[i]));
+    r.cmd.push_descriptors(writes);
+    vk::GiPassParams p = r.params(w.width, w.height);
+    p.params0 = glm::vec4(in.wall_height, in.settings.directional_angle_scale, 0.0f, 0.0f);
+    r.cmd.push_constants(p);
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
+void reference_directional_row(ReferenceContext& c) {
+    DirectTextures d{c.store.at(Tex::direct_point), c.store.at(Tex::shadow_point), {}};
+    for (std::size_t f = 0; f < 4; ++f) d.wall_direct[f] = c.store.at(point_set[2 + f]);
+    reference_directional(c.in, d, c.options); // adds the suns to a copy: never in place
+    put_direct(c.store, direct_set, std::move(d));
+}
+
+const char* ao_not_needed(const FrameInputs& in, bool, bool) { return in.settings.ao.enabled ? nullptr : "AO disabled"; }
+const char* directional_not_needed(const FrameInputs& in, bool, bool) {
+    return in.directional_lights.empty() ? "no directional lights" : nullptr;
+}
+
+constexpr Tex conduction_writes[] = {Tex::conduction};
+constexpr Tex ao_writes[] = {Tex::ao};
+constexpr std::string_view ao_settings[] = {"ao.enabled", "ao.radius", "ao.power", "ao.strength", "ao.dither"};
+constexpr std::string_view direct_settings[] = {"light_softness"};
+constexpr std::string_view directional_settings[] = {"directional_angle_scale"};
+
+} // namespace
+
+constinit const PassRow conduction{
+    .pass = Pass::conduction,
+    .name = "conduction",
+    .writes = conduction_writes,
+    .inputs = input_walls,
+    .record = record_conduction,
+    .reference = reference_conduction_row,
+};
+
+constinit const PassRow ao{
+    .pass = Pass::ao,
+    .name = "ao",
+    .writes = ao_writes,
+    .settings = ao_settings,
+    .inputs = input_walls,
+    .not_needed = ao_not_needed,
+    .record = record_ao,
+    .reference = reference_ao_row,
+};
+
+constinit const PassRow direct{
+    .pass = Pass::direct,
+    .name = "direct",
+    .writes_for = direct_writes,
+    .settings = direct_settings,
+    .inputs = input_walls | input_lights | input_proxies | input_walls_in_window,
+    .record = record_direct,
+    .reference = reference_direct_row,
+};
+
+constinit const PassRow directional{
+    .pass = Pass::directional,
+    .name = "directional",
+    .reads = point_set,
+    .writes = direct_set,
+    .settings = directional_settings,
+    .inputs = input_walls | input_proxies | input_suns | input_wall_height | input_walls_in_window,
+    .not_needed = directional_not_needed,
+    .record = record_directional,
+    .reference = reference_directional_row,
+};
+
+} // namespace lantern::gi::rows

@@ -1,0 +1,214 @@
+// Rows of the indirect-light passes of seed 000's heat method: emission, heat transfer
+// (seed, tap masks, rounds, upsample), blur, wall-face indirect. Each row: its textures,
+// settings and inputs, its Vulkan recorder and its C++ reference.
+#include "rows/rows.hpp"
+
+#include "lantern/gi/reference_indirect.hpp"
+#include "vulkan/pass_recorder.hpp"
+
+#include <utility>
+
+namespace lantern::gi::rows {
+namespace {
+
+using vk::PassRecorder;
+
+// ---- emission
+
+void record_emission(PassRecorder& r) {
+    const GiWindow& w = r.in.window;
+    r.cmd.bind(r.pipeline("gi_emission.comp", {.proxies = false}));
+    r.cmd.push_descriptors(
+        gpu::DescriptorWrites().uniform_texel_buffer(0, r.view(Tex::direct)).storage_buffer(1, r.buffer(Tex::emission)));
+    vk::GiPassParams p = r.params(w.width, w.height);
+    p.params0.x = r.in.settings.emission_strength;
+    r.cmd.push_constants(p);
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
+void reference_emission_row(ReferenceContext& c) {
+    c.store.put(Tex::emission, reference_emission(c.in, c.store.at(Tex::direct), c.options));
+}
+
+// ---- heat transfer
+
+void record_heat(PassRecorder& r) {
+    const GiWindow& w = r.in.window;
+    const scene::GiSettings& s = r.in.settings;
+    const HeatGrid g = heat_grid(w, s.heat_scale);
+    // Seed.
+    r.cmd.bind(r.pipeline("gi_heat_seed.comp", {.proxies = false}));
+    r.cmd.push_descriptors(gpu::DescriptorWrites()
+                               .uniform_texel_buffer(0, r.view(Tex::emission))
+                               .uniform_texel_buffer(1, r.view(Tex::shadow))
+                               .storage_buffer(2, r.buffer(Tex::heat_a)));
+    vk::GiPassParams seed = r.params(g.width, g.height);
+    seed.params1 = glm::vec4(float(w.width), float(w.height), float(r.pitch(Tex::emission)), float(g.scale));
+    r.cmd.push_constants(seed);
+    r.dispatch(g.width, g.height);
+    r.cmd.barrier_compute_to_compute();
+    // Tap masks: which taps each heat texel may use (air, segment clear), once per frame.
+    const float distance = s.diffusion_distance * g.texels_per_unit;
+    r.cmd.bind(r.pipeline("gi_heat_mask.comp", {.proxies = false, .segment_check = s.segment_check}));
+    r.cmd.push_descriptors(gpu::DescriptorWrites()
+                               .uniform_texel_buffer(0, r.walls())
+                               .uniform_buffer(1, r.proxies())
+                               .storage_buffer(2, r.buffer(Tex::heat_mask)));
+    vk::GiPassParams mask = r.params(g.width, g.height);
+    mask.params0 = glm::vec4(g.texels_per_unit, distance, s.diffusion_distance * 2.0f + 2.0f, 0.0f);
+    r.cmd.push_constants(mask);
+    r.dispatch(g.width, g.height);
+    r.cmd.barrier_compute_to_compute();
+    // Rounds, ping-pong.
+    const gpu::ComputePipeline& round_pipeline = r.pipeline("gi_heat.comp", {.proxies = false, .per_channel = s.per_channel});
+    vk::GiPassParams round = r.params(g.width, g.height);
+    round.params0 = glm::vec4(g.texels_per_unit, distance, s.diffusion_rate, s.range_boost);
+    round.params1 = glm::vec4(s.intensity_multiplier, 0.0f, 0.0f, 0.0f);
+    Tex src = Tex::heat_a, dst = Tex::heat_b;
+    for (int i = 0; i < s.heat_rounds; ++i) {
+        r.cmd.bind(round_pipeline);
+        r.cmd.push_descriptors(gpu::DescriptorWrites()
+                                   .uniform_texel_buffer(0, r.view_u32(Tex::heat_mask))
+                                   .uniform_texel_buffer(1, r.view(src))
+                                   .storage_buffer(2, r.buffer(dst)));
+        r.cmd.push_constants(round);
+        r.dispatch(g.width, g.height);
+        r.cmd.barrier_compute_to_compute();
+        std::swap(src, dst);
+    }
+    // Upsample (or copy) into the indirect texture.
+    r.cmd.bind(r.pipeline("gi_upsample.comp", {.proxies = false}));
+    r.cmd.push_descriptors(gpu::DescriptorWrites()
+                               .uniform_texel_buffer(0, r.walls())
+                               .uniform_buffer(1, r.proxies())
+                               .uniform_texel_buffer(2, r.view(src))
+                               .storage_buffer(3, r.buffer(Tex::indirect)));
+    vk::GiPassParams up = r.params(w.width, w.height);
+    up.params0 = glm::vec4(float(g.width), float(g.height), float(r.pitch(src)), g.texels_per_unit);
+    up.params1.x = float(g.scale);
+    r.cmd.push_constants(up);
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
+void reference_heat_row(ReferenceContext& c) {
+    c.store.put(Tex::indirect, reference_heat(c.in, c.store.at(Tex::emission), c.store.at(Tex::shadow), c.options));
+}
+
+// ---- blur (in place on the indirect texture)
+
+void record_blur(PassRecorder& r) {
+    const GiWindow& w = r.in.window;
+    const gpu::ComputePipeline& pipeline = r.pipeline("gi_blur.comp", {.proxies = false});
+    auto blur_pass = [&](Tex src, Tex dst, glm::vec2 axis) {
+        r.cmd.bind(pipeline);
+        r.cmd.push_descriptors(gpu::DescriptorWrites()
+                                   .uniform_texel_buffer(0, r.walls())
+                                   .uniform_buffer(1, r.proxies())
+                                   .uniform_texel_buffer(2, r.view(src))
+                                   .storage_buffer(3, r.buffer(dst)));
+        vk::GiPassParams p = r.params(w.width, w.height);
+        p.params0 = glm::vec4(axis, 0.0f, 0.0f);
+        r.cmd.push_constants(p);
+        r.dispatch(w.width, w.height);
+        r.cmd.barrier_compute_to_compute();
+    };
+    blur_pass(Tex::indirect, Tex::blur_temp, {1.0f, 0.0f});
+    blur_pass(Tex::blur_temp, Tex::indirect, {0.0f, 1.0f});
+}
+
+void reference_blur_row(ReferenceContext& c) {
+    c.store.put(Tex::indirect, reference_blur(c.in, c.store.at(Tex::indirect), c.options));
+}
+
+// ---- wall-face indirect
+
+void record_wall_indirect(PassRecorder& r) {
+    const GiWindow& w = r.in.window;
+    r.cmd.bind(r.pipeline("gi_wall_indirect.comp", {.proxies = false}));
+    r.cmd.push_descriptors(gpu::DescriptorWrites()
+                               .uniform_texel_buffer(0, r.walls())
+                               .uniform_buffer(1, r.proxies())
+                               .uniform_texel_buffer(2, r.view(Tex::indirect))
+                               .storage_buffer(3, r.buffer(Tex::wall_indirect_px))
+                               .storage_buffer(4, r.buffer(Tex::wall_indirect_nx))
+                               .storage_buffer(5, r.buffer(Tex::wall_indirect_pz))
+                               .storage_buffer(6, r.buffer(Tex::wall_indirect_nz)));
+    r.cmd.push_constants(r.params(w.width, w.height));
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
+void reference_wall_indirect_row(ReferenceContext& c) {
+    auto faces = reference_wall_indirect(c.in, c.store.at(Tex::indirect), c.options);
+    for (int f = 0; f < 4; ++f) c.store.put(Tex(int(Tex::wall_indirect_px) + f), std::move(faces[std::size_t(f)]));
+}
+
+const char* blur_not_needed(const FrameInputs& in, bool, bool) { return in.settings.blur ? nullptr : "blur disabled"; }
+const char* wall_indirect_not_needed(const FrameInputs&, bool, bool walls_in_window) {
+    return walls_in_window ? nullptr : "no walls in the GI window";
+}
+
+constexpr Tex emission_reads[] = {Tex::direct};
+constexpr Tex emission_writes[] = {Tex::emission};
+constexpr std::string_view emission_settings[] = {"emission_strength"};
+constexpr Tex heat_reads[] = {Tex::emission, Tex::shadow};
+constexpr Tex heat_writes[] = {Tex::heat_a, Tex::heat_b, Tex::heat_mask, Tex::indirect};
+constexpr std::string_view heat_settings[] = {"heat_rounds",    "heat_scale",           "diffusion_rate",
+                                              "diffusion_distance", "range_boost", "intensity_multiplier",
+                                              "per_channel",    "segment_check"};
+constexpr Tex blur_reads[] = {Tex::indirect};
+constexpr Tex blur_writes[] = {Tex::blur_temp, Tex::indirect};
+constexpr std::string_view blur_settings[] = {"blur"};
+constexpr Tex wall_indirect_reads[] = {Tex::indirect};
+constexpr Tex wall_indirect_writes[] = {Tex::wall_indirect_px, Tex::wall_indirect_nx, Tex::wall_indirect_pz,
+                                        Tex::wall_indirect_nz};
+
+} // namespace
+
+constinit const PassRow emission{
+    .pass = Pass::emission,
+    .name = "emission",
+    .reads = emission_reads,
+    .writes = emission_writes,
+    .settings = emission_settings,
+    .record = record_emission,
+    .reference = reference_emission_row,
+};
+
+constinit const PassRow heat{
+    .pass = Pass::heat,
+    .name = "heat",
+    .reads = heat_reads,
+    .writes = heat_writes,
+    .settings = heat_settings,
+    .inputs = input_walls,
+    .record = record_heat,
+    .reference = reference_heat_row,
+};
+
+constinit const PassRow blur{
+    .pass = Pass::blur,
+    .name = "blur",
+    .reads = blur_reads,
+    .writes = blur_writes,
+    .settings = blur_settings,
+    .inputs = input_walls,
+    .not_needed = blur_not_needed,
+    .record = record_blur,
+    .reference = reference_blur_row,
+};
+
+constinit const PassRow wall_indirect{
+    .pass = Pass::wall_indirect,
+    .name = "wall_indirect",
+    .reads = wall_indirect_reads,
+    .writes = wall_indirect_writes,
+    .inputs = input_walls | input_walls_in_window,
+    .not_needed = wall_indirect_not_needed,
+    .record = record_wall_indirect,
+    .reference = reference_wall_indirect_row,
+};
+
+} // namespace lantern::gi::rows

@@ -1,0 +1,65 @@
+// The lit-image row: the GI textures shaded and tone-mapped into an sRGB image (tools and
+// tests; the game shades in its raster pass instead, from the same shading library).
+#include "rows/rows.hpp"
+
+#include "vulkan/pass_recorder.hpp"
+
+namespace lantern::gi::rows {
+namespace {
+
+using vk::PassRecorder;
+
+constexpr Tex lit_reads[] = {Tex::direct,           Tex::indirect,         Tex::ao,
+                             Tex::shadow,           Tex::wall_direct_px,   Tex::wall_direct_nx,
+                             Tex::wall_direct_pz,   Tex::wall_direct_nz,   Tex::wall_indirect_px,
+                             Tex::wall_indirect_nx, Tex::wall_indirect_pz, Tex::wall_indirect_nz};
+constexpr Tex lit_writes[] = {Tex::lit};
+constexpr std::string_view lit_settings[] = {"tone_map", "white_point", "directional_angle_scale"};
+
+void record_lit(PassRecorder& r) {
+    const GiWindow& w = r.in.window;
+    // Absent textures are bound as the direct texture (any valid view) and flagged absent.
+    std::uint32_t present = 0;
+    auto view_or = [&](Tex t, std::uint32_t bit) -> const gpu::BufferView& {
+        if (r.has(t)) {
+            present |= 1u << bit;
+            return r.view(t);
+        }
+        return r.view(Tex::direct);
+    };
+    gpu::DescriptorWrites writes;
+    writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
+    for (std::uint32_t i = 0; i < 12; ++i) writes.uniform_texel_buffer(3 + i, view_or(lit_reads[i], i));
+    writes.storage_buffer(15, r.buffer(Tex::lit));
+    r.cmd.bind(r.pipeline("gi_lit.comp", {.proxies = false, .walls = r.plan.has_walls_in_window}));
+    r.cmd.push_descriptors(writes);
+    vk::GiPassParams p = r.params(w.width, w.height);
+    const scene::GiSettings& s = r.in.settings;
+    p.params0 = glm::vec4(r.in.wall_height, float(present), 0.0f, 0.0f);
+    p.params1 = glm::vec4(float(int(s.tone_map)), s.white_point, s.directional_angle_scale, 0.0f);
+    r.cmd.push_constants(p);
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
+void reference_lit_row(ReferenceContext& c) { c.store.lit = reference_lit_image(c.store.shading_inputs(c.in), c.options); }
+
+const char* lit_not_needed(const FrameInputs&, bool lit_image, bool) {
+    return lit_image ? nullptr : "no lit image requested";
+}
+
+} // namespace
+
+constinit const PassRow lit{
+    .pass = Pass::lit,
+    .name = "lit",
+    .reads = lit_reads,
+    .writes = lit_writes,
+    .settings = lit_settings,
+    .inputs = input_walls | input_suns | input_wall_height | input_walls_in_window,
+    .not_needed = lit_not_needed,
+    .record = record_lit,
+    .reference = reference_lit_row,
+};
+
+} // namespace lantern::gi::rows

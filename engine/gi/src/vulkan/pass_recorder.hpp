@@ -1,0 +1,81 @@
+// What a pass row's Vulkan recorder sees (pass_table.hpp): the frame, the command list, the
+// renderer's textures (by Tex), wall grid and light buffers, the GI pipelines, the dispatch
+// and clear helpers, and a state object of its own that lives as long as the renderer.
+#pragma once
+
+#include "lantern/gi/pass_table.hpp"
+#include "lantern/gi/vulkan/renderer.hpp"
+#include "vulkan/pass_params.hpp"
+
+#include <memory>
+
+namespace lantern::gi::vk {
+
+// Persistent GPU state a row keeps between frames (a weight table, light bins): one object
+// per row and renderer, created on first use by PassRecorder::state<T>().
+struct PassState {
+    virtual ~PassState() = default;
+};
+
+// The specialisation constants of a GI pipeline (pass_params.hpp, SpecId).
+struct PipelineSpec {
+    bool proxies = true;
+    bool walls = true;
+    bool per_channel = true;
+    bool segment_check = true;
+    std::uint32_t block_h = 0, group_x = 0, group_y = 0; // 0: the renderer's
+};
+
+class PassRecorder {
+  public:
+    PassRecorder(Renderer& renderer, gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan,
+                 const PassRow& row)
+        : cmd(cmd), in(in), plan(plan), r_(renderer), row_(row) {}
+
+    gpu::CommandList& cmd;
+    const FrameInputs& in;
+    const PassPlan& plan;
+
+    gpu::Device& device() { return r_.device_; }
+    bool has(Tex t) const { return r_.has(t); }
+    const gpu::Buffer& buffer(Tex t) const { return texture(t).buffer; }
+    const gpu::BufferView& view(Tex t) const { return texture(t).view; }
+    const gpu::BufferView& view_u32(Tex t) const { return texture(t).view_u32; } // words32 textures
+    int pitch(Tex t) const { return texture(t).pitch; }
+    const gpu::BufferView& walls() const { return r_.walls_view_; }
+    const gpu::Buffer& lights() const { return r_.lights_; }
+    const gpu::Buffer& proxies() const { return r_.proxies_; }
+    const gpu::Buffer& suns() const { return r_.suns_; }
+    std::uint32_t block_h() const { return r_.block_h_; }
+    std::uint32_t group_x() const { return r_.group_x_; }
+    std::uint32_t group_y() const { return r_.group_y_; }
+
+    // The pipeline of a shader of lantern_gi_shaders ("gi_ao.comp"), created on first use.
+    const gpu::ComputePipeline& pipeline(const char* shader, const PipelineSpec& spec = {}) {
+        return r_.pipeline(shader, spec);
+    }
+    // The fields every pass shares (window, grid, counts) for a width x height texture.
+    GiPassParams params(int width, int height) const { return r_.params(in, width, height); }
+    // One invocation per block of 4 x block_h texels of a width x height texture.
+    void dispatch(int width, int height) { r_.dispatch_blocks(cmd, width, height); }
+    void clear(Tex t) { r_.clear(cmd, t); }
+
+    template <typename T>
+    T& state() {
+        std::unique_ptr<PassState>& slot = r_.states_[&row_];
+        if (!slot) slot = std::make_unique<T>();
+        return static_cast<T&>(*slot);
+    }
+
+  private:
+    const Renderer::GpuTexture& texture(Tex t) const {
+        const Renderer::GpuTexture& g = r_.textures_[int(t)];
+        LANTERN_ASSERT(bool(g.buffer), "a pass records a texture the plan did not allocate");
+        return g;
+    }
+
+    Renderer& r_;
+    const PassRow& row_;
+};
+
+} // namespace lantern::gi::vk

@@ -1,0 +1,261 @@
+// The pass table (engine/gi pass_table.hpp) proves itself:
+//  - every gi setting, perturbed on a scene that runs every pass: each pass whose cache key
+//    did not change leaves exactly the same outputs (so a setting that changes a pass's
+//    output but is missing from its row fails here), and when the plan, window and inputs
+//    stay the same the keys that change are exactly those of the rows listing the setting,
+//    the rows downstream of them and the producers they overwrite in place;
+//  - a row with a setting taken off is caught by that check;
+//  - allocation follows the planned rows' writes; every row names settings that exist.
+#include "lantern/gi/pass_table.hpp"
+
+#include "lantern/scene/loader.hpp"
+#include "test_scenes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace lantern;
+using namespace lantern::gi;
+
+namespace {
+
+// Rooms with point lights and an emissive, plus a sun and a shadow proxy: every pass runs.
+scene::Scene every_pass_scene() {
+    scene::Scene s = gi_test::comparison_scene("rooms").scene;
+    scene::DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.3f));
+    sun.color = {1.0f, 0.9f, 0.8f};
+    sun.intensity = 0.4f;
+    s.directional_lights.push_back(sun);
+    scene::ShadowProxy proxy;
+    proxy.position = {6.5f, 6.5f};
+    proxy.size = {0.4f, 0.4f};
+    s.shadow_proxies.push_back(proxy);
+    s.gi.heat_rounds = 6;
+    return s;
+}
+
+// A different valid value for each gi key, as `--set` takes it; nullopt for a key with one
+// possible value. A key missing here fails EverySettingHasAPerturbation.
+std::optional<std::string> perturbed(const std::string& key, const scene::GiSettings& gi) {
+    const double v = *scene::gi_setting_value(gi, key);
+    // Two candidates each: the first that differs from the scene's value.
+    const std::map<std::string, std::pair<double, std::string>> values = {
+        {"resolution", {3, "3"}},
+        {"padding", {1.3, "1.3"}},
+        {"heat_rounds", {9, "9"}},
+        {"heat_scale", {double(int(scene::HeatScale::half)), "half"}},
+        {"diffusion_rate", {0.7, "0.7"}},
+        {"diffusion_distance", {1.6, "1.6"}},
+        {"emission_strength", {0.6, "0.6"}},
+        {"range_boost", {0.5, "0.5"}},
+        {"intensity_multiplier", {1.3, "1.3"}},
+        {"light_softness", {2.0, "2.0"}},
+        {"ao.radius", {2.5, "2.5"}},
+        {"ao.power", {2.5, "2.5"}},
+        {"ao.strength", {0.4, "0.4"}},
+        {"tone_map", {double(int(scene::ToneMap::reinhard)), "reinhard"}},
+        {"white_point", {2.0, "2.0"}},
+        {"directional_angle_scale", {0.5, "0.5"}},
+        {"max_lights", {1, "1"}},
+        {"max_shadow_proxies", {0, "0"}},
+    };
+    const std::map<std::string, std::string> second = {
+        {"resolution", "5"}, {"padding", "1.5"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
+        {"diffusion_rate", "0.5"}, {"diffusion_distance", "2.0"}, {"emission_strength", "0.8"},
+        {"range_boost", "0.8"}, {"intensity_multiplier", "1.6"}, {"light_softness", "3.0"},
+        {"ao.radius", "3.0"}, {"ao.power", "3.5"}, {"ao.strength", "0.7"}, {"tone_map", "aces"},
+        {"white_point", "3.0"}, {"directional_angle_scale", "0.8"}, {"max_lights", "2"},
+        {"max_shadow_proxies", "1"},
+    };
+    if (auto it = values.find(key); it != values.end())
+        return it->second.first != v ? it->second.second : second.at(key);
+    if (key == "method") return std::nullopt; // one method so far
+    for (const char* toggle : {"per_channel", "segment_check", "ao.enabled", "ao.dither", "blur"})
+        if (key == toggle) return v != 0.0 ? "false" : "true";
+    return std::string(); // no perturbation known
+}
+
+struct FrameRun {
+    FrameInputs in;
+    PassPlan plan;
+    InputKeys inputs;
+    std::array<std::uint64_t, pass_count> keys{};
+    ReferenceStore store;
+};
+
+FrameRun run(const scene::Scene& s, const Method* keys_method = nullptr) {
+    FrameRun r;
+    auto window = compute_window(s.view, s.gi.padding, s.gi.resolution);
+    EXPECT_TRUE(window);
+    r.in = gather_frame_inputs(s, *window);
+    r.plan = plan_passes(r.in, true);
+    r.inputs = input_keys_of(r.in);
+    r.keys = keys_method ? derive_keys(*keys_method, r.in, r.plan, r.inputs) : derive_keys(r.in, r.plan, r.inputs);
+    execute_reference(r.in, r.plan, r.plan.run, {}, r.store);
+    return r;
+}
+
+bool same(const Texture& a, const Texture& b) {
+    return a.width == b.width && a.height == b.height && a.texels == b.texels;
+}
+
+// Textures whose final contents came from a row whose key did not change, but differ: the
+// row's key misses something that changed its output. One line per violation.
+std::vector<std::string> stale_outputs(const FrameRun& a, const FrameRun& b, const std::string& what) {
+    std::vector<std::string> out;
+    const Method& m = method(a.in.settings.method);
+    for (int t = 0; t < tex_count; ++t) {
+        // The last planned writer of the texture in each run.
+        const PassRow* last_a = nullptr;
+        const PassRow* last_b = nullptr;
+        for (const PassRow* row : m.rows) {
+            if (a.plan.run.has(row->pass) && row->outputs(a.in).has(Tex(t))) last_a = row;
+            if (b.plan.run.has(row->pass) && row->outputs(b.in).has(Tex(t))) last_b = row;
+        }
+        if (!last_a || last_a != last_b || a.keys[int(last_a->pass)] != b.keys[int(last_b->pass)]) continue;
+        const Texture* ta = a.store.find(Tex(t));
+        const Texture* tb = b.store.find(Tex(t));
+        if (!ta && !tb) continue; // GPU scratch (heat ping-pong, tap masks): the reference has none
+        if (!ta || !tb || !same(*ta, *tb))
+            out.push_back(what + ": " + std::string(last_a->name) + " kept its key but its output " + tex_name(Tex(t)) +
+                          " changed");
+    }
+    if (a.plan.run.has(Pass::lit) && b.plan.run.has(Pass::lit) && a.keys[int(Pass::lit)] == b.keys[int(Pass::lit)] &&
+        (!a.store.lit || !b.store.lit || a.store.lit->rgb != b.store.lit->rgb))
+        out.push_back(what + ": lit kept its key but the lit image changed");
+    return out;
+}
+
+// The passes a change of `setting` must rerun: the rows listing it, the earlier producers
+// they overwrite in place, and everything downstream (by reads) of those.
+std::set<Pass> expected_changes(const FrameRun& r, const std::string& setting) {
+    const Method& m = method(r.in.settings.method);
+    std::set<Pass> changed;
+    for (std::size_t i = 0; i < m.rows.size(); ++i) {
+        const PassRow& row = *m.rows[i];
+        if (!r.plan.run.has(row.pass)) continue;
+        for (std::string_view k : row.settings)
+            if (k == setting) changed.insert(row.pass);
+    }
+    for (std::size_t i = 0; i < m.rows.size(); ++i) { // producers overwritten in place
+        const PassRow& row = *m.rows[i];
+        if (!r.plan.run.has(row.pass)) continue;
+        for (std::size_t j = i + 1; j < m.rows.size(); ++j)
+            if (changed.count(m.rows[j]->pass) && (m.rows[j]->outputs(r.in).bits & row.outputs(r.in).bits))
+                changed.insert(row.pass);
+    }
+    std::array<bool, tex_count> dirty{};
+    for (const PassRow* row : m.rows) { // downstream, in pipeline order
+        if (!r.plan.run.has(row->pass)) continue;
+        bool reads_dirty = false;
+        for (Tex t : row->reads) reads_dirty |= dirty[std::size_t(t)];
+        if (reads_dirty) changed.insert(row->pass);
+        const TexSet out = row->outputs(r.in);
+        for (int t = 0; t < tex_count; ++t)
+            if (out.has(Tex(t))) dirty[std::size_t(t)] = changed.count(row->pass) > 0;
+    }
+    return changed;
+}
+
+TEST(PassTable, EverySettingHasAPerturbationAndEveryRowSettingExists) {
+    const scene::Scene s = every_pass_scene();
+    for (const std::string& key : scene::gi_setting_keys()) {
+        const auto p = perturbed(key, s.gi);
+        EXPECT_TRUE(!p || !p->empty()) << "gi." << key << " has no perturbation in this test: add one";
+    }
+    const auto keys = scene::gi_setting_keys();
+    for (const PassRow* row : method(scene::GiMethod::heat).rows)
+        for (std::string_view k : row->settings)
+            EXPECT_NE(std::find(keys.begin(), keys.end(), std::string(k)), keys.end())
+                << row->name << " lists '" << k << "', which is not a gi key";
+}
+
+TEST(PassTable, EverySettingChangesExactlyTheKeysOfThePassesItAffects) {
+    const scene::Scene base_scene = every_pass_scene();
+    const FrameRun base = run(base_scene);
+    for (int p = 0; p < pass_count; ++p) EXPECT_TRUE(base.plan.run.has(Pass(p))) << pass_name(Pass(p)) << " does not run";
+    for (const std::string& key : scene::gi_setting_keys()) {
+        const auto value = perturbed(key, base_scene.gi);
+        if (!value || value->empty()) continue;
+        scene::Scene s = base_scene;
+        auto ok = scene::apply_override(s, "gi." + key + "=" + *value);
+        ASSERT_TRUE(ok) << ok.error().message;
+        const FrameRun changed = run(s);
+        for (const std::string& v : stale_outputs(base, changed, "gi." + key + "=" + *value)) ADD_FAILURE() << v;
+        const bool same_frame = changed.plan.run == base.plan.run && changed.in.window == base.in.window &&
+                                changed.inputs.lights == base.inputs.lights && changed.inputs.proxies == base.inputs.proxies;
+        if (!same_frame) continue; // a plan, window or input change: outputs checked above
+        const std::set<Pass> expected = expected_changes(base, key);
+        for (int p = 0; p < pass_count; ++p) {
+            const bool key_changed = base.keys[std::size_t(p)] != changed.keys[std::size_t(p)];
+            EXPECT_EQ(key_changed, expected.count(Pass(p)) > 0)
+                << "gi." << key << "=" << *value << ": the key of " << pass_name(Pass(p))
+                << (key_changed ? " changed, but its row does not list the setting and reads nothing that does"
+                                : " did not change, but its row (or one upstream) lists the setting");
+        }
+    }
+}
+
+TEST(PassTable, ARowMissingASettingIsCaught) {
+    // The direct row without light_softness: its key ignores the setting, its output does not.
+    const Method& heat = method(scene::GiMethod::heat);
+    const PassRow* direct = find_row(heat, Pass::direct);
+    ASSERT_NE(direct, nullptr);
+    PassRow forgetful = *direct;
+    forgetful.settings = {};
+    std::vector<const PassRow*> rows(heat.rows.begin(), heat.rows.end());
+    for (const PassRow*& row : rows)
+        if (row == direct) row = &forgetful;
+    const Method broken{heat.id, "heat without light_softness in direct", rows};
+    scene::Scene s = every_pass_scene();
+    const FrameRun a = run(s, &broken);
+    ASSERT_TRUE(scene::apply_override(s, "gi.light_softness=2.0"));
+    const FrameRun b = run(s, &broken);
+    const auto stale = stale_outputs(a, b, "gi.light_softness");
+    bool caught = false;
+    for (const std::string& v : stale) caught |= v.find(": direct kept its key") != std::string::npos;
+    EXPECT_TRUE(caught) << "the check did not notice the direct row's missing setting";
+}
+
+TEST(PassTable, AllocationFollowsThePlannedRowsWrites) {
+    scene::Scene s = every_pass_scene();
+    FrameRun all = run(s);
+    const TexSet written = textures_written(all.in, all.plan);
+    EXPECT_TRUE(written.has(Tex::direct_point)) << "suns: the direct pass writes the point set";
+    EXPECT_TRUE(written.has(Tex::ao));
+    EXPECT_TRUE(written.has(Tex::blur_temp));
+    s.directional_lights.clear();
+    ASSERT_TRUE(scene::apply_override(s, "gi.ao.enabled=false"));
+    ASSERT_TRUE(scene::apply_override(s, "gi.blur=false"));
+    const FrameRun fewer = run(s);
+    const TexSet w2 = textures_written(fewer.in, fewer.plan);
+    EXPECT_FALSE(w2.has(Tex::direct_point));
+    EXPECT_FALSE(w2.has(Tex::ao));
+    EXPECT_FALSE(w2.has(Tex::blur_temp));
+    EXPECT_TRUE(w2.has(Tex::direct));
+    EXPECT_EQ(fewer.plan.reason[int(Pass::ao)], "AO disabled");
+    EXPECT_EQ(fewer.plan.reason[int(Pass::directional)], "no directional lights");
+    // The reference holds every contract texture that was written, and nothing else.
+    for (int t = 0; t < tex_count; ++t) {
+        const bool held = fewer.store.find(Tex(t)) != nullptr;
+        if (held) {
+            EXPECT_TRUE(w2.has(Tex(t))) << tex_name(Tex(t)) << " held but not written";
+        }
+        if (!texture_row(Tex(t)).internal) {
+            EXPECT_EQ(held, w2.has(Tex(t))) << tex_name(Tex(t));
+        }
+    }
+}
+
+TEST(PassTable, TexturesByName) {
+    for (int t = 0; t < tex_count; ++t) EXPECT_EQ(texture_by_name(tex_name(Tex(t))), Tex(t));
+    EXPECT_FALSE(texture_by_name("no such texture"));
+}
+
+} // namespace
