@@ -91,6 +91,7 @@ INSTANTIATE_TEST_SUITE_P(
                                            "\"reinhard\", \"reinhard_white\", \"aces\", got "
                                            "\"filmic\""},
         OverrideCase{"gi.ao.radius=9", "--set gi.ao.radius: must be in (0, 8], got 9"},
+        OverrideCase{"gi.method=radiosity", "--set gi.method: expected one of \"heat\", got \"radiosity\""},
         OverrideCase{
             "gi.resoluton=8",
             "--set gi.resoluton: unknown key 'resoluton' in gi (did you mean 'resolution'?)"},
