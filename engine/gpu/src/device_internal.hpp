@@ -97,6 +97,17 @@ struct Device::Context {
 
 // Helpers shared by the files of engine/gpu/src.
 namespace detail {
+// The layout a pipeline gets: what its shaders declare (gpu::reflect_spirv), checked against
+// the description's bindings and push-constant size where it gives them (empty / 0: take
+// the shader's; a given size may exceed the block, as a padded C++ struct does). A mismatch or an unreadable layout stops with a message naming `name`:
+// shaders are built with the engine, so it is a programming error, not bad input.
+struct PipelineLayoutInfo {
+    std::vector<BindingType> bindings;
+    std::uint32_t push_constant_size = 0;
+};
+PipelineLayoutInfo resolve_layout(std::span<const std::span<const std::uint32_t>> stages,
+                                  std::span<const BindingType> declared, std::uint32_t declared_push_size,
+                                  const char* name);
 VkDescriptorSetLayout create_set_layout(VkDevice device, std::span<const BindingType> bindings,
                                         VkShaderStageFlags stages);
 VkPipelineLayout create_pipeline_layout(VkDevice device, VkDescriptorSetLayout set_layout,

@@ -136,16 +136,22 @@ GraphicsPipeline Device::create_graphics_pipeline(const GraphicsPipelineDesc& de
     LANTERN_ASSERT(!desc.depth.test || desc.depth_format != VK_FORMAT_UNDEFINED,
                    "gpu: depth test without a depth format");
 
+    const std::span<const std::uint32_t> spirv_stages[] = {desc.vertex_spirv, desc.fragment_spirv};
+    const detail::PipelineLayoutInfo layout =
+        detail::resolve_layout(spirv_stages, desc.bindings, desc.push_constant_size, desc.name);
+    LANTERN_ASSERT(layout.bindings.size() <= GraphicsPipeline::max_bindings,
+                   "gpu: more bindings than GraphicsPipeline::max_bindings");
+
     GraphicsPipeline p;
     p.device_ = this;
-    p.binding_count_ = static_cast<std::uint32_t>(desc.bindings.size());
-    std::copy(desc.bindings.begin(), desc.bindings.end(), p.bindings_.begin());
-    p.push_constant_size_ = desc.push_constant_size;
+    p.binding_count_ = static_cast<std::uint32_t>(layout.bindings.size());
+    std::copy(layout.bindings.begin(), layout.bindings.end(), p.bindings_.begin());
+    p.push_constant_size_ = layout.push_constant_size;
     p.color_format_ = desc.color_format;
     p.depth_format_ = desc.depth_format;
-    if (!desc.bindings.empty())
-        p.set_layout_ = detail::create_set_layout(device_, desc.bindings, raster_stages);
-    p.layout_ = detail::create_pipeline_layout(device_, p.set_layout_, desc.push_constant_size,
+    if (!layout.bindings.empty())
+        p.set_layout_ = detail::create_set_layout(device_, layout.bindings, raster_stages);
+    p.layout_ = detail::create_pipeline_layout(device_, p.set_layout_, layout.push_constant_size,
                                                raster_stages);
 
     const detail::Specialization specialization(desc.specialization);

@@ -1,8 +1,10 @@
 // Compute pipelines with push-descriptor set layouts and specialization constants.
 #include "device_internal.hpp"
 
+#include "lantern/gpu/reflect.hpp"
 #include "lantern/gpu/vk_check.hpp"
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -93,6 +95,48 @@ const char* to_string(BindingType type) {
     return "?";
 }
 
+namespace detail {
+
+PipelineLayoutInfo resolve_layout(std::span<const std::span<const std::uint32_t>> stages,
+                                  std::span<const BindingType> declared, std::uint32_t declared_push_size,
+                                  const char* name) {
+    const std::string who = std::string("gpu: pipeline '") + (name ? name : "?") + "': ";
+    ShaderLayout merged;
+    for (std::span<const std::uint32_t> words : stages) {
+        auto layout = reflect_spirv(words);
+        LANTERN_VERIFY(layout.ok(), (who + (layout.ok() ? "" : layout.error().message)).c_str());
+        auto both = merge_layouts(merged, *layout);
+        LANTERN_VERIFY(both.ok(), (who + (both.ok() ? "" : both.error().message)).c_str());
+        merged = std::move(*both);
+    }
+    auto dense = merged.dense_bindings();
+    LANTERN_VERIFY(dense.ok(), (who + (dense.ok() ? "" : dense.error().message)).c_str());
+    PipelineLayoutInfo out{std::move(*dense), merged.push_constant_size};
+    if (!declared.empty()) {
+        std::string mismatch;
+        if (declared.size() != out.bindings.size())
+            mismatch = "the description lists " + std::to_string(declared.size()) + " bindings, the shaders declare " +
+                       std::to_string(out.bindings.size());
+        for (std::size_t i = 0; mismatch.empty() && i < declared.size(); ++i)
+            if (declared[i] != out.bindings[i])
+                mismatch = "binding " + std::to_string(i) + " is " + to_string(declared[i]) + " in the description, " +
+                           to_string(out.bindings[i]) + " in the shader";
+        LANTERN_VERIFY(mismatch.empty(), (who + mismatch).c_str());
+    }
+    if (declared_push_size != 0) {
+        // The C++ struct may be padded past the block's end (alignas(16)); never shorter.
+        LANTERN_VERIFY(declared_push_size >= out.push_constant_size,
+                       (who + "push constants of " + std::to_string(declared_push_size) +
+                        " bytes in the description, but the shader's block is " +
+                        std::to_string(out.push_constant_size) + " bytes")
+                           .c_str());
+        out.push_constant_size = declared_push_size;
+    }
+    return out;
+}
+
+} // namespace detail
+
 ComputePipeline Device::create_compute_pipeline(const ComputePipelineDesc& desc) {
     LANTERN_ASSERT(desc.spirv.size() >= 5 && desc.spirv[0] == 0x07230203u,
                    "gpu: compute pipeline needs SPIR-V words (empty lookup result?)");
@@ -102,15 +146,22 @@ ComputePipeline Device::create_compute_pipeline(const ComputePipelineDesc& desc)
                        desc.push_constant_size <= caps_.max_push_constants_size,
                    "gpu: push-constant size must be a multiple of 4 within maxPushConstantsSize");
 
+    const std::span<const std::uint32_t> stages[] = {desc.spirv};
+    const detail::PipelineLayoutInfo layout =
+        detail::resolve_layout(stages, desc.bindings, desc.push_constant_size, desc.name);
+    LANTERN_ASSERT(layout.bindings.size() <= ComputePipeline::max_bindings,
+                   "gpu: more bindings than ComputePipeline::max_bindings");
+    LANTERN_ASSERT(layout.push_constant_size <= caps_.max_push_constants_size,
+                   "gpu: push constants larger than maxPushConstantsSize");
+
     ComputePipeline p;
     p.device_ = this;
-    p.binding_count_ = static_cast<std::uint32_t>(desc.bindings.size());
-    std::copy(desc.bindings.begin(), desc.bindings.end(), p.bindings_.begin());
-    p.push_constant_size_ = desc.push_constant_size;
-    if (!desc.bindings.empty())
-        p.set_layout_ =
-            detail::create_set_layout(device_, desc.bindings, VK_SHADER_STAGE_COMPUTE_BIT);
-    p.layout_ = detail::create_pipeline_layout(device_, p.set_layout_, desc.push_constant_size,
+    p.binding_count_ = static_cast<std::uint32_t>(layout.bindings.size());
+    std::copy(layout.bindings.begin(), layout.bindings.end(), p.bindings_.begin());
+    p.push_constant_size_ = layout.push_constant_size;
+    if (!layout.bindings.empty())
+        p.set_layout_ = detail::create_set_layout(device_, layout.bindings, VK_SHADER_STAGE_COMPUTE_BIT);
+    p.layout_ = detail::create_pipeline_layout(device_, p.set_layout_, layout.push_constant_size,
                                                VK_SHADER_STAGE_COMPUTE_BIT);
     const detail::Specialization specialization(desc.specialization);
 

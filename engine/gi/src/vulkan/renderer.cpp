@@ -1,11 +1,13 @@
 #include "lantern/gi/vulkan/renderer.hpp"
 
 #include "lantern/gi/reference_indirect.hpp"
+#include "lantern/gpu/reflect.hpp"
 #include "lantern_gi_shaders.hpp"
 #include "vulkan/pass_params.hpp"
 #include "vulkan/pass_recorder.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -14,8 +16,6 @@
 
 namespace lantern::gi::vk {
 namespace {
-
-using gpu::BindingType;
 
 constexpr int num_query_sets = 3; // frames in flight + one being recorded
 
@@ -31,38 +31,20 @@ VkFormat view_format(TexFormat f, bool rgba8) {
     return VK_FORMAT_UNDEFINED;
 }
 
-// Binding lists of the shaders (set 0, dense).
-const std::vector<BindingType>& bindings_of(const char* shader) {
-    using B = BindingType;
-    static const std::map<std::string, std::vector<BindingType>> table = {
-        {"gi_conduction.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::storage_buffer}},
-        {"gi_ao.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_light_bins.comp", {B::uniform_buffer, B::storage_buffer}},
-        {"gi_direct.comp",
-         {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::storage_buffer, B::storage_buffer,
-          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer}},
-        {"gi_directional.comp",
-         {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::uniform_texel_buffer,
-          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
-          B::uniform_texel_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
-          B::storage_buffer, B::storage_buffer}},
-        {"gi_emission.comp", {B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_heat_seed.comp", {B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_heat_mask.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::storage_buffer}},
-        {"gi_heat.comp", {B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_upsample.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_blur.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_wall_indirect.comp",
-         {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_texel_buffer, B::storage_buffer, B::storage_buffer,
-          B::storage_buffer, B::storage_buffer}},
-        {"gi_lit.comp",
-         {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::uniform_texel_buffer,
-          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
-          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
-          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_copy.comp", {B::uniform_texel_buffer, B::storage_buffer}},
-    };
-    return table.at(shader);
+// The push-constant block every GI shader declares (gi_common.glsl), member by member:
+// checked against each shader's reflected layout when its pipeline is created.
+constexpr std::uint32_t gi_params_offsets[] = {
+    offsetof(GiPassParams, camera_view), offsetof(GiPassParams, size),    offsetof(GiPassParams, grid),
+    offsetof(GiPassParams, counts),      offsetof(GiPassParams, params0), offsetof(GiPassParams, params1),
+    offsetof(GiPassParams, grid_phase)};
+
+void check_params_layout(const char* shader, std::span<const std::uint32_t> spirv) {
+    auto layout = gpu::reflect_spirv(spirv);
+    LANTERN_VERIFY(layout.ok(), layout.ok() ? "" : layout.error().message.c_str());
+    const std::vector<std::uint32_t> expected(std::begin(gi_params_offsets), std::end(gi_params_offsets));
+    LANTERN_VERIFY(layout->push_constant_offsets == expected && layout->push_constant_size == sizeof(GiPassParams),
+                   (std::string(shader) + ": its push-constant block does not match GiPassParams (vulkan/pass_params.hpp)")
+                       .c_str());
 }
 
 std::span<const std::byte> bytes_of(const void* data, std::size_t size) {
@@ -85,7 +67,7 @@ struct Renderer::Pipelines {
         gpu::ComputePipelineDesc desc;
         desc.spirv = lantern_gi_shaders_spirv(shader);
         LANTERN_VERIFY(!desc.spirv.empty(), "GI shader missing from lantern_gi_shaders");
-        desc.bindings = bindings_of(shader);
+        check_params_layout(shader, desc.spirv); // the bindings come from the shader itself
         desc.specialization = {{spec_block_h, block_h},       {spec_group_x, gx},
                                {spec_group_y, gy},            {spec_has_proxies, proxies ? 1u : 0u},
                                {spec_has_walls, walls ? 1u : 0u}, {spec_per_channel, per_channel ? 1u : 0u},
