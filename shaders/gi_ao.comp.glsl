@@ -1,9 +1,17 @@
 // Ambient occlusion (r8): the distance-weighted share of wall tiles within the AO radius.
 // The weights come from the host (AoKernel: per position inside a tile, per neighbour tile);
 // an invocation loads the wall pattern around its tile once and sums the weights of the
-// walls in it. params0 = (-, -, strength, dither on/off); params1.x = range (ceil(radius)).
+// walls in it. Parameters: AoParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct AoParams {
+    float radius, power; // the kernel's shape (the weights come from the host)
+    float strength;      // how dark full occlusion is
+    float dither;        // 1: ordered dithering before the 8-bit store
+    int range;           // ceil(radius): neighbour tiles each way
+    int pad0, pad1, pad2;
+};
+#define GI_PASS_PARAMS AoParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
@@ -33,7 +41,7 @@ void load_walls(ivec2 tile, int range) {
 }
 
 float ao_texel(int x, int y) {
-    int res = pc.size.w, range = int(pc.params1.x);
+    int res = pc.size.w, range = pc.pass.range;
     int taps = (2 * range + 1) * (2 * range + 1);
     ivec2 tile = ivec2(int(floor(pc.camera_view.x)) + x / res, int(floor(pc.camera_view.y)) + y / res);
     load_walls(tile, range);
@@ -50,8 +58,8 @@ float ao_texel(int x, int y) {
     }
     float total = texelFetch(u_kernel, res * res * taps + sub).r;
     float occlusion = total > 0.0 ? occluded / total : 0.0;
-    float value = 1.0 - saturate(pc.params0.z) * occlusion;
-    if (pc.params0.w > 0.5) value += ((BAYER4[(y & 3) * 4 + (x & 3)] + 0.5) / 16.0 - 0.5) / 255.0;
+    float value = 1.0 - saturate(pc.pass.strength) * occlusion;
+    if (pc.pass.dither > 0.5) value += ((BAYER4[(y & 3) * 4 + (x & 3)] + 0.5) / 16.0 - 0.5) / 255.0;
     return value;
 }
 

@@ -1,7 +1,12 @@
 // One direction of the edge-aware blur: 5 taps, Gaussian sigma 1, only texels of the
-// centre's conduction class, renormalised (brightness preserving). params0.xy = axis.
+// centre's conduction class, renormalised (brightness preserving). Parameters: BlurParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct BlurParams {
+    int axis_x, axis_y; // (1, 0) horizontal, (0, 1) vertical
+    int pad0, pad1, pad2, pad3, pad4, pad5;
+};
+#define GI_PASS_PARAMS BlurParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
@@ -16,7 +21,7 @@ const float KERNEL[5] = float[5](0.13533528, 0.60653066, 1.0, 0.60653066, 0.1353
 bool air_texel(int x, int y) { return !is_wall(ivec2(floor(texel_center(x, y)))); }
 
 vec4 blur(int x, int y) {
-    ivec2 axis = ivec2(pc.params0.xy);
+    ivec2 axis = ivec2(pc.pass.axis_x, pc.pass.axis_y);
     bool center_air = air_texel(x, y);
     vec3 sum = vec3(0.0);
     float wsum = 0.0;

@@ -1,9 +1,14 @@
 // Direct light from point lights (DDA-shadowed, proxy-shadowed) and emissives (no
 // shadows, no cap): ground colour (rgba16f), shadow map R (rg8), and per-face wall light
 // (4 x rgba16f) on wall texels. Each workgroup visits only the lights gi_light_bins listed
-// for its footprint. params0.x = light softness.
+// for its footprint. Parameters: DirectParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct DirectParams {
+    float light_softness; // falloff exponent (gi.light_softness)
+    int pad0, pad1, pad2, pad3, pad4, pad5, pad6;
+};
+#define GI_PASS_PARAMS DirectParams
 #include "lantern/gi_common.glsl"
 
 layout(constant_id = 4) const int MAX_LIGHTS = 2048; // point lights + emissives (64 KiB UBO)
@@ -78,7 +83,7 @@ void emissive_wall_light(int i, vec2 p, vec4 mask, float softness, inout TexelLi
 
 void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
     vec4 mask = wall_face_mask(cell);
-    float softness = pc.params0.x;
+    float softness = pc.pass.light_softness;
     FOR_EACH_BIN_LIGHT(i) {
         if (i < pc.counts.x) point_wall_light(i, cell, p, mask, softness, t);
         else emissive_wall_light(i, p, mask, softness, t);
@@ -86,7 +91,7 @@ void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
 }
 
 void ground_texel(vec2 p, inout TexelLight t) {
-    float softness = pc.params0.x;
+    float softness = pc.pass.light_softness;
     FOR_EACH_BIN_LIGHT(i) {
         GpuPointLight l = u_lights.lights[i];
         vec2 pos = l.position_radius.xy;

@@ -1,8 +1,14 @@
 // Directional lights (sun, moon): traversal towards the light with the wall-height test,
 // added into the direct colour and wall faces; writes shadow map G (max visibility).
-// params0 = (wall height, directional angle scale, -, -).
+// Parameters: DirectionalParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct DirectionalParams {
+    float wall_height;
+    float angle_scale; // gi.directional_angle_scale
+    int pad0, pad1, pad2, pad3, pad4, pad5;
+};
+#define GI_PASS_PARAMS DirectionalParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
@@ -30,14 +36,14 @@ struct TexelLight {
 };
 
 float sun_angle(GpuDirectionalLight sun) {
-    return mix(saturate(-sun.direction_base.y * 2.0), 1.0, pc.params0.y);
+    return mix(saturate(-sun.direction_base.y * 2.0), 1.0, pc.pass.angle_scale);
 }
 
 float sun_visibility(GpuDirectionalLight sun, vec2 from) {
     vec3 dir = sun.direction_base.xyz;
     if (dir.y >= 0.0) return 0.0; // below the horizon
     float max_distance = sun.direction_base.w * sun.color_multiplier.w;
-    float grid = directional_shadow_dda(from, dir, max_distance, pc.params0.x);
+    float grid = directional_shadow_dda(from, dir, max_distance, pc.pass.wall_height);
     return min(grid, directional_proxy_shadow(from, dir));
 }
 

@@ -1,8 +1,13 @@
 // Emission extraction (rgba16f): 1 - exp(-2 * maxChannel) roll-off, emission strength,
 // saturation boost 1.2 around Rec.601 luma, negative channels clamped.
-// params0.x = emission strength.
+// Parameters: EmissionParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct EmissionParams {
+    float strength; // gi.emission_strength
+    int pad0, pad1, pad2, pad3, pad4, pad5, pad6;
+};
+#define GI_PASS_PARAMS EmissionParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform samplerBuffer u_direct;
@@ -20,7 +25,7 @@ void main() {
             vec4 d = texelFetch(u_direct, index);
             float max_channel = max(d.r, max(d.g, d.b));
             float curve = 1.0 - exp(-max_channel * 2.0);
-            float scale = pc.params0.x * curve / (max_channel + 0.001);
+            float scale = pc.pass.strength * curve / (max_channel + 0.001);
             vec4 e = d * scale;
             float lum = dot(e.rgb, luma);
             vec3 boosted = max(vec3(lum) + (e.rgb - lum) * 1.2, vec3(0.0));

@@ -4,10 +4,18 @@
 // intensity multiplier, soft cap 2. The GLSL side of reference_indirect.cpp's heat_texel.
 //
 // size = (heat w, heat h, heat pitch, -);
-// params0 = (-, diffusion distance in heat texels, rate, range boost);
-// params1 = (intensity multiplier, -, -, -).
+// Parameters: HeatRoundParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct HeatRoundParams {
+    float texels_per_unit;      // heat texels per world unit
+    float distance;             // diffusion distance in heat texels
+    float rate;                 // gi.diffusion_rate
+    float range_boost;          // gi.range_boost
+    float intensity_multiplier; // gi.intensity_multiplier
+    int pad0, pad1, pad2;
+};
+#define GI_PASS_PARAMS HeatRoundParams
 #include "lantern/gi_common.glsl"
 #include "lantern/gi_heat_taps.glsl"
 
@@ -24,17 +32,17 @@ float g_weights[24];
 int g_taps;
 
 void prepare_taps() {
-    float distance = pc.params0.y;
+    float distance = pc.pass.distance;
     g_taps = heat_tap_count(distance);
     for (int t = 0; t < g_taps; ++t) {
         g_offsets[t] = heat_tap_offset(t, distance);
-        g_weights[t] = heat_tap_weight(t, distance) * pc.params0.z;
+        g_weights[t] = heat_tap_weight(t, distance) * pc.pass.rate;
     }
 }
 
 vec4 heat_texel(int i, int j, uint mask) {
     vec4 center = texelFetch(u_heat_in, texel_index(i, j));
-    float rate = pc.params0.z;
+    float rate = pc.pass.rate;
     vec3 accum = vec3(0.0), wsum = vec3(0.0);
     while (mask != 0u) {
         int t = findLSB(mask);
@@ -52,8 +60,8 @@ vec4 heat_texel(int i, int j, uint mask) {
     float blend = mix(0.5, 0.8, in_shadow) * rate;
     vec3 next = mix(center.rgb, accum, blend);
     float darkness = 1.0 - clamp(dot(center.rgb, LUMA), 0.0, 1.0);
-    next *= 1.0 + pc.params0.w * darkness * in_shadow;
-    next *= pc.params1.x;
+    next *= 1.0 + pc.pass.range_boost * darkness * in_shadow;
+    next *= pc.pass.intensity_multiplier;
     float max_channel = max(next.r, max(next.g, next.b));
     if (max_channel > 2.0) next *= 2.0 / max_channel;
     return vec4(next, center.a);

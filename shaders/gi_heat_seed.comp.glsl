@@ -1,8 +1,14 @@
 // Heat seed on the heat grid (window / scale): box average of the emission (rgb) and of
 // the direct visibility max(R, G) (alpha, carried through the rounds untouched).
-// params1 = (full width, full height, full pitch, scale).
+// Parameters: HeatSeedParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct HeatSeedParams {
+    int full_width, full_height, full_pitch; // the window-sized emission and shadow textures
+    int scale;                               // 1, 2 or 4 window texels per heat texel
+    int pad0, pad1, pad2, pad3;
+};
+#define GI_PASS_PARAMS HeatSeedParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform samplerBuffer u_emission;
@@ -12,8 +18,8 @@ layout(std430, binding = 2) writeonly buffer Out { uvec2 texels[]; } o_heat;
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
-    int full_w = int(pc.params1.x), full_h = int(pc.params1.y), full_pitch = int(pc.params1.z);
-    int scale = int(pc.params1.w);
+    int full_w = pc.pass.full_width, full_h = pc.pass.full_height, full_pitch = pc.pass.full_pitch;
+    int scale = pc.pass.scale;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int j = o.y + int(r);
         if (j >= pc.size.y) return;

@@ -2,10 +2,16 @@
 // workgroup (4 * group_x by BLOCK_H * group_y texels); bit i of a bin's mask is set when
 // light i (point lights, then emissives) can reach a texel centre in the bin. The direct
 // pass then visits only those lights, in ascending order (the reference's order).
-// One invocation per bin. size = texture (w, h, -, res); params0 = (bins x, bins y,
-// words per bin, -); params1.xy = bin size in texels.
+// One invocation per bin. size = texture (w, h, -, res); parameters: LightBinParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct LightBinParams {
+    int bins_x, bins_y; // bins (direct-pass workgroups) in x and y
+    int words;          // 32-bit mask words per bin
+    int bin_w, bin_h;   // a bin's size in texels
+    int pad0, pad1, pad2;
+};
+#define GI_PASS_PARAMS LightBinParams
 #include "lantern/gi_common.glsl"
 
 layout(constant_id = 4) const int MAX_LIGHTS = 2048;
@@ -15,10 +21,10 @@ layout(std430, binding = 1) writeonly buffer Out { uint masks[]; } o_bins;
 
 void main() {
     ivec2 bin = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 bins = ivec2(pc.params0.xy);
+    ivec2 bins = ivec2(pc.pass.bins_x, pc.pass.bins_y);
     if (bin.x >= bins.x || bin.y >= bins.y) return;
-    int words = int(pc.params0.z);
-    ivec2 bin_size = ivec2(pc.params1.xy);
+    int words = pc.pass.words;
+    ivec2 bin_size = ivec2(pc.pass.bin_w, pc.pass.bin_h);
     ivec2 first = bin * bin_size;
     ivec2 last = min(first + bin_size, pc.size.xy) - 1;
     vec2 lo = texel_center(first.x, first.y), hi = texel_center(max(last.x, first.x), max(last.y, first.y));

@@ -1,9 +1,17 @@
 // The lit image of the GI window seen from above (rgba8, sRGB): ground, wall tops, and a
 // band of wall faces along each exposed edge, shaded by the shading library.
-// params0 = (wall height, texture presence bits, -, -); params1 = (tone map, white point,
-// angle scale, -).
+// Parameters: LitParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct LitParams {
+    float wall_height;
+    uint present;      // bit t: GI texture t is bound (else absent, read as nothing)
+    int tone_map;      // scene::ToneMap
+    float white_point;
+    float angle_scale; // gi.directional_angle_scale
+    int pad0, pad1, pad2;
+};
+#define GI_PASS_PARAMS LitParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
@@ -27,7 +35,7 @@ layout(std430, binding = 15) writeonly buffer Out { uint texels[]; } o_lit;
 #include "lantern/shading.glsl"
 #include "lantern/gi_texture_fetch.glsl"
 
-bool gi_has(int t) { return ((uint(pc.params0.y) >> uint(t)) & 1u) != 0u; }
+bool gi_has(int t) { return ((pc.pass.present >> uint(t)) & 1u) != 0u; }
 vec4 gi_fetch(int t, ivec2 texel) { return gi_texture_fetch(t, texel_index(texel.x, texel.y)); }
 bool gi_wall_tile(ivec2 tile) { return is_wall(tile); }
 int gi_sun_count() { return pc.counts.z; }
@@ -40,7 +48,7 @@ void lit_surface_at(int x, int y, out vec3 pos, out vec3 normal) {
     pos = vec3(p.x, 0.0, p.y);
     normal = vec3(0.0, 1.0, 0.0);
     if (!is_wall(cell)) return;
-    float wall_height = pc.params0.x;
+    float wall_height = pc.pass.wall_height;
     pos.y = wall_height;
     int res = pc.size.w;
     int lx = int(floor((p.x - float(cell.x)) * float(res))), lz = int(floor((p.y - float(cell.y)) * float(res)));
@@ -61,7 +69,7 @@ uint srgb8(float v) { return uint(floor(linear_to_srgb(v) * 255.0 + 0.5)); }
 
 void main() {
     gi_shading.window = vec4(pc.camera_view.xy, float(pc.size.x), float(pc.size.y));
-    gi_shading.config = vec4(float(pc.size.w), pc.params1.x, pc.params1.y, pc.params1.z);
+    gi_shading.config = vec4(float(pc.size.w), float(pc.pass.tone_map), pc.pass.white_point, pc.pass.angle_scale);
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
     for (uint r = 0; r < BLOCK_H; ++r) {

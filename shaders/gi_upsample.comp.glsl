@@ -1,9 +1,15 @@
 // Indirect light at full resolution from the heat grid: a copy at scale 1, else bilinear
 // over the conductive heat texels around the texel centre (nearest when none conducts).
-// size = full (w, h, pitch, res); params0 = (heat w, heat h, heat pitch, heat texels per unit);
-// params1.x = scale.
+// size = full (w, h, pitch, res); parameters: UpsampleParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct UpsampleParams {
+    int heat_width, heat_height, heat_pitch;
+    float texels_per_unit; // heat texels per world unit
+    int scale;             // 1: a copy; 2 or 4: bilinear upsampling
+    int pad0, pad1, pad2;
+};
+#define GI_PASS_PARAMS UpsampleParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
@@ -13,12 +19,12 @@ layout(std430, binding = 3) writeonly buffer Out { uvec2 texels[]; } o_indirect;
 
 #include "lantern/gi_shadow.glsl"
 
-vec3 heat_at(int i, int j) { return texelFetch(u_heat, j * int(pc.params0.z) + i).rgb; }
+vec3 heat_at(int i, int j) { return texelFetch(u_heat, j * pc.pass.heat_pitch + i).rgb; }
 
 vec3 upsample(int x, int y) {
-    int hw = int(pc.params0.x), hh = int(pc.params0.y);
-    if (int(pc.params1.x) == 1) return heat_at(x, y);
-    float tpu = pc.params0.w;
+    int hw = pc.pass.heat_width, hh = pc.pass.heat_height;
+    if (pc.pass.scale == 1) return heat_at(x, y);
+    float tpu = pc.pass.texels_per_unit;
     vec2 origin = pc.camera_view.xy;
     vec2 u = (texel_center(x, y) - origin) * tpu - 0.5;
     ivec2 i0 = ivec2(floor(u));

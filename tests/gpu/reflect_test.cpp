@@ -17,6 +17,8 @@ namespace {
 using lantern::gpu::BindingType;
 using lantern::gpu::reflect_spirv;
 using B = BindingType;
+using lantern::gpu::PushMember;
+using lantern::gpu::ScalarKind;
 
 std::vector<std::uint32_t> words_of(std::span<const std::uint32_t> s) { return {s.begin(), s.end()}; }
 
@@ -37,9 +39,22 @@ TEST(Reflect, GiShadersDeclareTheBindingsTheirRecordersPush) {
         auto dense = layout->dense_bindings();
         ASSERT_TRUE(dense) << dense.error().message;
         EXPECT_EQ(*dense, bindings) << shader;
-        EXPECT_EQ(layout->push_constant_size, 112u) << shader << ": GiPassParams";
-        EXPECT_EQ(layout->push_constant_offsets, (std::vector<std::uint32_t>{0, 16, 32, 48, 64, 80, 96})) << shader;
+        EXPECT_EQ(layout->push_constant_size, 112u) << shader << ": GiPush";
+        // Four shared vec4/ivec4 fields, the pass's eight 4-byte parameters, grid_phase.
+        const auto& m = layout->push_constant_members;
+        ASSERT_EQ(m.size(), 13u) << shader;
+        for (std::uint32_t i = 0; i < 4; ++i) EXPECT_EQ(m[i], (PushMember{16 * i, 16, ScalarKind::other})) << shader;
+        for (std::uint32_t i = 0; i < 8; ++i) {
+            EXPECT_EQ(m[4 + i].offset, 64 + 4 * i) << shader;
+            EXPECT_NE(m[4 + i].kind, ScalarKind::other) << shader;
+        }
+        EXPECT_EQ(m[12], (PushMember{96, 16, ScalarKind::other})) << shader;
     }
+    // Named parameters: gi_emission's EmissionParams is a float, then seven ints.
+    auto emission = reflect_spirv(lantern_gi_shaders_spirv("gi_emission.comp"));
+    ASSERT_TRUE(emission);
+    EXPECT_EQ(emission->push_constant_members[4].kind, ScalarKind::f32);
+    EXPECT_EQ(emission->push_constant_members[5].kind, ScalarKind::i32);
     // Every GI shader reads as a valid pipeline layout.
     for (std::string_view name : lantern_gi_shaders_names()) {
         auto layout = reflect_spirv(lantern_gi_shaders_spirv(name));

@@ -160,6 +160,36 @@ Result<std::uint32_t> size_of(const Module& m, std::uint32_t type_id, std::uint3
     }
 }
 
+// Appends the members of struct `type_id` (at `base`), flattening nested structs.
+Result<void> flatten(const Module& m, std::uint32_t type_id, std::uint32_t base, std::vector<PushMember>& out, int depth = 0) {
+    if (depth > 16) return bad("types nested too deeply");
+    const Type* t = m.type(type_id);
+    if (!t || t->opcode != op_type_struct) return bad("not a struct");
+    auto offsets = m.member_offsets.find(type_id);
+    for (std::uint32_t k = 0; k < t->operands.size(); ++k) {
+        if (offsets == m.member_offsets.end() || !offsets->second.count(k))
+            return bad("struct member " + std::to_string(k) + " without an Offset");
+        const std::uint32_t at = base + offsets->second.at(k);
+        const Type* member = m.type(t->operands[k]);
+        if (!member) return bad("unknown member type");
+        if (member->opcode == op_type_struct) {
+            if (auto ok = flatten(m, t->operands[k], at, out, depth + 1); !ok) return ok;
+            continue;
+        }
+        std::uint32_t stride = 0;
+        if (auto s = m.member_matrix_strides.find(type_id); s != m.member_matrix_strides.end() && s->second.count(k))
+            stride = s->second.at(k);
+        auto size = size_of(m, t->operands[k], stride, depth + 1);
+        if (!size) return size.error();
+        ScalarKind kind = ScalarKind::other;
+        if (member->opcode == op_type_float && *size == 4) kind = ScalarKind::f32;
+        if (member->opcode == op_type_int && *size == 4 && member->operands.size() >= 2)
+            kind = member->operands[1] ? ScalarKind::i32 : ScalarKind::u32;
+        out.push_back({at, *size, kind});
+    }
+    return {};
+}
+
 Result<BindingType> binding_type(const Module& m, const Module::Variable& v, const Type& pointee, std::uint32_t pointee_id,
                                  std::uint32_t binding) {
     const std::string where = "binding " + std::to_string(binding) + ": ";
@@ -214,9 +244,7 @@ Result<ShaderLayout> reflect_spirv(std::span<const std::uint32_t> words) {
             auto size = size_of(m, pointee_id, 0);
             if (!size) return size.error();
             out.push_constant_size = (*size + 3) & ~3u;
-            auto offsets = m.member_offsets.find(pointee_id);
-            for (std::uint32_t k = 0; k < pointee->operands.size(); ++k)
-                out.push_constant_offsets.push_back(offsets->second.at(k)); // size_of checked they exist
+            if (auto ok = flatten(m, pointee_id, 0, out.push_constant_members); !ok) return ok.error();
             continue;
         }
         const auto binding = m.decoration(v.id, dec_binding);
@@ -251,7 +279,7 @@ Result<ShaderLayout> merge_layouts(const ShaderLayout& a, const ShaderLayout& b)
     }
     if (b.push_constant_size > out.push_constant_size) {
         out.push_constant_size = b.push_constant_size;
-        out.push_constant_offsets = b.push_constant_offsets;
+        out.push_constant_members = b.push_constant_members;
     }
     return out;
 }

@@ -18,14 +18,24 @@ layout(constant_id = 5) const bool HAS_WALLS = true;   // false: no wall tile in
 
 const uint BLOCK_W = 4;
 
+// A pass's own parameters: a struct of 32 bytes (eight 4-byte scalars) the shader names
+// with `#define GI_PASS_PARAMS MyParams` before including this file, read as pc.pass.NAME.
+// Its C++ mirror (engine/gi/src/rows/*.cpp) is checked against the shader's reflected
+// layout, field by field, when the pipeline is created.
+#ifndef GI_PASS_PARAMS
+struct GiNoParams {
+    int unused0, unused1, unused2, unused3, unused4, unused5, unused6, unused7;
+};
+#define GI_PASS_PARAMS GiNoParams
+#endif
+
 layout(push_constant) uniform GiPassParams {
-    vec4 camera_view;  // min_x, min_z, width, height (world units)
-    ivec4 size;        // texture width, height, pitch (texels), resolution (texels per unit)
-    ivec4 grid;        // wall grid width, height, origin x, origin z (see gi_shadow.glsl)
-    ivec4 counts;      // point lights, emissives, directional lights, proxies
-    vec4 params0;      // pass-specific
-    vec4 params1;      // pass-specific
-    ivec4 grid_phase;  // toroidal phase of the wall grid (x, z)
+    vec4 camera_view;    // min_x, min_z, width, height (world units)
+    ivec4 size;          // texture width, height, pitch (texels), resolution (texels per unit)
+    ivec4 grid;          // wall grid width, height, origin x, origin z (see gi_shadow.glsl)
+    ivec4 counts;        // point lights, emissives, directional lights, proxies
+    GI_PASS_PARAMS pass; // the pass's own parameters (32 bytes)
+    ivec4 grid_phase;    // toroidal phase of the wall grid (x, z)
 } pc;
 
 // The block this invocation owns: x0 is a multiple of 4.

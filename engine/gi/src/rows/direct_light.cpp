@@ -6,6 +6,7 @@
 #include "vulkan/pass_recorder.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <array>
 #include <cstring>
 #include <tuple>
@@ -37,6 +38,24 @@ void put_direct(ReferenceStore& store, std::span<const Tex> ids, DirectTextures 
     store.put(ids[1], std::move(d.shadow));
     for (std::size_t f = 0; f < 4; ++f) store.put(ids[2 + f], std::move(d.wall_direct[f]));
 }
+
+// The parameters of each shader (GI_PASS_PARAMS, mirrored field by field; checked against
+// the shader when its pipeline is created).
+struct AoParams {
+    float radius = 0, power = 0, strength = 0, dither = 0;
+    std::int32_t range = 0, pad0 = 0, pad1 = 0, pad2 = 0;
+};
+struct LightBinParams {
+    std::int32_t bins_x = 0, bins_y = 0, words = 0, bin_w = 0, bin_h = 0, pad0 = 0, pad1 = 0, pad2 = 0;
+};
+struct DirectParams {
+    float light_softness = 0;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0, pad6 = 0;
+};
+struct DirectionalParams {
+    float wall_height = 0, angle_scale = 0;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0;
+};
 
 // ---- conduction
 
@@ -83,15 +102,15 @@ void record_ao(PassRecorder& r) {
         s.key = key;
         s.range = k.range;
     }
-    r.cmd.bind(r.pipeline("gi_ao.comp", {.proxies = false}));
+    r.cmd.bind(r.pipeline<AoParams>("gi_ao.comp", {.proxies = false}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
                                .uniform_buffer(1, r.proxies())
                                .uniform_texel_buffer(2, s.view)
                                .storage_buffer(3, r.buffer(Tex::ao)));
-    vk::GiPassParams p = r.params(w.width, w.height);
-    p.params0 = glm::vec4(settings.radius, settings.power, settings.strength, settings.dither ? 1.0f : 0.0f);
-    p.params1.x = float(s.range);
+    auto p = r.params<AoParams>(w.width, w.height);
+    p.pass = {.radius = settings.radius, .power = settings.power, .strength = settings.strength,
+              .dither = settings.dither ? 1.0f : 0.0f, .range = s.range};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -131,16 +150,16 @@ void record_direct(PassRecorder& r) {
         desc.name = "gi light bins";
         s.bins = r.device().create_buffer(desc);
     }
-    r.cmd.bind(r.pipeline("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 8, .group_y = 8}));
+    r.cmd.bind(r.pipeline<LightBinParams>("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 8, .group_y = 8}));
     r.cmd.push_descriptors(gpu::DescriptorWrites().uniform_buffer(0, r.lights()).storage_buffer(1, s.bins));
-    vk::GiPassParams b = r.params(w.width, w.height);
-    b.params0 = glm::vec4(float(bins_x), float(bins_y), float(words), 0.0f);
-    b.params1 = glm::vec4(float(4 * r.group_x()), float(r.block_h() * r.group_y()), 0.0f, 0.0f);
+    auto b = r.params<LightBinParams>(w.width, w.height);
+    b.pass = {.bins_x = std::int32_t(bins_x), .bins_y = std::int32_t(bins_y), .words = std::int32_t(words),
+              .bin_w = std::int32_t(4 * r.group_x()), .bin_h = std::int32_t(r.block_h() * r.group_y())};
     r.cmd.push_constants(b);
     r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
     r.cmd.barrier_compute_to_compute();
 
-    r.cmd.bind(r.pipeline("gi_direct.comp", {.proxies = !in.proxies.empty(), .walls = r.plan.has_walls_in_window}));
+    r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(), .walls = r.plan.has_walls_in_window}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
                                .uniform_buffer(1, r.proxies())
@@ -152,8 +171,8 @@ void record_direct(PassRecorder& r) {
                                .storage_buffer(7, r.buffer(out[4]))
                                .storage_buffer(8, r.buffer(out[5]))
                                .storage_buffer(9, s.bins));
-    vk::GiPassParams p = r.params(w.width, w.height);
-    p.params0.x = in.settings.light_softness;
+    auto p = r.params<DirectParams>(w.width, w.height);
+    p.pass.light_softness = in.settings.light_softness;
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -172,15 +191,16 @@ void record_directional(PassRecorder& r) {
         for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz}) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
     }
-    r.cmd.bind(r.pipeline("gi_directional.comp", {.proxies = !in.proxies.empty(), .walls = r.plan.has_walls_in_window}));
+    r.cmd.bind(
+        r.pipeline<DirectionalParams>("gi_directional.comp", {.proxies = !in.proxies.empty(), .walls = r.plan.has_walls_in_window}));
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
     // Reads the point-light results, writes the contract textures (never in place).
     for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(point_set[i]));
     for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(direct_set[i]));
     r.cmd.push_descriptors(writes);
-    vk::GiPassParams p = r.params(w.width, w.height);
-    p.params0 = glm::vec4(in.wall_height, in.settings.directional_angle_scale, 0.0f, 0.0f);
+    auto p = r.params<DirectionalParams>(w.width, w.height);
+    p.pass = {.wall_height = in.wall_height, .angle_scale = in.settings.directional_angle_scale};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();

@@ -6,6 +6,7 @@
 #include "lantern/gi/reference_indirect.hpp"
 #include "vulkan/pass_recorder.hpp"
 
+#include <cstdint>
 #include <utility>
 
 namespace lantern::gi::rows {
@@ -13,15 +14,41 @@ namespace {
 
 using vk::PassRecorder;
 
+// The parameters of each shader (GI_PASS_PARAMS, mirrored field by field; checked against
+// the shader when its pipeline is created).
+struct EmissionParams {
+    float strength = 0;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0, pad6 = 0;
+};
+struct HeatSeedParams {
+    std::int32_t full_width = 0, full_height = 0, full_pitch = 0, scale = 0, pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0;
+};
+struct HeatMaskParams {
+    float texels_per_unit = 0, distance = 0, segment_radius = 0;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0;
+};
+struct HeatRoundParams {
+    float texels_per_unit = 0, distance = 0, rate = 0, range_boost = 0, intensity_multiplier = 0;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0;
+};
+struct UpsampleParams {
+    std::int32_t heat_width = 0, heat_height = 0, heat_pitch = 0;
+    float texels_per_unit = 0;
+    std::int32_t scale = 0, pad0 = 0, pad1 = 0, pad2 = 0;
+};
+struct BlurParams {
+    std::int32_t axis_x = 0, axis_y = 0, pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0;
+};
+
 // ---- emission
 
 void record_emission(PassRecorder& r) {
     const GiWindow& w = r.in.window;
-    r.cmd.bind(r.pipeline("gi_emission.comp", {.proxies = false}));
+    r.cmd.bind(r.pipeline<EmissionParams>("gi_emission.comp", {.proxies = false}));
     r.cmd.push_descriptors(
         gpu::DescriptorWrites().uniform_texel_buffer(0, r.view(Tex::direct)).storage_buffer(1, r.buffer(Tex::emission)));
-    vk::GiPassParams p = r.params(w.width, w.height);
-    p.params0.x = r.in.settings.emission_strength;
+    auto p = r.params<EmissionParams>(w.width, w.height);
+    p.pass.strength = r.in.settings.emission_strength;
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -38,33 +65,35 @@ void record_heat(PassRecorder& r) {
     const scene::GiSettings& s = r.in.settings;
     const HeatGrid g = heat_grid(w, s.heat_scale);
     // Seed.
-    r.cmd.bind(r.pipeline("gi_heat_seed.comp", {.proxies = false}));
+    r.cmd.bind(r.pipeline<HeatSeedParams>("gi_heat_seed.comp", {.proxies = false}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.view(Tex::emission))
                                .uniform_texel_buffer(1, r.view(Tex::shadow))
                                .storage_buffer(2, r.buffer(Tex::heat_a)));
-    vk::GiPassParams seed = r.params(g.width, g.height);
-    seed.params1 = glm::vec4(float(w.width), float(w.height), float(r.pitch(Tex::emission)), float(g.scale));
+    auto seed = r.params<HeatSeedParams>(g.width, g.height);
+    seed.pass = {.full_width = w.width, .full_height = w.height, .full_pitch = r.pitch(Tex::emission), .scale = g.scale};
     r.cmd.push_constants(seed);
     r.dispatch(g.width, g.height);
     r.cmd.barrier_compute_to_compute();
     // Tap masks: which taps each heat texel may use (air, segment clear), once per frame.
     const float distance = s.diffusion_distance * g.texels_per_unit;
-    r.cmd.bind(r.pipeline("gi_heat_mask.comp", {.proxies = false, .segment_check = s.segment_check}));
+    r.cmd.bind(r.pipeline<HeatMaskParams>("gi_heat_mask.comp", {.proxies = false, .segment_check = s.segment_check}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
                                .uniform_buffer(1, r.proxies())
                                .storage_buffer(2, r.buffer(Tex::heat_mask)));
-    vk::GiPassParams mask = r.params(g.width, g.height);
-    mask.params0 = glm::vec4(g.texels_per_unit, distance, s.diffusion_distance * 2.0f + 2.0f, 0.0f);
+    auto mask = r.params<HeatMaskParams>(g.width, g.height);
+    mask.pass = {.texels_per_unit = g.texels_per_unit, .distance = distance,
+                 .segment_radius = s.diffusion_distance * 2.0f + 2.0f};
     r.cmd.push_constants(mask);
     r.dispatch(g.width, g.height);
     r.cmd.barrier_compute_to_compute();
     // Rounds, ping-pong.
-    const gpu::ComputePipeline& round_pipeline = r.pipeline("gi_heat.comp", {.proxies = false, .per_channel = s.per_channel});
-    vk::GiPassParams round = r.params(g.width, g.height);
-    round.params0 = glm::vec4(g.texels_per_unit, distance, s.diffusion_rate, s.range_boost);
-    round.params1 = glm::vec4(s.intensity_multiplier, 0.0f, 0.0f, 0.0f);
+    const gpu::ComputePipeline& round_pipeline =
+        r.pipeline<HeatRoundParams>("gi_heat.comp", {.proxies = false, .per_channel = s.per_channel});
+    auto round = r.params<HeatRoundParams>(g.width, g.height);
+    round.pass = {.texels_per_unit = g.texels_per_unit, .distance = distance, .rate = s.diffusion_rate,
+                  .range_boost = s.range_boost, .intensity_multiplier = s.intensity_multiplier};
     Tex src = Tex::heat_a, dst = Tex::heat_b;
     for (int i = 0; i < s.heat_rounds; ++i) {
         r.cmd.bind(round_pipeline);
@@ -78,15 +107,15 @@ void record_heat(PassRecorder& r) {
         std::swap(src, dst);
     }
     // Upsample (or copy) into the indirect texture.
-    r.cmd.bind(r.pipeline("gi_upsample.comp", {.proxies = false}));
+    r.cmd.bind(r.pipeline<UpsampleParams>("gi_upsample.comp", {.proxies = false}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
                                .uniform_buffer(1, r.proxies())
                                .uniform_texel_buffer(2, r.view(src))
                                .storage_buffer(3, r.buffer(Tex::indirect)));
-    vk::GiPassParams up = r.params(w.width, w.height);
-    up.params0 = glm::vec4(float(g.width), float(g.height), float(r.pitch(src)), g.texels_per_unit);
-    up.params1.x = float(g.scale);
+    auto up = r.params<UpsampleParams>(w.width, w.height);
+    up.pass = {.heat_width = g.width, .heat_height = g.height, .heat_pitch = r.pitch(src),
+               .texels_per_unit = g.texels_per_unit, .scale = g.scale};
     r.cmd.push_constants(up);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -100,22 +129,22 @@ void reference_heat_row(ReferenceContext& c) {
 
 void record_blur(PassRecorder& r) {
     const GiWindow& w = r.in.window;
-    const gpu::ComputePipeline& pipeline = r.pipeline("gi_blur.comp", {.proxies = false});
-    auto blur_pass = [&](Tex src, Tex dst, glm::vec2 axis) {
+    const gpu::ComputePipeline& pipeline = r.pipeline<BlurParams>("gi_blur.comp", {.proxies = false});
+    auto blur_pass = [&](Tex src, Tex dst, glm::ivec2 axis) {
         r.cmd.bind(pipeline);
         r.cmd.push_descriptors(gpu::DescriptorWrites()
                                    .uniform_texel_buffer(0, r.walls())
                                    .uniform_buffer(1, r.proxies())
                                    .uniform_texel_buffer(2, r.view(src))
                                    .storage_buffer(3, r.buffer(dst)));
-        vk::GiPassParams p = r.params(w.width, w.height);
-        p.params0 = glm::vec4(axis, 0.0f, 0.0f);
+        auto p = r.params<BlurParams>(w.width, w.height);
+        p.pass = {.axis_x = axis.x, .axis_y = axis.y};
         r.cmd.push_constants(p);
         r.dispatch(w.width, w.height);
         r.cmd.barrier_compute_to_compute();
     };
-    blur_pass(Tex::indirect, Tex::blur_temp, {1.0f, 0.0f});
-    blur_pass(Tex::blur_temp, Tex::indirect, {0.0f, 1.0f});
+    blur_pass(Tex::indirect, Tex::blur_temp, {1, 0});
+    blur_pass(Tex::blur_temp, Tex::indirect, {0, 1});
 }
 
 void reference_blur_row(ReferenceContext& c) {

@@ -4,6 +4,8 @@
 
 #include "vulkan/pass_recorder.hpp"
 
+#include <cstdint>
+
 namespace lantern::gi::rows {
 namespace {
 
@@ -15,6 +17,15 @@ constexpr Tex lit_reads[] = {Tex::direct,           Tex::indirect,         Tex::
                              Tex::wall_indirect_nx, Tex::wall_indirect_pz, Tex::wall_indirect_nz};
 constexpr Tex lit_writes[] = {Tex::lit};
 constexpr std::string_view lit_settings[] = {"tone_map", "white_point", "directional_angle_scale"};
+
+// The shader's parameters (GI_PASS_PARAMS LitParams), field by field.
+struct LitParams {
+    float wall_height = 0;
+    std::uint32_t present = 0; // bit i: lit_reads[i] is bound
+    std::int32_t tone_map = 0;
+    float white_point = 0, angle_scale = 0;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0;
+};
 
 void record_lit(PassRecorder& r) {
     const GiWindow& w = r.in.window;
@@ -31,12 +42,12 @@ void record_lit(PassRecorder& r) {
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
     for (std::uint32_t i = 0; i < 12; ++i) writes.uniform_texel_buffer(3 + i, view_or(lit_reads[i], i));
     writes.storage_buffer(15, r.buffer(Tex::lit));
-    r.cmd.bind(r.pipeline("gi_lit.comp", {.proxies = false, .walls = r.plan.has_walls_in_window}));
+    r.cmd.bind(r.pipeline<LitParams>("gi_lit.comp", {.proxies = false, .walls = r.plan.has_walls_in_window}));
     r.cmd.push_descriptors(writes);
-    vk::GiPassParams p = r.params(w.width, w.height);
+    auto p = r.params<LitParams>(w.width, w.height);
     const scene::GiSettings& s = r.in.settings;
-    p.params0 = glm::vec4(r.in.wall_height, float(present), 0.0f, 0.0f);
-    p.params1 = glm::vec4(float(int(s.tone_map)), s.white_point, s.directional_angle_scale, 0.0f);
+    p.pass = {.wall_height = r.in.wall_height, .present = present, .tone_map = std::int32_t(s.tone_map),
+              .white_point = s.white_point, .angle_scale = s.directional_angle_scale};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();

@@ -1,20 +1,61 @@
-// C++ mirror of the GiPassParams push-constant block in shaders/include/lantern/gi_common.glsl.
+// C++ mirror of the push-constant block of every GI shader (shaders/include/lantern/
+// gi_common.glsl): the fields all passes share, and the pass's own parameters, a struct of
+// eight 4-byte scalars named in the shader with GI_PASS_PARAMS. Each pass's C++ struct
+// lives beside its row (src/rows/*.cpp); when a pipeline is created the shader's reflected
+// block is checked against GiPush<P>: its size, and each parameter's offset and scalar type
+// (float, int, uint) in order (PassRecorder::pipeline<P>).
 #pragma once
+
+#include "lantern/gpu/reflect.hpp"
 
 #include <glm/vec4.hpp>
 
+#include <array>
+#include <cstdint>
+#include <type_traits>
+
 namespace lantern::gi::vk {
 
-struct alignas(16) GiPassParams {
+template <typename P>
+struct alignas(16) GiPush {
     glm::vec4 camera_view; // min_x, min_z, width, height (world units)
     glm::ivec4 size;       // texture width, height, pitch (texels), resolution (texels per unit)
     glm::ivec4 grid;       // wall grid width, height, origin x, origin z (world tile of cell row/col 0)
     glm::ivec4 counts;     // point lights, emissives, directional lights, proxies
-    glm::vec4 params0;     // pass-specific
-    glm::vec4 params1;     // pass-specific
+    P pass{};              // the pass's own parameters
     glm::ivec4 grid_phase; // toroidal phase of the wall grid (x, z), 0, 0
 };
-static_assert(sizeof(GiPassParams) == 112, "GiPassParams must match the GLSL push-constant block");
+
+// For passes without parameters of their own (GiNoParams in the shaders).
+struct NoParams {
+    std::int32_t unused0 = 0, unused1 = 0, unused2 = 0, unused3 = 0, unused4 = 0, unused5 = 0, unused6 = 0,
+                 unused7 = 0;
+};
+using GiPassParams = GiPush<NoParams>;
+
+inline constexpr std::uint32_t pass_params_offset = 64; // where `pass` starts in the block
+static_assert(sizeof(GiPassParams) == 112, "GiPush must match the GLSL push-constant block");
+
+template <typename T>
+constexpr gpu::ScalarKind scalar_kind() {
+    if constexpr (std::is_same_v<T, float>) return gpu::ScalarKind::f32;
+    else if constexpr (std::is_same_v<T, std::int32_t>) return gpu::ScalarKind::i32;
+    else if constexpr (std::is_same_v<T, std::uint32_t>) return gpu::ScalarKind::u32;
+    else return gpu::ScalarKind::other;
+}
+
+// The scalar type of each of P's eight fields, in declaration order (a struct with another
+// number of fields does not compile here).
+template <typename P>
+constexpr std::array<gpu::ScalarKind, 8> field_kinds() {
+    static_assert(sizeof(P) == 32 && std::is_aggregate_v<P>, "pass parameters: eight 4-byte fields");
+    P p{};
+    auto& [a, b, c, d, e, f, g, h] = p;
+    return {scalar_kind<std::remove_cvref_t<decltype(a)>>(), scalar_kind<std::remove_cvref_t<decltype(b)>>(),
+            scalar_kind<std::remove_cvref_t<decltype(c)>>(), scalar_kind<std::remove_cvref_t<decltype(d)>>(),
+            scalar_kind<std::remove_cvref_t<decltype(e)>>(), scalar_kind<std::remove_cvref_t<decltype(f)>>(),
+            scalar_kind<std::remove_cvref_t<decltype(g)>>(), scalar_kind<std::remove_cvref_t<decltype(h)>>()};
+}
 
 // Specialisation constant ids shared by the GI shaders.
 enum SpecId : unsigned {

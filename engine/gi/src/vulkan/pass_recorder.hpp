@@ -50,12 +50,27 @@ class PassRecorder {
     std::uint32_t group_x() const { return r_.group_x_; }
     std::uint32_t group_y() const { return r_.group_y_; }
 
-    // The pipeline of a shader of lantern_gi_shaders ("gi_ao.comp"), created on first use.
+    // The pipeline of a shader of lantern_gi_shaders ("gi_ao.comp") whose parameters are P
+    // (GI_PASS_PARAMS in the shader), created on first use; its push-constant block is then
+    // checked against GiPush<P>.
+    template <typename P = NoParams>
     const gpu::ComputePipeline& pipeline(const char* shader, const PipelineSpec& spec = {}) {
-        return r_.pipeline(shader, spec);
+        const std::array<gpu::ScalarKind, 8> kinds = field_kinds<P>();
+        return r_.pipeline(shader, spec, kinds);
     }
-    // The fields every pass shares (window, grid, counts) for a width x height texture.
-    GiPassParams params(int width, int height) const { return r_.params(in, width, height); }
+    // The push constants of a width x height texture: the shared fields (window, grid,
+    // counts) filled, `pass` for the caller.
+    template <typename P = NoParams>
+    GiPush<P> params(int width, int height) const {
+        const GiPassParams common = r_.params(in, width, height);
+        GiPush<P> p{};
+        p.camera_view = common.camera_view;
+        p.size = common.size;
+        p.grid = common.grid;
+        p.counts = common.counts;
+        p.grid_phase = common.grid_phase;
+        return p;
+    }
     // One invocation per block of 4 x block_h texels of a width x height texture.
     void dispatch(int width, int height) { r_.dispatch_blocks(cmd, width, height); }
     void clear(Tex t) { r_.clear(cmd, t); }

@@ -31,19 +31,22 @@ VkFormat view_format(TexFormat f, bool rgba8) {
     return VK_FORMAT_UNDEFINED;
 }
 
-// The push-constant block every GI shader declares (gi_common.glsl), member by member:
-// checked against each shader's reflected layout when its pipeline is created.
-constexpr std::uint32_t gi_params_offsets[] = {
-    offsetof(GiPassParams, camera_view), offsetof(GiPassParams, size),    offsetof(GiPassParams, grid),
-    offsetof(GiPassParams, counts),      offsetof(GiPassParams, params0), offsetof(GiPassParams, params1),
-    offsetof(GiPassParams, grid_phase)};
-
-void check_params_layout(const char* shader, std::span<const std::uint32_t> spirv) {
+// Checks a GI shader's push-constant block against GiPush<P>: the size, the shared fields'
+// offsets, and each of the pass's parameters (offset and scalar type, in order).
+void check_params_layout(const char* shader, std::span<const std::uint32_t> spirv,
+                         std::span<const gpu::ScalarKind> kinds) {
     auto layout = gpu::reflect_spirv(spirv);
     LANTERN_VERIFY(layout.ok(), layout.ok() ? "" : layout.error().message.c_str());
-    const std::vector<std::uint32_t> expected(std::begin(gi_params_offsets), std::end(gi_params_offsets));
-    LANTERN_VERIFY(layout->push_constant_offsets == expected && layout->push_constant_size == sizeof(GiPassParams),
-                   (std::string(shader) + ": its push-constant block does not match GiPassParams (vulkan/pass_params.hpp)")
+    using gpu::PushMember;
+    using gpu::ScalarKind;
+    std::vector<PushMember> expected = {{0, 16, ScalarKind::other}, {16, 16, ScalarKind::other},
+                                        {32, 16, ScalarKind::other}, {48, 16, ScalarKind::other}};
+    for (std::uint32_t i = 0; i < kinds.size(); ++i) expected.push_back({pass_params_offset + 4 * i, 4, kinds[i]});
+    expected.push_back({96, 16, ScalarKind::other});
+    LANTERN_VERIFY(layout->push_constant_members == expected && layout->push_constant_size == sizeof(GiPassParams),
+                   (std::string(shader) +
+                    ": its push-constant block does not match its C++ GiPush<Params> (vulkan/pass_params.hpp and the "
+                    "pass's row): size, order or scalar types of the parameters differ")
                        .c_str());
 }
 
@@ -58,16 +61,16 @@ struct Renderer::Pipelines {
     gpu::Device* device = nullptr;
     std::map<std::tuple<std::string, bool, bool, bool, bool>, gpu::ComputePipeline> cache;
 
-    const gpu::ComputePipeline& get(const char* shader, std::uint32_t block_h, std::uint32_t gx, std::uint32_t gy,
-                                    bool proxies = true, bool walls = true, bool per_channel = true,
-                                    bool segment_check = true) {
+    const gpu::ComputePipeline& get(const char* shader, std::span<const gpu::ScalarKind> kinds, std::uint32_t block_h,
+                                    std::uint32_t gx, std::uint32_t gy, bool proxies = true, bool walls = true,
+                                    bool per_channel = true, bool segment_check = true) {
         auto key = std::make_tuple(std::string(shader), proxies, walls, per_channel, segment_check);
         auto it = cache.find(key);
         if (it != cache.end()) return it->second;
         gpu::ComputePipelineDesc desc;
         desc.spirv = lantern_gi_shaders_spirv(shader);
         LANTERN_VERIFY(!desc.spirv.empty(), "GI shader missing from lantern_gi_shaders");
-        check_params_layout(shader, desc.spirv); // the bindings come from the shader itself
+        check_params_layout(shader, desc.spirv, kinds); // the bindings come from the shader itself
         desc.specialization = {{spec_block_h, block_h},       {spec_group_x, gx},
                                {spec_group_y, gy},            {spec_has_proxies, proxies ? 1u : 0u},
                                {spec_has_walls, walls ? 1u : 0u}, {spec_per_channel, per_channel ? 1u : 0u},
@@ -320,8 +323,9 @@ void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const P
         if (plan.run.has(row->pass) && subset.has(row->pass)) record(cmd, row->pass, in, plan);
 }
 
-const gpu::ComputePipeline& Renderer::pipeline(const char* shader, const PipelineSpec& spec) {
-    return pipelines_->get(shader, spec.block_h ? spec.block_h : block_h_, spec.group_x ? spec.group_x : group_x_,
+const gpu::ComputePipeline& Renderer::pipeline(const char* shader, const PipelineSpec& spec,
+                                               std::span<const gpu::ScalarKind> kinds) {
+    return pipelines_->get(shader, kinds, spec.block_h ? spec.block_h : block_h_, spec.group_x ? spec.group_x : group_x_,
                            spec.group_y ? spec.group_y : group_y_, spec.proxies, spec.walls, spec.per_channel,
                            spec.segment_check);
 }
@@ -407,7 +411,8 @@ double Renderer::time_copy_dispatches(const std::vector<std::uint64_t>& bytes_wr
     gpu::BufferView src_view = device_.create_buffer_view(src, VK_FORMAT_R16G16B16A16_SFLOAT);
     auto queries = device_.create_timestamp_queries(1, "copy");
     if (!queries) return 0.0;
-    const auto& pipeline = pipelines_->get("gi_copy.comp", block_h_, group_x_, group_y_, false);
+    const auto kinds = field_kinds<NoParams>();
+    const auto& pipeline = pipelines_->get("gi_copy.comp", kinds, block_h_, group_x_, group_y_, false);
     std::vector<double> samples;
     for (int rep = 0; rep < repeats + 1; ++rep) { // the first run warms up
         gpu::CommandList cmd = device_.begin("copy baseline");

@@ -19,10 +19,19 @@
 
 namespace lantern::gpu {
 
+// One member of the push-constant block, nested structs flattened in declaration order.
+enum class ScalarKind : std::uint8_t { f32, i32, u32, other }; // other: vectors, matrices, arrays, ...
+struct PushMember {
+    std::uint32_t offset = 0; // bytes from the block's start
+    std::uint32_t size = 0;
+    ScalarKind kind = ScalarKind::other;
+    friend bool operator==(const PushMember&, const PushMember&) = default;
+};
+
 struct ShaderLayout {
     std::map<std::uint32_t, BindingType> bindings; // set 0, by binding number
     std::uint32_t push_constant_size = 0;           // bytes (the block's end, rounded up to 4); 0: none
-    std::vector<std::uint32_t> push_constant_offsets; // byte offset of each member, in order
+    std::vector<PushMember> push_constant_members;  // flattened, in order
 
     // The bindings as the pipeline contract wants them: dense from 0 (an error names the
     // first missing binding).

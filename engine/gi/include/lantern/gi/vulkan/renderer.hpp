@@ -16,6 +16,7 @@
 #include "lantern/gi/passes.hpp"
 #include "lantern/gi/texture.hpp"
 #include "lantern/gpu/device.hpp"
+#include "lantern/gpu/reflect.hpp"
 
 #include <array>
 #include <map>
@@ -29,7 +30,10 @@
 
 namespace lantern::gi::vk {
 
-struct GiPassParams;   // vulkan/pass_params.hpp
+template <typename P>
+struct GiPush;         // vulkan/pass_params.hpp
+struct NoParams;
+using GiPassParams = GiPush<NoParams>;
 struct PassState;      // vulkan/pass_recorder.hpp
 struct PipelineSpec;
 
@@ -146,7 +150,8 @@ class Renderer {
     void clear(gpu::CommandList& cmd, Tex t);
     GiPassParams params(const FrameInputs& in, int width, int height) const;
     void dispatch_blocks(gpu::CommandList& cmd, int width, int height);
-    const gpu::ComputePipeline& pipeline(const char* shader, const PipelineSpec& spec);
+    const gpu::ComputePipeline& pipeline(const char* shader, const PipelineSpec& spec,
+                                         std::span<const gpu::ScalarKind> kinds);
     static FrameTimings collect_timings(const QuerySet& set, const gpu::TimestampResult& result);
 
     gpu::Device& device_;
