@@ -10,6 +10,9 @@
 #include "rows/rows.hpp"
 
 #include <algorithm>
+#include <map>
+#include <string>
+#include <vector>
 
 namespace lantern::gi {
 namespace {
@@ -67,17 +70,40 @@ Hasher hash_vector(Hasher h, const std::vector<T>& v) {
     return h;
 }
 
-std::uint64_t hash_settings(Hasher h, const PassRow& row, const scene::GiSettings& s) {
+// For each row of each method, the positions of its settings in gi_setting_keys(): resolved
+// once (the first frame), so a frame hashes settings without looking up names.
+const std::vector<int>& setting_indices(const PassRow& row) {
+    static const std::map<const PassRow*, std::vector<int>> table = [] {
+        const std::vector<std::string> keys = scene::gi_setting_keys();
+        std::map<const PassRow*, std::vector<int>> out;
+        for (const Method& m : methods)
+            for (const PassRow* r : m.rows) {
+                std::vector<int>& indices = out[r];
+                for (std::string_view key : r->settings) {
+                    const auto it = std::find(keys.begin(), keys.end(), key);
+                    LANTERN_VERIFY(it != keys.end(), "a pass row lists a setting that is not a gi key");
+                    indices.push_back(int(it - keys.begin()));
+                }
+            }
+        return out;
+    }();
+    const auto it = table.find(&row);
+    if (it != table.end()) return it->second;
+    // A row of a method built in code (tests): resolved on each call.
+    thread_local std::vector<int> indices;
+    indices.clear();
+    const std::vector<std::string> keys = scene::gi_setting_keys();
     for (std::string_view key : row.settings) {
-        const std::optional<double> v = scene::gi_setting_value(s, key);
-        LANTERN_ASSERT(v.has_value(), "a pass row lists a setting that is not a gi key");
-        h.add_string(key).add(*v);
+        const auto k = std::find(keys.begin(), keys.end(), key);
+        LANTERN_VERIFY(k != keys.end(), "a pass row lists a setting that is not a gi key");
+        indices.push_back(int(k - keys.begin()));
     }
-    return h.value();
+    return indices;
 }
 
 // What a row's own work depends on, without its upstream textures.
-std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan& plan, const InputKeys& inputs) {
+std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan& plan, const InputKeys& inputs,
+                      std::span<const double> settings) {
     Hasher h(inputs.window);
     h.add_string(row.name).add(row.outputs(in).bits);
     if (row.inputs & input_walls) h.add(inputs.walls);
@@ -86,7 +112,8 @@ std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan&
     if (row.inputs & input_suns) h.add(inputs.suns);
     if (row.inputs & input_wall_height) h.add(in.wall_height);
     if (row.inputs & input_walls_in_window) h.add(plan.has_walls_in_window);
-    return hash_settings(h, row, in.settings);
+    for (int i : setting_indices(row)) h.add(i).add(settings[std::size_t(i)]);
+    return h.value();
 }
 
 } // namespace
@@ -185,19 +212,27 @@ std::array<std::uint64_t, pass_count> derive_keys(const FrameInputs& in, const P
 std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameInputs& in, const PassPlan& plan,
                                                   const InputKeys& inputs) {
     std::array<std::uint64_t, pass_count> keys{};
+    const std::vector<double> settings = scene::gi_setting_values(in.settings);
     const auto rows = m.rows;
+    // Each planned row's own key and outputs, once.
+    std::array<std::uint64_t, pass_count> own{};
+    std::array<TexSet, pass_count> outputs{};
+    for (const PassRow* row : rows)
+        if (plan.run.has(row->pass)) {
+            own[int(row->pass)] = own_key(*row, in, plan, inputs, settings);
+            outputs[int(row->pass)] = row->outputs(in);
+        }
     std::array<std::uint64_t, tex_count> producer{}; // key of the planned row that last wrote each texture
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const PassRow& row = *rows[i];
         if (!plan.run.has(row.pass)) continue;
-        Hasher h(own_key(row, in, plan, inputs));
+        Hasher h(own[int(row.pass)]);
         for (Tex t : row.reads) h.add(producer[int(t)]);
-        const TexSet out = row.outputs(in);
+        const TexSet out = outputs[int(row.pass)];
         // Later rows that overwrite an output in place change what this row leaves behind.
         for (std::size_t j = i + 1; j < rows.size(); ++j) {
-            const PassRow& later = *rows[j];
-            if (plan.run.has(later.pass) && (later.outputs(in).bits & out.bits))
-                h.add(own_key(later, in, plan, inputs));
+            const Pass later = rows[j]->pass;
+            if (plan.run.has(later) && (outputs[int(later)].bits & out.bits)) h.add(own[int(later)]);
         }
         keys[int(row.pass)] = h.value();
         for (int t = 0; t < tex_count; ++t)

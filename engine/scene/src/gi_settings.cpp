@@ -215,18 +215,31 @@ std::vector<std::string> gi_setting_keys() {
     return keys;
 }
 
-std::optional<double> gi_setting_value(const GiSettings& gi, std::string_view key) {
-    GiSettings copy = gi; // the table binds mutable fields
-    const auto fields = detail::gi_fields(copy);
-    const detail::GiField* field = detail::find_field(fields, key);
-    if (!field) return std::nullopt;
+namespace {
+double number_of(const detail::GiField& field) {
     return std::visit(detail::Overloaded{
                           [](const detail::FloatField& f) { return double(*f.target); },
                           [](const detail::IntField& f) { return double(*f.target); },
                           [](const detail::BoolField& f) { return *f.target ? 1.0 : 0.0; },
                           [](const auto& f) { return double(int(*f.target)); },
                       },
-                      field->target);
+                      field.target);
+}
+} // namespace
+
+std::optional<double> gi_setting_value(const GiSettings& gi, std::string_view key) {
+    GiSettings copy = gi; // the table binds mutable fields
+    const auto fields = detail::gi_fields(copy);
+    const detail::GiField* field = detail::find_field(fields, key);
+    if (!field) return std::nullopt;
+    return number_of(*field);
+}
+
+std::vector<double> gi_setting_values(const GiSettings& gi) {
+    GiSettings copy = gi;
+    std::vector<double> values;
+    for (const detail::GiField& field : detail::gi_fields(copy)) values.push_back(number_of(field));
+    return values;
 }
 
 Result<void> validate_gi_settings(const GiSettings& gi) {

@@ -69,6 +69,8 @@ std::vector<std::string> gi_setting_keys();
 // The value of one gi key as a number (bools 0 or 1, enums their value), the form the
 // pass table hashes into cache keys; nullopt for a key that is not a gi key.
 std::optional<double> gi_setting_value(const GiSettings& gi, std::string_view key);
+// Every key's value at once, in the order of gi_setting_keys() (one pass over the table).
+std::vector<double> gi_setting_values(const GiSettings& gi);
 
 // What a Moving AI 'T' (tree) cell becomes.
 enum class TreeMode : std::uint8_t {
