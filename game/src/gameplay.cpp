@@ -336,7 +336,7 @@ void add_gameplay_systems(ecs::Schedule& schedule, systems::Streaming& streaming
             p.color = color;
             p.intensity = 1.0f;
         });
-    }).reads_resource<Controls, GameClock>().writes_resource<DayCycle>().writes<DirectionalLight>();
+    }).reads_resource<Controls, GameClock>().reads<Sun>().writes_resource<DayCycle>().writes<DirectionalLight>();
 }
 
 } // namespace lantern::game

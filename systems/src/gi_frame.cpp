@@ -252,7 +252,7 @@ void GiFrame::add_systems() {
         }
     })
         .reads_resource<GiView, GiConfig, GatheredLights, GatheredProxies, Streaming>()
-        .reads<GICache>()
+        .reads<GICache, Camera>()
         .writes_resource<FramePasses>();
 
     schedule_.add("gpu_submit", [this](ecs::SystemContext& ctx) {
@@ -291,6 +291,7 @@ void GiFrame::add_systems() {
     })
         .main_thread()
         .reads_resource<FramePasses, GiView>()
+        .reads<Camera>()
         .writes<GICache>()
         .writes_resource<Streaming>();
 }

@@ -120,3 +120,43 @@ TEST(Schedule, CommandsApplyAtTheSyncPointAndTickAdvances) {
     EXPECT_EQ(seen_during, 1u);
     EXPECT_EQ(w.count<Name>(), 2u);
 }
+
+#if defined(LANTERN_ENABLE_ASSERTS)
+// Declared access is enforced: touching an undeclared component or resource, or writing
+// one declared only as read, stops with the system's name and the type.
+TEST(ScheduleDeathTest, UndeclaredAccessStopsWithTheSystemsName) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    auto run_one = [](auto declare, auto body) {
+        lantern::jobs::JobSystem jobs(workers(0));
+        World w;
+        w.set_resource<Gravity>();
+        const Entity e = w.create();
+        w.emplace<Position>(e);
+        Schedule s(jobs);
+        declare(s.add("sneaky", [&, e](SystemContext& ctx) { body(ctx.world, e); }));
+        s.run(w);
+    };
+    EXPECT_DEATH(run_one([](auto b) { b.template reads<Velocity>(); },
+                         [](World& w, Entity) { w.view<Position>().each([](Position&) {}); }),
+                 "system 'sneaky' touches component ecs_test::Position without declaring it");
+    EXPECT_DEATH(run_one([](auto) {}, [](World& w, Entity) { (void)w.resource<Gravity>(); }),
+                 "system 'sneaky' touches resource .*Gravity without declaring it: add .reads_resource");
+    EXPECT_DEATH(run_one([](auto b) { b.template reads<Position>(); },
+                         [](World& w, Entity e) { w.patch<Position>(e).x = 1.0f; }),
+                 "system 'sneaky' writes component ecs_test::Position without declaring it: add .writes");
+}
+
+TEST(Schedule, DeclaredAccessPassesAndOutsideSystemsNothingIsChecked) {
+    lantern::jobs::JobSystem jobs(workers(1));
+    World w;
+    w.set_resource<Gravity>();
+    const Entity e = w.create();
+    w.emplace<Position>(e);
+    Schedule s(jobs);
+    s.add("declared", [e](SystemContext& ctx) {
+        ctx.world.patch<Position>(e).x += ctx.world.resource<Gravity>().g;
+    }).writes<Position>().reads_resource<Gravity>();
+    s.run(w);
+    EXPECT_EQ(w.get<Position>(e).x, -1.0f); // and this access, outside any system, is not checked
+}
+#endif

@@ -67,12 +67,14 @@ bool Schedule::conflicts(const System& a, const System& b) {
 
 void Schedule::build() {
     graph_.clear();
+    for (System& s : systems_) s.access = SystemAccess{s.name.c_str(), &s.reads, &s.writes};
     for (std::uint32_t i = 0; i < systems_.size(); ++i) {
         graph_.add(
             systems_[i].profile_name,
             [this, i](std::uint32_t worker) {
                 System& s = systems_[i];
                 SystemContext ctx{*world_, jobs_, worker, s.last_run, world_->tick(), *queues_};
+                const AccessScope checked(&s.access);
                 s.fn(ctx); // the job system records this node's span under the system's name
                 s.last_run = ctx.this_run;
             },

@@ -1,6 +1,26 @@
 #include "lantern/ecs/world.hpp"
 
+#include <algorithm>
+#include <string>
+
 namespace lantern::ecs {
+
+namespace detail {
+
+void check_access(const SystemAccess& access, AccessKey key, bool write, const char* type_name) {
+    const auto has = [&](const std::vector<AccessKey>* keys) {
+        return keys && std::find(keys->begin(), keys->end(), key) != keys->end();
+    };
+    if (has(access.writes) || (!write && has(access.reads))) return;
+    const bool component = key.kind == AccessKey::component;
+    const std::string message = std::string("system '") + access.name + "' " + (write ? "writes " : "touches ") +
+                                (component ? "component " : "resource ") + type_name +
+                                " without declaring it: add ." + (write ? "writes" : "reads") +
+                                (component ? "" : "_resource") + "<" + type_name + ">() where it is added";
+    ::lantern::detail::assert_fail("declared access", message.c_str(), __FILE__, __LINE__);
+}
+
+} // namespace detail
 
 World::World() = default;
 World::~World() = default;

@@ -126,6 +126,7 @@ class Game {
     int headless_frame_ = 0;
     std::uint64_t window_frames_ = 0; // windowed frames stepped (--status-file)
     int saves_done_ = 0;              // successful saves (--status-file)
+    bool save_requested_ = false;     // F5 or the HUD: saved between frames, outside the systems
     bool status_failed_ = false;      // the status file could not be written (said once)
     bool quit_ = false;
     std::optional<SaveState> pending_load_;
@@ -229,6 +230,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     fo.add_game_systems = [this, session](ecs::Schedule& schedule, systems::Streaming& streaming) {
         schedule.add("input", [this, session](ecs::SystemContext&) { input_system(*session); })
             .main_thread()
+            .reads<Player, Transform, Camera>()
             .writes_resource<Controls, GameClock>();
         add_gameplay_systems(schedule, streaming);
     };
@@ -275,7 +277,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
     schedule.add("render", [this, &s](ecs::SystemContext&) { render_system(s); })
         .main_thread()
         .reads_resource<DrawListResource, systems::FramePasses, systems::GiView, systems::GatheredLights,
-                        systems::GatheredProxies>()
+                        systems::GatheredProxies, GameClock>()
         .writes_resource<systems::GiConfig, DayCycle>(); // the HUD edits them live
 }
 
@@ -313,7 +315,7 @@ void Game::input_system(Session& s) {
     if (keyboard_free) {
         if (in.pressed(Key::f1)) hud_.visible = !hud_.visible;
         if (in.pressed(Key::f2)) export_trace();
-        if (in.pressed(Key::f5)) save(s);
+        if (in.pressed(Key::f5)) save_requested_ = true; // after the frame: a save reads the whole world
         if (in.pressed(Key::f9)) {
             if (auto state = read_save(options_.save_file)) {
                 pending_load_ = std::move(*state);
@@ -429,7 +431,7 @@ void Game::render_system(Session& s) {
     swapchain_->present(std::move(*frame), std::move(cmd));
     collect_raster_timings();
     if (actions.export_trace) export_trace();
-    if (actions.save) save(s);
+    if (actions.save) save_requested_ = true;
     if (actions.load) {
         if (auto state = read_save(options_.save_file)) pending_load_ = std::move(*state);
         else message_ = state.error().message;
@@ -488,6 +490,10 @@ int Game::run_window() {
         session_->frame->step();
         profile::end_frame();
         ++window_frames_;
+        if (save_requested_) {
+            save_requested_ = false;
+            save(*session_);
+        }
         if (!options_.status_file.empty()) write_status(*session_);
         if (pending_load_) {
             device_->wait_idle();

@@ -10,6 +10,10 @@
 //
 // Change detection: ctx.last_run is the world tick when this system last ran (0 the first
 // time); compare component ticks against it (View::each_changed).
+//
+// Declared access is enforced: with asserts on, a system that touches (through the World)
+// a component or resource type it did not declare stops with its name (world.hpp,
+// SystemAccess).
 #pragma once
 
 #include "lantern/ecs/command_buffer.hpp"
@@ -32,13 +36,6 @@ struct SystemContext {
     Tick this_run;        // current world tick
     CommandQueues& queues;
     CommandBuffer& commands() { return queues.for_worker(jobs.current_worker()); }
-};
-
-// Access key: component and resource types live in separate id spaces.
-struct AccessKey {
-    enum Kind : std::uint8_t { component, resource } kind;
-    TypeId id;
-    friend bool operator==(AccessKey, AccessKey) = default;
 };
 
 class Schedule;
@@ -105,6 +102,7 @@ class Schedule {
         const char* profile_name;
         SystemFn fn;
         std::vector<AccessKey> reads, writes;
+        SystemAccess access{nullptr, nullptr, nullptr}; // points at name/reads/writes (set in build())
         std::vector<std::uint32_t> after;
         bool main_thread = false;
         jobs::Priority priority = jobs::Priority::normal;

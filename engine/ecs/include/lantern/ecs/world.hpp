@@ -21,6 +21,8 @@
 #include "lantern/ecs/pool.hpp"
 
 #include <atomic>
+#include <cstdint>
+#include <string>
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -37,6 +39,63 @@ template <typename Include, typename ExcludeList>
 class View;
 template <typename... T>
 struct Include {};
+
+// Access key: component and resource types live in separate id spaces.
+struct AccessKey {
+    enum Kind : std::uint8_t { component, resource } kind;
+    TypeId id;
+    friend bool operator==(AccessKey, AccessKey) = default;
+};
+
+// What the system running on this thread declared (the Schedule sets it around each
+// system). In builds with asserts on, every component and resource access through the
+// World is checked against it: a system that touches a type it did not declare (or
+// patches, emplaces or removes one it declared only as read) stops with its name and the
+// type. Jobs a system spawns run unchecked.
+struct SystemAccess {
+    const char* name;
+    const std::vector<AccessKey>* reads;
+    const std::vector<AccessKey>* writes;
+};
+
+namespace detail {
+#if defined(LANTERN_ENABLE_ASSERTS)
+inline thread_local const SystemAccess* current_access = nullptr;
+#endif
+void check_access(const SystemAccess& access, AccessKey key, bool write, const char* type_name);
+
+template <typename T>
+const char* type_name() {
+    // "const char* ...type_name() [with T = lantern::Foo]" (GCC) or "...[T = lantern::Foo]" (Clang).
+    static const std::string name = [](std::string f) {
+        const auto at = f.find("T = ");
+        if (at == std::string::npos) return f;
+        f = f.substr(at + 4);
+        return f.substr(0, f.find_first_of(";]"));
+    }(__PRETTY_FUNCTION__);
+    return name.c_str();
+}
+} // namespace detail
+
+// Sets the thread's SystemAccess for its lifetime (the Schedule, around each system).
+class AccessScope {
+  public:
+#if defined(LANTERN_ENABLE_ASSERTS)
+    explicit AccessScope(const SystemAccess* access) : previous_(detail::current_access) {
+        detail::current_access = access;
+    }
+    ~AccessScope() { detail::current_access = previous_; }
+#else
+    explicit AccessScope(const SystemAccess*) {}
+#endif
+    AccessScope(const AccessScope&) = delete;
+    AccessScope& operator=(const AccessScope&) = delete;
+
+  private:
+#if defined(LANTERN_ENABLE_ASSERTS)
+    const SystemAccess* previous_;
+#endif
+};
 
 class World {
   public:
@@ -64,6 +123,7 @@ class World {
     template <typename T, typename... Args>
     T& emplace(Entity e, Args&&... args) {
         LANTERN_ASSERT(alive(e), "emplace on a dead or stale entity");
+        check<T>(AccessKey::component, true);
         return assure<T>().emplace(e, tick_, std::forward<Args>(args)...);
     }
     // Adds or replaces; replacing marks the component changed.
@@ -72,6 +132,7 @@ class World {
     template <typename T>
     void remove(Entity e) {
         LANTERN_ASSERT(alive(e), "remove on a dead or stale entity");
+        check<T>(AccessKey::component, true);
         Pool<T>* p = find_pool<T>();
         std::uint32_t pos = p ? p->find(e) : PoolBase::absent;
         LANTERN_ASSERT(pos != PoolBase::absent, "remove of a component the entity does not have");
@@ -80,6 +141,7 @@ class World {
     // Removes if present; returns whether it was.
     template <typename T>
     bool try_remove(Entity e) {
+        check<T>(AccessKey::component, true);
         Pool<T>* p = find_pool<T>();
         std::uint32_t pos = p ? p->find(e) : PoolBase::absent;
         if (pos == PoolBase::absent) return false;
@@ -113,6 +175,7 @@ class World {
     // Marks the component changed at the current tick and returns it for writing.
     template <typename T>
     T& patch(Entity e) {
+        check<T>(AccessKey::component, true);
         Pool<T>* p = find_pool<T>();
         std::uint32_t pos = p ? p->find(e) : PoolBase::absent;
         LANTERN_ASSERT(pos != PoolBase::absent, "patch of a component the entity does not have");
@@ -121,6 +184,7 @@ class World {
     }
     template <typename T>
     void clear() {
+        check<T>(AccessKey::component, true);
         if (Pool<T>* p = find_pool<T>()) p->clear(tick_);
     }
     template <typename T>
@@ -131,6 +195,7 @@ class World {
 
     template <typename T>
     Pool<T>& assure() {
+        check<T>(AccessKey::component, false); // views start here
         TypeId id = component_id<T>();
         if (id >= pools_.size()) pools_.resize(id + 1);
         if (!pools_[id]) pools_[id] = std::make_unique<Pool<T>>();
@@ -138,6 +203,7 @@ class World {
     }
     template <typename T>
     Pool<T>* find_pool() {
+        check<T>(AccessKey::component, false);
         TypeId id = component_id<T>();
         return id < pools_.size() ? static_cast<Pool<T>*>(pools_[id].get()) : nullptr;
     }
@@ -162,6 +228,7 @@ class World {
     }
     template <typename T>
     T* try_resource() {
+        check<T>(AccessKey::resource, false);
         TypeId id = resource_id<T>();
         if (id >= resources_.size() || !resources_[id]) return nullptr;
         return static_cast<T*>(resources_[id]->get());
@@ -185,6 +252,15 @@ class World {
     std::uint32_t generation_at(std::uint32_t index) const { return slots_[index]; }
 
   private:
+    template <typename T>
+    static void check([[maybe_unused]] AccessKey::Kind kind, [[maybe_unused]] bool write) {
+#if defined(LANTERN_ENABLE_ASSERTS)
+        if (const SystemAccess* a = detail::current_access) [[unlikely]]
+            detail::check_access(*a, AccessKey{kind, kind == AccessKey::component ? component_id<T>() : resource_id<T>()},
+                                 write, detail::type_name<T>());
+#endif
+    }
+
     struct ResourceBase {
         virtual ~ResourceBase() = default;
         virtual void* get() = 0;
@@ -213,6 +289,7 @@ class World {
 template <typename T, typename... Args>
 T& World::emplace_or_replace(Entity e, Args&&... args) {
     LANTERN_ASSERT(alive(e), "emplace_or_replace on a dead or stale entity");
+    check<T>(AccessKey::component, true);
     Pool<T>& p = assure<T>();
     std::uint32_t pos = p.find(e);
     if (pos == PoolBase::absent) return p.emplace(e, tick_, std::forward<Args>(args)...);
