@@ -217,7 +217,8 @@ ecs::Entity spawn_player(ecs::World& world, glm::vec2 position, bool light) {
 
 namespace {
 
-void move_player(ecs::SystemContext& ctx, systems::Streaming& streaming) {
+void move_player(ecs::SystemContext& ctx) {
+    const systems::Streaming& streaming = ctx.world.resource<systems::Streaming>();
     ecs::World& w = ctx.world;
     const Controls& controls = w.resource<Controls>();
     const float dt = w.resource<GameClock>().dt;
@@ -253,7 +254,8 @@ std::optional<glm::vec3> player_position(ecs::World& w) {
     return out;
 }
 
-void interact(ecs::SystemContext& ctx, systems::Streaming& streaming) {
+void interact(ecs::SystemContext& ctx) {
+    systems::Streaming& streaming = ctx.world.resource<systems::Streaming>();
     ecs::World& w = ctx.world;
     const Controls& c = w.resource<Controls>();
     const bool wants = c.mine || c.place_wall || c.place_torch || c.place_crystal || c.place_tree || c.place_lamp;
@@ -301,12 +303,12 @@ void interact(ecs::SystemContext& ctx, systems::Streaming& streaming) {
 
 } // namespace
 
-void add_gameplay_systems(ecs::Schedule& schedule, systems::Streaming& streaming) {
-    schedule.add("player_move", [&streaming](ecs::SystemContext& ctx) { move_player(ctx, streaming); })
+void add_gameplay_systems(ecs::Schedule& schedule) {
+    schedule.add("player_move", [](ecs::SystemContext& ctx) { move_player(ctx); })
         .reads_resource<Controls, GameClock, CameraRig>()
         .reads_resource<systems::Streaming>()
         .writes<Player, Transform, Camera, PointLight>();
-    schedule.add("interact", [&streaming](ecs::SystemContext& ctx) { interact(ctx, streaming); })
+    schedule.add("interact", [](ecs::SystemContext& ctx) { interact(ctx); })
         .main_thread() // edits the wall mirror
         .reads_resource<Controls, systems::GiConfig>()
         .reads<Player, Transform, Camera>()

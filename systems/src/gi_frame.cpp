@@ -162,19 +162,24 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, c
 
 GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const WorldSource> source,
                  std::unique_ptr<GiBackend> backend, GiConfig config, GiFrameOptions options)
-    : world_(world), jobs_(jobs), streaming_(std::make_shared<Streaming>(std::move(source), options.streaming)),
-      backend_(std::move(backend)), schedule_(jobs) {
+    : world_(world), jobs_(jobs), backend_(std::move(backend)), schedule_(jobs) {
+    // The one owner of the wall bytes (the mirror) and of the chunk bookkeeping: a world
+    // resource, so systems reach it through the world like any other, and declare it.
+    world_.set_resource<Streaming>(std::move(source), options.streaming);
     world_.set_resource<GiConfig>(std::move(config));
     world_.set_resource<GiView>();
     world_.set_resource<GatheredLights>();
     world_.set_resource<GatheredProxies>();
     world_.set_resource<FramePasses>();
     gpu_lane_ = profile::add_gpu_lane(profile::intern("GPU: " + backend_->name()));
-    if (options.add_game_systems) options.add_game_systems(schedule_, *streaming_);
+    if (options.add_game_systems) options.add_game_systems(schedule_);
     add_systems();
 }
 
-GiFrame::~GiFrame() { backend_->wait_idle(); }
+GiFrame::~GiFrame() {
+    backend_->wait_idle();
+    world_.remove_resource<Streaming>(); // its loads finish or are cancelled here
+}
 
 ecs::Entity GiFrame::camera() const {
     ecs::Entity found;
@@ -200,7 +205,7 @@ void GiFrame::add_systems() {
 
     schedule_.add("streaming", [this](ecs::SystemContext& ctx) {
         const GiView& view = ctx.world.resource<GiView>();
-        if (view.window) streaming_->update(ctx.world, ctx.commands(), jobs_, view.window->view);
+        if (view.window) ctx.world.resource<Streaming>().update(ctx.world, ctx.commands(), jobs_, view.window->view);
     }).main_thread().reads_resource<GiView>().writes<WallChunk>().writes_resource<Streaming>();
 
     auto light_state = std::make_shared<LightGatherState>();
@@ -229,7 +234,8 @@ void GiFrame::add_systems() {
         const GatheredProxies& proxies = w.resource<GatheredProxies>();
         gi::FrameInputs& in = f.inputs;
         in.window = *view.window;
-        in.walls = streaming_->view();
+        const Streaming& streaming = ctx.world.resource<Streaming>();
+        in.walls = streaming.view();
         in.wall_height = config.wall_height;
         in.settings = config.settings;
         in.point_lights = lights.points;
@@ -237,7 +243,7 @@ void GiFrame::add_systems() {
         in.directional_lights = lights.suns;
         in.proxies = proxies.proxies;
         f.plan = gi::plan_passes(in, config.lit_image);
-        f.keys = pass_keys(in, f.plan, streaming_->version(), lights.hash, lights.suns_hash, proxies.hash);
+        f.keys = pass_keys(in, f.plan, streaming.version(), lights.hash, lights.suns_hash, proxies.hash);
         const ecs::Entity cam = camera();
         const GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
         for (int p = 0; p < gi::pass_count; ++p) {
@@ -261,7 +267,8 @@ void GiFrame::add_systems() {
         const GiView& view = w.resource<GiView>();
         report_.ran = {};
         if (view.window) {
-            const WallUpdate walls{streaming_->resized(), streaming_->dirty()};
+            Streaming& streaming = w.resource<Streaming>();
+            const WallUpdate walls{streaming.resized(), streaming.dirty()};
             auto ok = backend_->execute(frame_, f.inputs, f.plan, f.run, walls);
             const ecs::Entity cam = camera();
             GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
@@ -269,7 +276,7 @@ void GiFrame::add_systems() {
                 LANTERN_LOG_ERROR("GI frame %llu: %s", static_cast<unsigned long long>(frame_), ok.error().message.c_str());
                 if (cache) cache->keys = {}; // retry everything next frame
             } else {
-                streaming_->clear_dirty();
+                streaming.clear_dirty();
                 report_.ran = f.run;
                 if (cache && f.run.bits) {
                     GICache& c = w.patch<GICache>(cam);
@@ -301,7 +308,7 @@ void GiFrame::warm_up() {
     if (cam.is_null()) return;
     const GiConfig& config = world_.resource<GiConfig>();
     auto window = gi::compute_window(world_.get<Camera>(cam).view, config.settings.padding, config.settings.resolution);
-    if (window) streaming_->load_all(world_, jobs_, window->view);
+    if (window) streaming().load_all(world_, jobs_, window->view);
 }
 
 FrameReport GiFrame::step() {

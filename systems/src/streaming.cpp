@@ -85,6 +85,14 @@ void Streaming::write_chunk(glm::ivec2 coord, const std::uint8_t* cells) {
     ++version_;
 }
 
+std::vector<std::uint8_t> Streaming::read_chunk(glm::ivec2 coord) const {
+    std::vector<std::uint8_t> cells(cells_per_chunk);
+    const int x0 = coord.x * chunk_size;
+    for (int r = 0; r < chunk_size; ++r)
+        std::memcpy(cells.data() + r * chunk_size, &mirror_[mirror_index(x0, coord.y * chunk_size + r)], chunk_size);
+    return cells;
+}
+
 void Streaming::start_load(ecs::CommandBuffer& commands, jobs::JobSystem& jobs, glm::ivec2 coord) {
     ChunkSlot slot;
     if (auto revived = cancelled_.find(key(coord)); revived != cancelled_.end()) {
@@ -126,7 +134,6 @@ void Streaming::finish_loads(ecs::World& world, ecs::CommandBuffer& commands, bo
         chunk.coord = load.coord;
         chunk.state = ChunkState::resident;
         chunk.version = (load.edited || !slot.pending_edits.empty()) ? 1 : 0;
-        chunk.cells = load.cells;
         if (world.alive(slot.entity))
             world.patch<WallChunk>(slot.entity) = chunk;
         else
@@ -148,7 +155,7 @@ void Streaming::unload(ecs::World& world, ecs::CommandBuffer& commands, glm::ive
         cancelled_[key(coord)] = std::move(parked);
     } else if (world.alive(slot.entity)) {
         const WallChunk& chunk = world.get<WallChunk>(slot.entity);
-        if (chunk.version > 0) edits_[key(coord)] = std::vector<std::uint8_t>(chunk.cells.begin(), chunk.cells.end());
+        if (chunk.version > 0) edits_[key(coord)] = read_chunk(coord); // the mirror holds its bytes
         write_chunk(coord, nullptr); // the slot reads as air until the next chunk arrives
     }
     commands.destroy(slot.entity);
@@ -225,9 +232,7 @@ void Streaming::set_wall(ecs::World& world, glm::ivec2 tile, bool wall) {
             slot.pending_edits.push_back({cell, wall});
             return;
         }
-        WallChunk& chunk = world.patch<WallChunk>(slot.entity);
-        chunk.cells[std::size_t(cell)] = wall ? 1 : 0;
-        ++chunk.version;
+        ++world.patch<WallChunk>(slot.entity).version; // the bytes live in the mirror only
         const std::size_t index = mirror_index(tile.x, tile.y);
         mirror_[index] = wall ? 1 : 0;
         dirty_.push_back({index, index + 1});
@@ -254,7 +259,7 @@ std::vector<Streaming::EditedChunk> Streaming::edited_chunks(const ecs::World& w
     for (const auto& [k, slot] : chunks_) {
         if (slot.pending || !world.alive(slot.entity)) continue;
         const WallChunk& chunk = world.get<WallChunk>(slot.entity);
-        if (chunk.version > 0) out.push_back({chunk.coord, std::vector<std::uint8_t>(chunk.cells.begin(), chunk.cells.end())});
+        if (chunk.version > 0) out.push_back({chunk.coord, read_chunk(chunk.coord)});
     }
     std::sort(out.begin(), out.end(), [](const EditedChunk& a, const EditedChunk& b) {
         return a.coord.y != b.coord.y ? a.coord.y < b.coord.y : a.coord.x < b.coord.x;

@@ -227,12 +227,13 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
 
     systems::GiFrameOptions fo;
     Session* session = s.get();
-    fo.add_game_systems = [this, session](ecs::Schedule& schedule, systems::Streaming& streaming) {
+    fo.add_game_systems = [this, session](ecs::Schedule& schedule) {
         schedule.add("input", [this, session](ecs::SystemContext&) { input_system(*session); })
             .main_thread()
             .reads<Player, Transform, Camera>()
+            .reads_resource<systems::Streaming>() // the demo script looks at the walls
             .writes_resource<Controls, GameClock>();
-        add_gameplay_systems(schedule, streaming);
+        add_gameplay_systems(schedule);
     };
     s->frame = std::make_unique<systems::GiFrame>(w, jobs_, s->info.source, systems::make_vulkan_backend(*gi_renderer_),
                                                   config, std::move(fo));
@@ -250,7 +251,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
 }
 
 void Game::add_systems(ecs::Schedule& schedule, Session& s) {
-    schedule.add("draw_list", [&s](ecs::SystemContext& ctx) {
+    schedule.add("draw_list", [](ecs::SystemContext& ctx) {
         ecs::World& w = ctx.world;
         DrawListResource& r = w.resource<DrawListResource>();
         r.list.boxes.clear();
@@ -258,7 +259,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         w.view<Camera>().each([&](const Camera& c) {
             if (auto* p = std::get_if<scene::PerspectiveCamera>(&c.view)) r.context.camera = *p;
         });
-        const systems::Streaming& streaming = s.frame->streaming();
+        const systems::Streaming& streaming = w.resource<systems::Streaming>();
         r.context.wall_height = w.resource<systems::GiConfig>().wall_height;
         r.context.time = w.resource<GameClock>().time;
         const IsWall is_wall = [&](int x, int z) { return streaming.is_wall({x, z}); };

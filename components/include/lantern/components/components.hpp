@@ -60,12 +60,14 @@ struct Camera {
 enum class ChunkState : std::uint8_t { loading, resident };
 
 // A fixed-size block of the wall grid, resident around the GI window (systems/streaming).
+// A chunk's bookkeeping. Its wall bytes live in one place: the Streaming resource's mirror
+// (Streaming::is_wall, view), which the GPU buffer copies; edits of unloaded chunks are
+// kept by Streaming too.
 struct WallChunk {
     static constexpr int size = 32; // tiles per side
     glm::ivec2 coord{0};            // chunk coordinate: tiles [coord * size, coord * size + size)
     ChunkState state = ChunkState::loading;
     std::uint32_t version = 0;      // bumped on every edit of this chunk
-    std::array<std::uint8_t, size * size> cells{}; // row-major, 1 = wall
 };
 
 // What the GI result held by the renderer was computed from: one key per pass (0 = never

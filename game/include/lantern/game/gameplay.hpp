@@ -45,7 +45,7 @@ glm::vec3 sun_light(float time_of_day);
 
 // Adds the game systems (input-driven movement and camera, interaction, flicker, day
 // cycle) to a GI frame's schedule; they run before the GI systems.
-void add_gameplay_systems(ecs::Schedule& schedule, systems::Streaming& streaming);
+void add_gameplay_systems(ecs::Schedule& schedule);
 
 // What a placed prop or torch is made of (its components), in one place for the world's
 // set-up and the player's placing.

@@ -77,7 +77,8 @@ struct GiFrameOptions {
     // Adds the game's systems to the schedule before the GI systems, so that (where their
     // access conflicts) they run first: a camera moved or a light changed this frame is
     // seen by this frame's GI.
-    std::function<void(ecs::Schedule&, Streaming&)> add_game_systems;
+    // They reach the walls through the world resource Streaming (declared as any resource).
+    std::function<void(ecs::Schedule&)> add_game_systems;
 };
 
 class GiFrame {
@@ -91,7 +92,8 @@ class GiFrame {
     // Game systems go here (before the first step).
     ecs::Schedule& schedule() { return schedule_; }
     ecs::World& world() { return world_; }
-    Streaming& streaming() { return *streaming_; }
+    // The world resource Streaming (registered by the constructor, removed by the destructor).
+    Streaming& streaming() { return world_.resource<Streaming>(); }
     GiBackend& backend() { return *backend_; }
     GiConfig& config() { return world_.resource<GiConfig>(); }
 
@@ -108,7 +110,6 @@ class GiFrame {
 
     ecs::World& world_;
     jobs::JobSystem& jobs_;
-    std::shared_ptr<Streaming> streaming_;
     std::unique_ptr<GiBackend> backend_;
     ecs::Schedule schedule_;
     std::uint64_t frame_ = 0;

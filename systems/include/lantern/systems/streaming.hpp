@@ -98,6 +98,7 @@ class Streaming {
     void finish_loads(ecs::World& world, ecs::CommandBuffer& commands, bool wait, jobs::JobSystem& jobs);
     void unload(ecs::World& world, ecs::CommandBuffer& commands, glm::ivec2 coord, ChunkSlot& slot);
     void write_chunk(glm::ivec2 coord, const std::uint8_t* cells);
+    std::vector<std::uint8_t> read_chunk(glm::ivec2 coord) const; // a resident chunk's bytes, from the mirror
     void reap_cancelled();
     bool in_rect(glm::ivec2 coord) const;
     std::size_t mirror_index(int x, int z) const;
