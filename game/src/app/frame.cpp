@@ -1,0 +1,166 @@
+// The systems the application adds to each frame: input (keys, mouse or the demo script into
+// Controls) and render (the raster pass, the upscale, the HUD, present).
+#include "app/game.hpp"
+
+namespace lantern::game::app {
+
+void Game::input_system(Session& s) {
+    ecs::World& w = s.world;
+    GameClock& clock = w.resource<GameClock>();
+    const std::int64_t now = now_ns();
+    const bool fixed = options_.fixed_step || s.demo;
+    clock.dt = fixed || last_frame_ns_ == 0 ? 1.0f / 60.0f
+                                            : float(std::clamp(double(now - last_frame_ns_) * 1e-9, 0.0, 0.1));
+    last_frame_ns_ = now;
+    clock.time += clock.dt;
+    Controls& c = w.resource<Controls>();
+    c = {};
+
+    glm::vec2 player(0.0f);
+    w.view<Player, Transform>().each([&](const Player&, const Transform& t) { player = {t.position.x, t.position.z}; });
+    scene::PerspectiveCamera camera;
+    w.view<Camera>().each([&](const Camera& cam) {
+        if (auto* p = std::get_if<scene::PerspectiveCamera>(&cam.view)) camera = *p;
+    });
+    if (s.demo) {
+        systems::Streaming& streaming = s.frame->streaming();
+        const IsWall is_wall = [&](int x, int z) { return streaming.is_wall({x, z}); };
+        c = s.demo->controls(headless_frame_, player, camera, is_wall);
+        return;
+    }
+
+    window_->poll();
+    const platform::InputState& in = window_->input();
+    using platform::Key;
+    if (window_->should_close() || in.pressed(Key::escape)) quit_ = true;
+    const bool keyboard_free = !overlay_ || !overlay_->wants_keyboard();
+    const bool mouse_free = !overlay_ || !hud_.visible || !overlay_->wants_mouse();
+    if (keyboard_free) {
+        if (in.pressed(Key::f1)) hud_.visible = !hud_.visible;
+        if (in.pressed(Key::f2)) export_trace();
+        if (in.pressed(Key::f5)) save_requested_ = true; // after the frame: a save reads the whole world
+        if (in.pressed(Key::f9)) {
+            if (auto state = read_save(options_.save_file)) {
+                pending_load_ = std::move(*state);
+            } else {
+                message_ = state.error().message;
+                LANTERN_LOG_WARN("%s", message_.c_str());
+            }
+        }
+        for (int i = 0; i < 5; ++i)
+            if (in.pressed(Key(int(Key::digit_1) + i))) selected_item_ = i;
+        glm::vec2 move(0.0f);
+        if (in.down(Key::w) || in.down(Key::up)) move.y -= 1.0f; // screen up is -z
+        if (in.down(Key::s) || in.down(Key::down)) move.y += 1.0f;
+        if (in.down(Key::a) || in.down(Key::left)) move.x -= 1.0f;
+        if (in.down(Key::d) || in.down(Key::right)) move.x += 1.0f;
+        c.move = move;
+        c.toggle_day_cycle = in.pressed(Key::n);
+    }
+    if (mouse_free) {
+        const platform::Extent source{std::uint32_t(options_.internal.x), std::uint32_t(options_.internal.y)};
+        if (auto p = render::destination_to_source(present_rect_, source, in.mouse_position())) {
+            c.has_cursor = true;
+            c.cursor_ndc = *p / glm::vec2(options_.internal);
+        }
+        // Holding the left button keeps mining, a wall every 0.2 s.
+        const bool mine_held = in.down(platform::MouseButton::left) && clock.time - last_mine_time_ > 0.2;
+        if (in.pressed(platform::MouseButton::left) || mine_held) {
+            c.mine = true;
+            last_mine_time_ = clock.time;
+        }
+        if (in.pressed(platform::MouseButton::right)) {
+            bool Controls::*items[] = {&Controls::place_wall, &Controls::place_torch, &Controls::place_crystal,
+                                       &Controls::place_lamp, &Controls::place_tree};
+            c.*items[selected_item_] = true;
+        }
+    }
+}
+
+void Game::record_world(gpu::CommandList& cmd, Session& s) {
+    ecs::World& w = s.world;
+    const DrawListResource& draws = w.resource<DrawListResource>();
+    const systems::GiView& gv = w.resource<systems::GiView>();
+    WorldView view;
+    view.camera = draws.context.camera;
+    view.gi = gv.window ? &w.resource<systems::FramePasses>().inputs : nullptr;
+    view.renderer = gi_renderer_.get();
+    view.art = art_;
+    view.time = float(w.resource<GameClock>().time);
+    std::uint32_t region = 0;
+    if (timer_) {
+        timer_->begin_frame(cmd, profile::frame_index());
+        region = timer_->begin(cmd, "world raster");
+    }
+    world_renderer_->record(cmd, view, draws.list);
+    if (timer_) timer_->end(cmd, region);
+}
+
+void Game::collect_raster_timings() {
+    if (!timer_) return;
+    for (const render::FrameTimings& t : timer_->take_completed())
+        for (const gpu::TimestampRegion& r : t.passes)
+            profile::record_gpu(raster_lane_, t.frame, r.name, r.cpu_begin_ns, r.cpu_end_ns);
+}
+
+void Game::render_system(Session& s) {
+    LANTERN_PROFILE_SCOPE("render");
+    ecs::World& w = s.world;
+    if (!window_) {
+        // Headless: at most two raster frames in flight.
+        const int slot = headless_frame_ & 1;
+        if (raster_serials_[slot]) device_->wait(raster_serials_[slot]);
+        gpu::CommandList cmd = device_->begin("raster frame");
+        record_world(cmd, s);
+        raster_serials_[slot] = device_->submit(std::move(cmd));
+        collect_raster_timings();
+        return;
+    }
+    std::optional<render::SwapchainFrame> frame = swapchain_->acquire(window_->framebuffer_size());
+    if (!frame) return; // minimised: nothing to draw
+    const bool hud = hud_.visible && overlay_;
+    HudActions actions;
+    if (hud) {
+        overlay_->new_frame();
+        systems::FrameReport report;
+        const systems::FramePasses& f = w.resource<systems::FramePasses>();
+        report.ran = f.run;
+        report.reason = f.reason;
+        report.window = w.resource<systems::GiView>().window;
+        HudInputs in;
+        in.report = &report;
+        in.config = &w.resource<systems::GiConfig>();
+        in.art = &art_;
+        in.day = &w.resource<DayCycle>();
+        in.lights = &w.resource<systems::GatheredLights>();
+        in.proxies = &w.resource<systems::GatheredProxies>();
+        in.streaming = s.frame->streaming().stats();
+        in.entities = w.alive_count();
+        in.world = s.info.description;
+        in.message = message_;
+        in.item = item_names[selected_item_];
+        in.vsync = swapchain_->vsync();
+        in.device = device_->name();
+        actions = hud_.draw(in);
+    }
+    gpu::CommandList cmd = device_->begin("raster frame");
+    record_world(cmd, s);
+    const VkExtent2D size = frame->image().extent();
+    const platform::Extent source{std::uint32_t(options_.internal.x), std::uint32_t(options_.internal.y)};
+    present_rect_ = render::fit_integer_scale(source, {size.width, size.height});
+    render::record_upscale(cmd, world_renderer_->target().color(), frame->image(), present_rect_,
+                           hud ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    if (hud) overlay_->record(cmd, frame->image());
+    swapchain_->present(std::move(*frame), std::move(cmd));
+    collect_raster_timings();
+    if (actions.export_trace) export_trace();
+    if (actions.save) save_requested_ = true;
+    if (actions.load) {
+        if (auto state = read_save(options_.save_file)) pending_load_ = std::move(*state);
+        else message_ = state.error().message;
+    }
+    if (actions.toggle_vsync) swapchain_->set_vsync(!swapchain_->vsync());
+}
+
+
+} // namespace lantern::game::app

@@ -1,0 +1,138 @@
+// The game application's private parts, shared by its files (game/src/app/):
+//   app.cpp         start-up: the device, the renderers, sessions (a world, its GI frame and systems)
+//   frame.cpp       the per-frame systems the application adds: input and render
+//   loops.cpp       the window loop, the headless demo and its report
+//   persistence.cpp saves, the status file and trace export
+// Threads: everything here runs on the main thread (the systems are main-thread systems).
+#pragma once
+
+#include "lantern/game/app.hpp"
+
+#include "app/draw_list.hpp"
+#include "app/hud.hpp"
+#include "lantern/core/clock.hpp"
+#include "lantern/core/file.hpp"
+#include "lantern/core/json.hpp"
+#include "lantern/core/log.hpp"
+#include "lantern/core/machine.hpp"
+#include "lantern/game/demo.hpp"
+#include "lantern/game/gameplay.hpp"
+#include "lantern/game/save.hpp"
+#include "lantern/game/world_renderer.hpp"
+#include "lantern/gi/vulkan/renderer.hpp"
+#include "lantern/gpu/device.hpp"
+#include "lantern/platform/window.hpp"
+#include "lantern/profile/profiler.hpp"
+#include "lantern/render/render.hpp"
+#include "lantern/scene/loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+
+namespace lantern::game::app {
+
+
+inline constexpr const char* item_names[] = {"wall", "torch", "crystal", "lamp post", "tree"};
+inline constexpr int warm_up_frames = 30; // left out of the headless percentiles (pipelines, first loads)
+
+// The draw list as a world resource (written by draw_list, read by render).
+struct DrawListResource {
+    DrawList list;
+    DrawContext context;
+};
+
+struct Session {
+    ecs::World world;
+    GameWorld info;
+    std::unique_ptr<systems::GiFrame> frame;
+    std::optional<DemoScript> demo;
+    ~Session() { frame.reset(); } // the GI frame (and its jobs) before the world it uses
+};
+
+inline jobs::JobSystem::Config job_config(const GameOptions& o) {
+    jobs::JobSystem::Config c;
+    if (o.workers >= 0) c.worker_threads = o.workers;
+    return c;
+}
+
+inline std::string json_escape(const std::string& s) {
+    std::string out;
+    for (char ch : s) {
+        if (ch == '"' || ch == '\\') out += '\\';
+        if (static_cast<unsigned char>(ch) < 0x20) continue;
+        out += ch;
+    }
+    return out;
+}
+
+
+class Game {
+  public:
+    explicit Game(const GameOptions& options) : options_(options), jobs_(job_config(options)) {
+        art_.posterize = options.posterize;
+        art_.dither = options.dither;
+    }
+    ~Game() {
+        if (device_) device_->wait_idle();
+        session_.reset();
+        overlay_.reset();
+        swapchain_.reset();
+        timer_.reset();
+        world_renderer_.reset();
+        gi_renderer_.reset();
+        device_.reset();
+        window_.reset();
+    }
+
+    int run();
+
+  private:
+    Result<void> init(bool windowed);
+    Result<std::unique_ptr<Session>> make_session(const WorldSpec& spec, const SaveState* save);
+    void add_systems(ecs::Schedule& schedule, Session& session);
+    void input_system(Session& s);
+    void render_system(Session& s);
+    void record_world(gpu::CommandList& cmd, Session& s);
+    void collect_raster_timings();
+    void save(Session& s);
+    void export_trace();
+    void write_status(Session& s);
+    int run_window();
+    int run_headless();
+    Result<void> write_headless_report(const std::vector<double>& frame_ms, const std::vector<bool>& walking,
+                                       const std::vector<std::string>& screenshots, double seconds);
+
+    GameOptions options_;
+    jobs::JobSystem jobs_;
+    std::optional<platform::Window> window_;
+    std::unique_ptr<gpu::Device> device_;
+    std::optional<render::Swapchain> swapchain_;
+    std::optional<render::ImGuiOverlay> overlay_;
+    std::optional<render::PassTimer> timer_;
+    std::unique_ptr<gi::vk::Renderer> gi_renderer_;
+    std::unique_ptr<WorldRenderer> world_renderer_;
+    std::unique_ptr<Session> session_;
+    std::uint32_t raster_lane_ = 0;
+    ArtSettings art_;
+    Hud hud_;
+    render::PresentRect present_rect_;
+    std::int64_t last_frame_ns_ = 0;
+    double last_mine_time_ = -1.0;
+    int selected_item_ = 1; // torch
+    int headless_frame_ = 0;
+    std::uint64_t window_frames_ = 0; // windowed frames stepped (--status-file)
+    int saves_done_ = 0;              // successful saves (--status-file)
+    bool save_requested_ = false;     // F5 or the HUD: saved between frames, outside the systems
+    bool status_failed_ = false;      // the status file could not be written (said once)
+    bool quit_ = false;
+    std::optional<SaveState> pending_load_;
+    std::string message_;
+    std::uint64_t raster_serials_[2] = {0, 0};
+};
+
+} // namespace lantern::game::app

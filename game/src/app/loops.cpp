@@ -1,0 +1,155 @@
+// The window loop, the headless demo and its report (timings.json, profile.txt, trace).
+#include "app/game.hpp"
+
+namespace lantern::game::app {
+
+int Game::run_window() {
+    while (!quit_) {
+        profile::begin_frame();
+        session_->frame->step();
+        profile::end_frame();
+        ++window_frames_;
+        if (save_requested_) {
+            save_requested_ = false;
+            save(*session_);
+        }
+        if (!options_.status_file.empty()) write_status(*session_);
+        if (pending_load_) {
+            device_->wait_idle();
+            const SaveState state = std::move(*pending_load_);
+            pending_load_.reset();
+            session_.reset();
+            auto s = make_session(state.world, &state);
+            if (!s) {
+                LANTERN_LOG_ERROR("%s", s.error().message.c_str());
+                return s.error().exit_code;
+            }
+            session_ = std::move(*s);
+            message_ = "loaded " + options_.save_file;
+        }
+        if (window_->minimised()) window_->poll_wait(0.1);
+    }
+    return 0;
+}
+
+int Game::run_headless() {
+    if (auto ok = ensure_directory(options_.out_dir); !ok) {
+        std::fprintf(stderr, "lantern: %s\n", ok.error().message.c_str());
+        return 1;
+    }
+    const int frames = options_.frames;
+    std::vector<int> shots;
+    for (int k = 1; k <= options_.screenshots; ++k) shots.push_back(std::min(frames - 1, k * frames / options_.screenshots - 1));
+    std::vector<double> frame_ms;
+    std::vector<bool> walking;
+    std::vector<std::string> screenshots;
+    const std::int64_t start = now_ns();
+    std::fprintf(stderr, "lantern: headless demo, %d frames at %dx%d, %s -> %s/\n", frames, options_.internal.x,
+                 options_.internal.y, session_->info.description.c_str(), options_.out_dir.c_str());
+    for (headless_frame_ = 0; headless_frame_ < frames; ++headless_frame_) {
+        profile::begin_frame();
+        const std::int64_t t0 = now_ns();
+        session_->frame->step();
+        const std::int64_t t1 = now_ns();
+        profile::end_frame();
+        frame_ms.push_back(double(t1 - t0) * 1e-6);
+        walking.push_back(session_->demo->is_walking(headless_frame_));
+        if (std::find(shots.begin(), shots.end(), headless_frame_) != shots.end()) {
+            char name[64];
+            std::snprintf(name, sizeof(name), "frame_%05d.png", headless_frame_);
+            const std::string path = options_.out_dir + "/" + name;
+            device_->wait_idle();
+            if (auto ok = render::write_png(path, world_renderer_->target().read_back()); !ok) {
+                std::fprintf(stderr, "lantern: %s\n", ok.error().message.c_str());
+                return 1;
+            }
+            screenshots.push_back(name);
+            frame_ms.back() = -1.0; // the next frame starts on an idle GPU: not counted
+        }
+        if ((headless_frame_ + 1) % std::max(1, frames / 10) == 0 || headless_frame_ + 1 == frames) {
+            std::vector<double> recent(frame_ms.end() - std::min<std::ptrdiff_t>(std::ptrdiff_t(frame_ms.size()), 30), frame_ms.end());
+            std::erase_if(recent, [](double v) { return v < 0; });
+            const auto p = profile::percentiles(recent);
+            std::fprintf(stderr, "  frame %d/%d (%d %%): %.1f ms/frame over the last %u\n", headless_frame_ + 1, frames,
+                         (headless_frame_ + 1) * 100 / frames, p.mean, p.count);
+        }
+    }
+    device_->wait_idle();
+    collect_raster_timings();
+    const double seconds = double(now_ns() - start) * 1e-9;
+    if (auto ok = write_headless_report(frame_ms, walking, screenshots, seconds); !ok) {
+        std::fprintf(stderr, "lantern: %s\n", ok.error().message.c_str());
+        return 1;
+    }
+    return 0;
+}
+
+Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, const std::vector<bool>& walking,
+                                         const std::vector<std::string>& screenshots, double seconds) {
+    std::vector<double> all, walk;
+    for (std::size_t i = std::size_t(warm_up_frames); i < frame_ms.size(); ++i) {
+        if (frame_ms[i] < 0 || (i > 0 && frame_ms[i - 1] < 0)) continue;
+        all.push_back(frame_ms[i]);
+        if (walking[i]) walk.push_back(frame_ms[i]);
+    }
+    const profile::Percentiles pa = profile::percentiles(all), pw = profile::percentiles(walk);
+    const auto stats = profile::stats();
+    const scene::GiSettings& gi = session_->world.resource<systems::GiConfig>().settings;
+
+    std::ostringstream json;
+    auto pct = [](const profile::Percentiles& p) {
+        char buf[200];
+        std::snprintf(buf, sizeof(buf), "{\"frames\": %u, \"mean\": %.3f, \"p50\": %.3f, \"p95\": %.3f, \"p99\": %.3f, \"max\": %.3f}",
+                      p.count, p.mean, p.p50, p.p95, p.p99, p.max);
+        return std::string(buf);
+    };
+    json << "{\n  \"machine\": \"" << json_escape(describe_machine()) << "\",\n";
+    json << "  \"device\": \"" << json_escape(device_->name()) << "\",\n";
+    json << "  \"world\": \"" << json_escape(session_->info.description) << "\",\n";
+    json << "  \"frames\": " << frame_ms.size() << ", \"warm_up_frames\": " << warm_up_frames
+         << ", \"seconds\": " << seconds << ",\n";
+    json << "  \"internal_resolution\": [" << options_.internal.x << ", " << options_.internal.y << "],\n";
+    json << "  \"gi\": {\"resolution\": " << gi.resolution << ", \"heat_rounds\": " << gi.heat_rounds
+         << ", \"heat_scale\": " << int(gi.heat_scale) << ", \"padding\": " << gi.padding
+         << ", \"max_lights\": " << gi.max_lights << "},\n";
+    json << "  \"frame_ms\": " << pct(pa) << ",\n  \"frame_ms_walking\": " << pct(pw) << ",\n";
+    json << "  \"scopes\": [";
+    bool first = true;
+    for (const auto& s : stats) {
+        char buf[320];
+        std::snprintf(buf, sizeof(buf),
+                      "%s\n    {\"name\": \"%s\", \"lane\": \"%s\", \"frames\": %u, \"p50\": %.3f, \"p95\": %.3f, \"p99\": %.3f, \"max\": %.3f}",
+                      first ? "" : ",", json_escape(s.name).c_str(), s.kind == profile::LaneKind::gpu ? "gpu" : "cpu",
+                      s.frames_seen, s.p50_ms, s.p95_ms, s.p99_ms, s.max_ms);
+        json << buf;
+        first = false;
+    }
+    json << "\n  ],\n  \"screenshots\": [";
+    for (std::size_t i = 0; i < screenshots.size(); ++i) json << (i ? ", " : "") << "\"" << screenshots[i] << "\"";
+    json << "]\n}\n";
+    if (auto ok = write_file_atomic(options_.out_dir + "/timings.json", json.str()); !ok) return ok;
+    if (auto ok = write_file_atomic(options_.out_dir + "/profile.txt", profile::text_report()); !ok) return ok;
+    if (auto ok = profile::write_chrome_trace(options_.out_dir + "/trace.json", 300); !ok) return ok;
+
+    std::printf("lantern headless demo: %zu frames in %.1f s on %s (%s)\n", frame_ms.size(), seconds,
+                device_->name().c_str(), describe_machine().c_str());
+    std::printf("world: %s; GI resolution %d, %d heat rounds at 1/%d, internal %dx%d\n",
+                session_->info.description.c_str(), gi.resolution, gi.heat_rounds, int(gi.heat_scale),
+                options_.internal.x, options_.internal.y);
+    std::printf("frame ms (after %d warm-up frames):   p50 %6.2f  p95 %6.2f  p99 %6.2f  max %6.2f  (%u frames)\n",
+                warm_up_frames, pa.p50, pa.p95, pa.p99, pa.max, pa.count);
+    std::printf("frame ms while walking:               p50 %6.2f  p95 %6.2f  p99 %6.2f  max %6.2f  (%u frames) -> %.1f fps at p95\n",
+                pw.p50, pw.p95, pw.p99, pw.max, pw.count, pw.p95 > 0 ? 1000.0 / pw.p95 : 0.0);
+    if (options_.bench) {
+        std::printf("\n%-28s %5s %8s %8s %8s %8s\n", "scope / system / GPU pass", "lane", "p50", "p95", "p99", "max");
+        for (const auto& s : stats)
+            std::printf("%-28s %5s %8.2f %8.2f %8.2f %8.2f\n", s.name, s.kind == profile::LaneKind::gpu ? "gpu" : "cpu",
+                        s.p50_ms, s.p95_ms, s.p99_ms, s.max_ms);
+    }
+    std::printf("wrote %s/{timings.json, profile.txt, trace.json} and %zu screenshots\n", options_.out_dir.c_str(),
+                screenshots.size());
+    return {};
+}
+
+
+} // namespace lantern::game::app

@@ -1,0 +1,53 @@
+// What the game writes besides frames: saves (between frames), the --status-file line, the
+// Chrome trace.
+#include "app/game.hpp"
+
+namespace lantern::game::app {
+
+void Game::save(Session& s) {
+    const SaveState state = capture_save(s.world, s.frame->streaming(), s.info.spec);
+    if (auto ok = write_save(options_.save_file, state); !ok) {
+        message_ = "save failed: " + ok.error().message;
+        LANTERN_LOG_ERROR("%s", message_.c_str());
+        return;
+    }
+    ++saves_done_;
+    message_ = "saved to " + options_.save_file + " (" + std::to_string(state.entities.size()) + " lights and props, " +
+               std::to_string(state.edits.size()) + " edited chunks)";
+    LANTERN_LOG_INFO("%s", message_.c_str());
+}
+
+// One JSON line, replaced atomically after each windowed frame: what a script driving the game
+// through real input waits on (the frame that saw its input, where the player is) instead of
+// sleeping for a guessed time.
+void Game::write_status(Session& s) {
+    glm::vec2 player(0.0f);
+    s.world.view<Player, Transform>().each([&](const Player&, const Transform& t) { player = {t.position.x, t.position.z}; });
+    const platform::InputState& in = window_->input();
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "{\"frame\": %llu, \"player\": [%.4f, %.4f], \"mouse\": [%.1f, %.1f], \"buttons\": [%d, %d], "
+                  "\"item\": %d, \"saves\": %d}\n",
+                  static_cast<unsigned long long>(window_frames_), double(player.x), double(player.y),
+                  double(in.mouse_position().x), double(in.mouse_position().y), int(in.down(platform::MouseButton::left)),
+                  int(in.down(platform::MouseButton::right)), selected_item_ + 1, saves_done_);
+    if (auto ok = write_file_atomic(options_.status_file, std::string(line)); !ok && !status_failed_) {
+        status_failed_ = true;
+        LANTERN_LOG_ERROR("status file: %s", ok.error().message.c_str());
+    }
+}
+
+void Game::export_trace() {
+    const std::string path = (window_ ? std::string("lantern-trace.json") : options_.out_dir + "/trace.json");
+    if (auto ok = profile::write_chrome_trace(path, std::uint32_t(hud_.graph_frames)); !ok) {
+        message_ = "trace export failed: " + ok.error().message;
+        LANTERN_LOG_ERROR("%s", message_.c_str());
+        return;
+    }
+    message_ = "Chrome trace of the last " + std::to_string(hud_.graph_frames) + " frames written to " + path +
+               " (open in chrome://tracing or ui.perfetto.dev)";
+    LANTERN_LOG_INFO("%s", message_.c_str());
+}
+
+
+} // namespace lantern::game::app
