@@ -7,11 +7,7 @@ namespace lantern::ecs {
 
 namespace detail {
 
-void check_access(const SystemAccess& access, AccessKey key, bool write, const char* type_name) {
-    const auto has = [&](const std::vector<AccessKey>* keys) {
-        return keys && std::find(keys->begin(), keys->end(), key) != keys->end();
-    };
-    if (has(access.writes) || (!write && has(access.reads))) return;
+void undeclared_access(const SystemAccess& access, AccessKey key, bool write, const char* type_name) {
     const bool component = key.kind == AccessKey::component;
     const std::string message = std::string("system '") + access.name + "' " + (write ? "writes " : "touches ") +
                                 (component ? "component " : "resource ") + type_name +

@@ -212,7 +212,13 @@ std::array<std::uint64_t, pass_count> derive_keys(const FrameInputs& in, const P
 std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameInputs& in, const PassPlan& plan,
                                                   const InputKeys& inputs) {
     std::array<std::uint64_t, pass_count> keys{};
-    const std::vector<double> settings = scene::gi_setting_values(in.settings);
+    // The settings' values change rarely: kept per thread while the settings stay equal.
+    thread_local std::optional<scene::GiSettings> last_settings;
+    thread_local std::vector<double> settings;
+    if (!last_settings || !(*last_settings == in.settings)) {
+        settings = scene::gi_setting_values(in.settings);
+        last_settings = in.settings;
+    }
     const auto rows = m.rows;
     // Each planned row's own key and outputs, once.
     std::array<std::uint64_t, pass_count> own{};

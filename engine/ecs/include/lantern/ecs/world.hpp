@@ -62,7 +62,16 @@ namespace detail {
 #if defined(LANTERN_ENABLE_ASSERTS)
 inline thread_local const SystemAccess* current_access = nullptr;
 #endif
-void check_access(const SystemAccess& access, AccessKey key, bool write, const char* type_name);
+[[noreturn]] void undeclared_access(const SystemAccess& access, AccessKey key, bool write, const char* type_name);
+
+inline bool declared(const SystemAccess& access, AccessKey key, bool write) {
+    for (AccessKey k : *access.writes)
+        if (k == key) return true;
+    if (!write)
+        for (AccessKey k : *access.reads)
+            if (k == key) return true;
+    return false;
+}
 
 template <typename T>
 const char* type_name() {
@@ -255,9 +264,11 @@ class World {
     template <typename T>
     static void check([[maybe_unused]] AccessKey::Kind kind, [[maybe_unused]] bool write) {
 #if defined(LANTERN_ENABLE_ASSERTS)
-        if (const SystemAccess* a = detail::current_access) [[unlikely]]
-            detail::check_access(*a, AccessKey{kind, kind == AccessKey::component ? component_id<T>() : resource_id<T>()},
-                                 write, detail::type_name<T>());
+        if (const SystemAccess* a = detail::current_access) {
+            const AccessKey key{kind, kind == AccessKey::component ? component_id<T>() : resource_id<T>()};
+            if (!detail::declared(*a, key, write)) [[unlikely]]
+                detail::undeclared_access(*a, key, write, detail::type_name<T>());
+        }
 #endif
     }
 
