@@ -163,64 +163,19 @@ BufferView Device::create_buffer_view(const Buffer& buffer, VkFormat format, VkD
 
 // --- Buffer --------------------------------------------------------------------------------
 
-Buffer::Buffer(Buffer&& other) noexcept
-    : device_(std::exchange(other.device_, nullptr)),
-      buffer_(std::exchange(other.buffer_, VK_NULL_HANDLE)),
-      memory_object_(std::exchange(other.memory_object_, VK_NULL_HANDLE)),
-      size_(std::exchange(other.size_, 0)), usage_(std::exchange(other.usage_, 0)),
-      memory_(other.memory_), mapped_(std::exchange(other.mapped_, nullptr)) {}
-
-Buffer& Buffer::operator=(Buffer&& other) noexcept {
-    if (this != &other) {
-        reset();
-        device_ = std::exchange(other.device_, nullptr);
-        buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
-        memory_object_ = std::exchange(other.memory_object_, VK_NULL_HANDLE);
-        size_ = std::exchange(other.size_, 0);
-        usage_ = std::exchange(other.usage_, 0);
-        memory_ = other.memory_;
-        mapped_ = std::exchange(other.mapped_, nullptr);
-    }
-    return *this;
-}
-
-void Buffer::reset() {
-    if (!buffer_) return;
+void Buffer::retire(BufferFields& f) {
     Device::Retired retired;
-    retired.buffer = std::exchange(buffer_, VK_NULL_HANDLE);
-    retired.memory = std::exchange(memory_object_, VK_NULL_HANDLE);
-    size_ = 0;
-    usage_ = 0;
-    mapped_ = nullptr;
-    std::exchange(device_, nullptr)->retire(retired);
+    retired.buffer = f.buffer_;
+    retired.memory = f.memory_object_;
+    f.device_->retire(retired);
 }
 
 // --- BufferView ----------------------------------------------------------------------------
 
-BufferView::BufferView(BufferView&& other) noexcept
-    : device_(std::exchange(other.device_, nullptr)),
-      view_(std::exchange(other.view_, VK_NULL_HANDLE)), format_(other.format_),
-      offset_(other.offset_), range_(other.range_), buffer_usage_(other.buffer_usage_) {}
-
-BufferView& BufferView::operator=(BufferView&& other) noexcept {
-    if (this != &other) {
-        reset();
-        device_ = std::exchange(other.device_, nullptr);
-        view_ = std::exchange(other.view_, VK_NULL_HANDLE);
-        format_ = other.format_;
-        offset_ = other.offset_;
-        range_ = other.range_;
-        buffer_usage_ = other.buffer_usage_;
-    }
-    return *this;
-}
-
-void BufferView::reset() {
-    if (!view_) return;
+void BufferView::retire(BufferViewFields& f) {
     Device::Retired retired;
-    retired.view = std::exchange(view_, VK_NULL_HANDLE);
-    range_ = 0;
-    std::exchange(device_, nullptr)->retire(retired);
+    retired.view = f.view_;
+    f.device_->retire(retired);
 }
 
 } // namespace lantern::gpu

@@ -188,35 +188,12 @@ GraphicsPipeline Device::create_graphics_pipeline(const GraphicsPipelineDesc& de
     return p;
 }
 
-GraphicsPipeline::GraphicsPipeline(GraphicsPipeline&& other) noexcept {
-    *this = std::move(other);
-}
-
-GraphicsPipeline& GraphicsPipeline::operator=(GraphicsPipeline&& other) noexcept {
-    if (this != &other) {
-        reset();
-        device_ = std::exchange(other.device_, nullptr);
-        pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
-        layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
-        set_layout_ = std::exchange(other.set_layout_, VK_NULL_HANDLE);
-        bindings_ = other.bindings_;
-        binding_count_ = std::exchange(other.binding_count_, 0);
-        push_constant_size_ = std::exchange(other.push_constant_size_, 0);
-        color_format_ = std::exchange(other.color_format_, VK_FORMAT_UNDEFINED);
-        depth_format_ = std::exchange(other.depth_format_, VK_FORMAT_UNDEFINED);
-    }
-    return *this;
-}
-
-void GraphicsPipeline::reset() {
-    if (!pipeline_) return;
+void GraphicsPipeline::retire(GraphicsPipelineFields& f) {
     Device::Retired retired;
-    retired.pipeline = std::exchange(pipeline_, VK_NULL_HANDLE);
-    retired.layout = std::exchange(layout_, VK_NULL_HANDLE);
-    retired.set_layout = std::exchange(set_layout_, VK_NULL_HANDLE);
-    binding_count_ = 0;
-    push_constant_size_ = 0;
-    std::exchange(device_, nullptr)->retire(retired);
+    retired.pipeline = f.pipeline_;
+    retired.layout = f.layout_;
+    retired.set_layout = f.set_layout_;
+    f.device_->retire(retired);
 }
 
 } // namespace lantern::gpu

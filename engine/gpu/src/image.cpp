@@ -224,56 +224,19 @@ std::vector<std::byte> Device::read_back(const Image& src, VkImageLayout layout)
 
 // --- Handles -------------------------------------------------------------------------------------
 
-Image::Image(Image&& other) noexcept {
-    *this = std::move(other);
-}
-
-Image& Image::operator=(Image&& other) noexcept {
-    if (this != &other) {
-        reset();
-        device_ = std::exchange(other.device_, nullptr);
-        image_ = std::exchange(other.image_, VK_NULL_HANDLE);
-        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
-        view_ = std::exchange(other.view_, VK_NULL_HANDLE);
-        format_ = std::exchange(other.format_, VK_FORMAT_UNDEFINED);
-        extent_ = std::exchange(other.extent_, VkExtent2D{});
-        usage_ = std::exchange(other.usage_, 0);
-        aspect_ = std::exchange(other.aspect_, 0);
-    }
-    return *this;
-}
-
-void Image::reset() {
-    if (!view_) return;
+void Image::retire(ImageFields& f) {
     Device::Retired retired;
-    retired.image_view = std::exchange(view_, VK_NULL_HANDLE);
+    retired.image_view = f.view_;
     // A wrapped image has no memory of ours and is not ours to destroy.
-    if (memory_) retired.image = image_;
-    retired.memory = std::exchange(memory_, VK_NULL_HANDLE);
-    image_ = VK_NULL_HANDLE;
-    extent_ = {};
-    usage_ = 0;
-    std::exchange(device_, nullptr)->retire(retired);
+    if (f.memory_) retired.image = f.image_;
+    retired.memory = f.memory_;
+    f.device_->retire(retired);
 }
 
-Sampler::Sampler(Sampler&& other) noexcept
-    : device_(std::exchange(other.device_, nullptr)),
-      sampler_(std::exchange(other.sampler_, VK_NULL_HANDLE)) {}
-
-Sampler& Sampler::operator=(Sampler&& other) noexcept {
-    if (this != &other) {
-        reset();
-        device_ = std::exchange(other.device_, nullptr);
-        sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
-    }
-    return *this;
-}
-
-void Sampler::reset() {
-    if (!sampler_) return;
+void Sampler::retire(SamplerFields& f) {
     Device::Retired retired;
-    retired.sampler = std::exchange(sampler_, VK_NULL_HANDLE);
-    std::exchange(device_, nullptr)->retire(retired);
+    retired.sampler = f.sampler_;
+    f.device_->retire(retired);
 }
 
 } // namespace lantern::gpu

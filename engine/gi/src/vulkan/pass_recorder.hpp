@@ -28,9 +28,9 @@ struct PipelineSpec {
 
 class PassRecorder {
   public:
-    PassRecorder(Renderer& renderer, gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan,
-                 const PassRow& row)
-        : cmd(cmd), in(in), plan(plan), r_(renderer), row_(row) {}
+    PassRecorder(Renderer& renderer, gpu::CommandList& command_list, const FrameInputs& inputs,
+                 const PassPlan& frame_plan, const PassRow& row)
+        : cmd(command_list), in(inputs), plan(frame_plan), r_(renderer), row_(row) {}
 
     gpu::CommandList& cmd;
     const FrameInputs& in;

@@ -145,14 +145,14 @@ struct ReferenceContext {
 };
 
 struct PassRow {
-    Pass pass;
-    std::string_view name;
-    std::span<const Tex> reads;  // textures read (an absent one reads as nothing)
-    std::span<const Tex> writes; // textures written (allocated when the row is planned)
+    Pass pass = Pass::count;
+    std::string_view name{};
+    std::span<const Tex> reads{};  // textures read (an absent one reads as nothing)
+    std::span<const Tex> writes{}; // textures written (allocated when the row is planned)
     // When set, replaces `writes` (outputs that depend on the frame: the direct pass writes
     // the point-light set when directional lights follow).
     TexSet (*writes_for)(const FrameInputs& in) = nullptr;
-    std::span<const std::string_view> settings; // gi keys whose values change the output
+    std::span<const std::string_view> settings{}; // gi keys whose values change the output
     std::uint32_t inputs = 0;                    // InputBits
     // nullptr when the row is needed this frame, else why not ("no directional lights").
     const char* (*not_needed)(const FrameInputs& in, bool lit_image, bool walls_in_window) = nullptr;

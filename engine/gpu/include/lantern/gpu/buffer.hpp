@@ -11,6 +11,8 @@
 // thread (the Device's deletion queue locks).
 #pragma once
 
+#include "lantern/gpu/owning_handle.hpp"
+
 #include <vulkan/vulkan.h>
 
 #include <cstddef>
@@ -43,18 +45,19 @@ struct BufferDesc {
     const char* name = nullptr; // debug name for validation messages and GPU debuggers
 };
 
-class Buffer {
+struct BufferFields {
+    Device* device_ = nullptr;
+    VkBuffer buffer_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_object_ = VK_NULL_HANDLE;
+    VkDeviceSize size_ = 0;
+    VkBufferUsageFlags usage_ = 0;
+    MemoryKind memory_ = MemoryKind::device_local;
+    std::byte* mapped_ = nullptr;
+};
+
+// Move-only; reset() (or destruction) queues the buffer for deferred destruction.
+class Buffer : public OwningHandle<Buffer, BufferFields> {
   public:
-    Buffer() = default;
-    Buffer(Buffer&& other) noexcept;
-    Buffer& operator=(Buffer&& other) noexcept;
-    Buffer(const Buffer&) = delete;
-    Buffer& operator=(const Buffer&) = delete;
-    ~Buffer() { reset(); }
-
-    // Queues the buffer for deferred destruction and leaves this handle empty.
-    void reset();
-
     explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
     VkBuffer vk() const { return buffer_; }
     VkDeviceSize size() const { return size_; }
@@ -67,30 +70,26 @@ class Buffer {
 
   private:
     friend class Device;
-    Device* device_ = nullptr;
-    VkBuffer buffer_ = VK_NULL_HANDLE;
-    VkDeviceMemory memory_object_ = VK_NULL_HANDLE;
-    VkDeviceSize size_ = 0;
-    VkBufferUsageFlags usage_ = 0;
-    MemoryKind memory_ = MemoryKind::device_local;
-    std::byte* mapped_ = nullptr;
+    friend class OwningHandle<Buffer, BufferFields>;
+    static void retire(BufferFields& f);
 };
 
 // A typed window onto a buffer (VkBufferView), bound as a uniform texel buffer (reads with
 // format conversion, e.g. R8_UNORM -> float, RGBA16F -> vec4) or a storage texel buffer.
 // The buffer must outlive the view's last use on the GPU; dropping both handles together
 // is fine because both are destroyed deferred.
-class BufferView {
+struct BufferViewFields {
+    Device* device_ = nullptr;
+    VkBufferView view_ = VK_NULL_HANDLE;
+    VkFormat format_ = VK_FORMAT_UNDEFINED;
+    VkDeviceSize offset_ = 0;
+    VkDeviceSize range_ = 0;
+    VkBufferUsageFlags buffer_usage_ = 0;
+};
+
+// Move-only; reset() (or destruction) queues the view for deferred destruction.
+class BufferView : public OwningHandle<BufferView, BufferViewFields> {
   public:
-    BufferView() = default;
-    BufferView(BufferView&& other) noexcept;
-    BufferView& operator=(BufferView&& other) noexcept;
-    BufferView(const BufferView&) = delete;
-    BufferView& operator=(const BufferView&) = delete;
-    ~BufferView() { reset(); }
-
-    void reset();
-
     explicit operator bool() const { return view_ != VK_NULL_HANDLE; }
     VkBufferView vk() const { return view_; }
     VkFormat format() const { return format_; }
@@ -101,12 +100,8 @@ class BufferView {
 
   private:
     friend class Device;
-    Device* device_ = nullptr;
-    VkBufferView view_ = VK_NULL_HANDLE;
-    VkFormat format_ = VK_FORMAT_UNDEFINED;
-    VkDeviceSize offset_ = 0;
-    VkDeviceSize range_ = 0;
-    VkBufferUsageFlags buffer_usage_ = 0;
+    friend class OwningHandle<BufferView, BufferViewFields>;
+    static void retire(BufferViewFields& f);
 };
 
 } // namespace lantern::gpu

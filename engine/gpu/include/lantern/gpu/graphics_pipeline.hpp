@@ -74,18 +74,16 @@ struct GraphicsPipelineDesc {
     const char* name = nullptr; // debug name
 };
 
-class GraphicsPipeline {
+struct GraphicsPipelineFields : PipelineFields {
+    VkFormat color_format_ = VK_FORMAT_UNDEFINED;
+    VkFormat depth_format_ = VK_FORMAT_UNDEFINED;
+};
+
+// Move-only; reset() (or destruction) queues the pipeline and its layouts for deferred
+// destruction.
+class GraphicsPipeline : public OwningHandle<GraphicsPipeline, GraphicsPipelineFields> {
   public:
     static constexpr std::uint32_t max_bindings = ComputePipeline::max_bindings;
-
-    GraphicsPipeline() = default;
-    GraphicsPipeline(GraphicsPipeline&& other) noexcept;
-    GraphicsPipeline& operator=(GraphicsPipeline&& other) noexcept;
-    GraphicsPipeline(const GraphicsPipeline&) = delete;
-    GraphicsPipeline& operator=(const GraphicsPipeline&) = delete;
-    ~GraphicsPipeline() { reset(); }
-
-    void reset();
 
     explicit operator bool() const { return pipeline_ != VK_NULL_HANDLE; }
     VkPipeline vk() const { return pipeline_; }
@@ -97,15 +95,8 @@ class GraphicsPipeline {
 
   private:
     friend class Device;
-    Device* device_ = nullptr;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    std::array<BindingType, max_bindings> bindings_{};
-    std::uint32_t binding_count_ = 0;
-    std::uint32_t push_constant_size_ = 0;
-    VkFormat color_format_ = VK_FORMAT_UNDEFINED;
-    VkFormat depth_format_ = VK_FORMAT_UNDEFINED;
+    friend class OwningHandle<GraphicsPipeline, GraphicsPipelineFields>;
+    static void retire(GraphicsPipelineFields& f);
 };
 
 } // namespace lantern::gpu

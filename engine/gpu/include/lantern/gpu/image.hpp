@@ -16,6 +16,8 @@
 // Threads: a handle is used by one thread at a time; it may be destroyed on any thread.
 #pragma once
 
+#include "lantern/gpu/owning_handle.hpp"
+
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -35,19 +37,21 @@ struct ImageDesc {
     const char* name = nullptr; // debug name for validation messages and GPU debuggers
 };
 
-class Image {
+struct ImageFields {
+    Device* device_ = nullptr;
+    VkImage image_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_ = VK_NULL_HANDLE; // VK_NULL_HANDLE for wrapped images
+    VkImageView view_ = VK_NULL_HANDLE;
+    VkFormat format_ = VK_FORMAT_UNDEFINED;
+    VkExtent2D extent_{};
+    VkImageUsageFlags usage_ = 0;
+    VkImageAspectFlags aspect_ = 0;
+};
+
+// Move-only; reset() (or destruction) queues the image (or, for a wrapped image, its view)
+// for deferred destruction.
+class Image : public OwningHandle<Image, ImageFields> {
   public:
-    Image() = default;
-    Image(Image&& other) noexcept;
-    Image& operator=(Image&& other) noexcept;
-    Image(const Image&) = delete;
-    Image& operator=(const Image&) = delete;
-    ~Image() { reset(); }
-
-    // Queues the image (or, for a wrapped image, its view) for deferred destruction and
-    // leaves this handle empty.
-    void reset();
-
     explicit operator bool() const { return view_ != VK_NULL_HANDLE; }
     VkImage vk() const { return image_; }
     VkImageView view() const { return view_; }
@@ -62,14 +66,8 @@ class Image {
 
   private:
     friend class Device;
-    Device* device_ = nullptr;
-    VkImage image_ = VK_NULL_HANDLE;
-    VkDeviceMemory memory_ = VK_NULL_HANDLE; // VK_NULL_HANDLE for wrapped images
-    VkImageView view_ = VK_NULL_HANDLE;
-    VkFormat format_ = VK_FORMAT_UNDEFINED;
-    VkExtent2D extent_{};
-    VkImageUsageFlags usage_ = 0;
-    VkImageAspectFlags aspect_ = 0;
+    friend class OwningHandle<Image, ImageFields>;
+    static void retire(ImageFields& f);
 };
 
 struct SamplerDesc {
@@ -79,24 +77,20 @@ struct SamplerDesc {
     const char* name = nullptr;
 };
 
-class Sampler {
+struct SamplerFields {
+    Device* device_ = nullptr;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+};
+
+class Sampler : public OwningHandle<Sampler, SamplerFields> {
   public:
-    Sampler() = default;
-    Sampler(Sampler&& other) noexcept;
-    Sampler& operator=(Sampler&& other) noexcept;
-    Sampler(const Sampler&) = delete;
-    Sampler& operator=(const Sampler&) = delete;
-    ~Sampler() { reset(); }
-
-    void reset();
-
     explicit operator bool() const { return sampler_ != VK_NULL_HANDLE; }
     VkSampler vk() const { return sampler_; }
 
   private:
     friend class Device;
-    Device* device_ = nullptr;
-    VkSampler sampler_ = VK_NULL_HANDLE;
+    friend class OwningHandle<Sampler, SamplerFields>;
+    static void retire(SamplerFields& f);
 };
 
 // True for formats with a depth component (D16, D32, D24S8, ...).

@@ -8,6 +8,8 @@
 // Ownership: like Buffer (move-only, destroyed deferred, before the Device).
 #pragma once
 
+#include "lantern/gpu/owning_handle.hpp"
+
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -46,18 +48,23 @@ struct ComputePipelineDesc {
     const char* name = nullptr;            // debug name
 };
 
-class ComputePipeline {
+inline constexpr std::uint32_t max_pipeline_bindings = 16;
+
+struct PipelineFields {
+    Device* device_ = nullptr;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    std::array<BindingType, max_pipeline_bindings> bindings_{};
+    std::uint32_t binding_count_ = 0;
+    std::uint32_t push_constant_size_ = 0;
+};
+
+// Move-only; reset() (or destruction) queues the pipeline and its layouts for deferred
+// destruction.
+class ComputePipeline : public OwningHandle<ComputePipeline, PipelineFields> {
   public:
-    static constexpr std::uint32_t max_bindings = 16;
-
-    ComputePipeline() = default;
-    ComputePipeline(ComputePipeline&& other) noexcept;
-    ComputePipeline& operator=(ComputePipeline&& other) noexcept;
-    ComputePipeline(const ComputePipeline&) = delete;
-    ComputePipeline& operator=(const ComputePipeline&) = delete;
-    ~ComputePipeline() { reset(); }
-
-    void reset();
+    static constexpr std::uint32_t max_bindings = max_pipeline_bindings;
 
     explicit operator bool() const { return pipeline_ != VK_NULL_HANDLE; }
     VkPipeline vk() const { return pipeline_; }
@@ -67,13 +74,9 @@ class ComputePipeline {
 
   private:
     friend class Device;
-    Device* device_ = nullptr;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    std::array<BindingType, max_bindings> bindings_{};
-    std::uint32_t binding_count_ = 0;
-    std::uint32_t push_constant_size_ = 0;
+    friend class OwningHandle<ComputePipeline, PipelineFields>;
+    static void retire(PipelineFields& f);
 };
+
 
 } // namespace lantern::gpu
