@@ -78,13 +78,13 @@ INSTANTIATE_TEST_SUITE_P(Scenes, GiGpuScenes, ::testing::ValuesIn(gi_test::compa
 
 TEST_F(GiGpuCompare, RealMapDen312d) {
     auto s = gi_test::map_scene("den312d.map", {32.0f, 40.0f}, 1);
-    if (!s) GTEST_SKIP() << "../shared/maps not available";
+    if (!s) GTEST_SKIP() << "../shared is absent";
     compare_scene(*s, Pass::lit, true);
 }
 
 TEST_F(GiGpuCompare, RealMapLak303d) {
     auto s = gi_test::map_scene("lak303d.map", {100.0f, 100.0f}, 2);
-    if (!s) GTEST_SKIP() << "../shared/maps not available";
+    if (!s) GTEST_SKIP() << "../shared is absent";
     compare_scene(*s, Pass::lit, true);
 }
 
