@@ -63,13 +63,6 @@ constexpr Method methods[] = {
     {scene::GiMethod::heat, "heat", heat_rows},
 };
 
-template <typename T>
-Hasher hash_vector(Hasher h, const std::vector<T>& v) {
-    h.add_u64(v.size());
-    if (!v.empty()) h.add_bytes(v.data(), v.size() * sizeof(T));
-    return h;
-}
-
 // For each row of each method, the positions of its settings in gi_setting_keys(): resolved
 // once (the first frame), so a frame hashes settings without looking up names.
 const std::vector<int>& setting_indices(const PassRow& row) {
@@ -199,9 +192,9 @@ InputKeys input_keys_of(const FrameInputs& in) {
         .add(in.walls.phase.x).add(in.walls.phase.y);
     walls.add_bytes(in.walls.cells, std::size_t(in.walls.width) * std::size_t(in.walls.height));
     k.walls = walls.value();
-    k.lights = hash_vector(hash_vector(Hasher(), in.point_lights), in.emissive_lights).value();
-    k.proxies = hash_vector(Hasher(), in.proxies).value();
-    k.suns = hash_vector(Hasher(), in.directional_lights).value();
+    k.lights = Hasher().add_span(std::span(in.point_lights)).add_span(std::span(in.emissive_lights)).value();
+    k.proxies = Hasher().add_span(std::span(in.proxies)).value();
+    k.suns = Hasher().add_span(std::span(in.directional_lights)).value();
     return k;
 }
 
