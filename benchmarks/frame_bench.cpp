@@ -22,7 +22,7 @@ class CountingBackend final : public systems::GiBackend {
     std::string name() const override { return "counting backend"; }
     Result<void> execute(std::uint64_t, const gi::FrameInputs&, const gi::PassPlan&, gi::PassSet run,
                          const systems::WallUpdate&) override {
-        for (int p = 0; p < gi::pass_count; ++p) passes += run.has(gi::Pass(p));
+        for (int p = 0; p < gi::registered_pass_count(); ++p) passes += run.has(gi::Pass(p));
         return {};
     }
     std::vector<systems::FrameTimes> completed_times() override { return {}; }

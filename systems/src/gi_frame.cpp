@@ -35,15 +35,22 @@ std::uint64_t hash_vector(Hasher h, const std::vector<T>& v) {
     return h.value();
 }
 
-gi::GpuPointLight pack(glm::vec2 p, glm::vec3 color, float intensity, float radius) {
-    return gi::GpuPointLight{glm::vec4(p, radius, 0.0f), glm::vec4(color * intensity, 0.0f)};
-}
-
 struct LightGatherState {
     std::uint64_t window_hash = ~0ull;
     std::unordered_set<std::uint64_t> kept; // entities kept last time (hysteresis)
 };
 
+// The components of type T, by entity (the GPU order and the last tie-break).
+template <typename T>
+std::vector<std::pair<ecs::Entity, const T*>> by_entity(ecs::World& w) {
+    std::vector<std::pair<ecs::Entity, const T*>> out;
+    w.view<T>().each([&](ecs::Entity e, const T& c) { out.push_back({e, &c}); });
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    return out;
+}
+
+// The lights of the frame, chosen by gi::gather_offers as the scene path chooses them (one
+// road: frame_inputs.hpp), with hysteresis for point lights near the cap.
 void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
     ecs::World& w = ctx.world;
     const GiView& view = w.resource<GiView>();
@@ -57,55 +64,37 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
     GatheredLights out;
     if (view.window) {
         const gi::GiWindow& win = *view.window;
-        const glm::vec2 center = win.center();
-        struct Candidate {
-            float priority;
-            ecs::Entity entity;
-            gi::GpuPointLight light;
-        };
-        std::vector<Candidate> candidates;
-        w.view<PointLight>().each([&](ecs::Entity e, const PointLight& l) {
-            if (gi::distance_to_window(win, l.position) > l.radius) return;
+        std::vector<gi::Offer> offers;
+        const auto points = by_entity<PointLight>(w);
+        for (std::uint32_t i = 0; i < points.size(); ++i) {
+            const auto& [e, l] = points[i];
             // Stable priority: lights kept last frame get a head start, so lights near the
             // cap do not flicker in and out as the camera moves.
-            const float bonus = state.kept.count(e.bits()) ? config.light_hysteresis : 0.0f;
-            candidates.push_back({glm::distance(l.position, center) - bonus, e, pack(l.position, l.color, l.intensity, l.radius)});
-        });
-        out.point_candidates = std::uint32_t(candidates.size());
+            offers.push_back({l->position, l->radius, i, state.kept.count(e.bits()) ? config.light_hysteresis : 0.0f});
+        }
         const std::size_t cap = std::size_t(std::max(0, config.settings.max_lights));
-        if (candidates.size() > cap) {
-            std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-                return a.priority != b.priority ? a.priority < b.priority : a.entity < b.entity;
-            });
-            candidates.resize(cap);
-        }
-        // GPU order: by entity, so sums do not depend on iteration or priority order.
-        std::sort(candidates.begin(), candidates.end(),
-                  [](const Candidate& a, const Candidate& b) { return a.entity < b.entity; });
+        const std::vector<std::uint32_t> kept = gi::gather_offers(offers, win, cap);
+        out.point_candidates = 0;
+        for (const gi::Offer& o : offers) out.point_candidates += gi::distance_to_window(win, o.position) <= o.reach;
         state.kept.clear();
-        for (const Candidate& c : candidates) {
-            out.points.push_back(c.light);
-            out.point_entities.push_back(c.entity);
-            state.kept.insert(c.entity.bits());
+        for (std::uint32_t i : kept) {
+            const auto& [e, l] = points[i];
+            out.points.push_back(gi::pack_light(l->position, l->color, l->intensity, l->radius));
+            out.point_entities.push_back(e);
+            state.kept.insert(e.bits());
         }
-        std::vector<std::pair<ecs::Entity, gi::GpuPointLight>> emissives;
-        w.view<EmissiveLight>().each([&](ecs::Entity e, const EmissiveLight& l) {
-            if (gi::distance_to_window(win, l.position) <= l.radius)
-                emissives.push_back({e, pack(l.position, l.color, l.intensity, l.radius)});
-        });
-        std::sort(emissives.begin(), emissives.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (const auto& [e, l] : emissives) out.emissives.push_back(l);
-        std::vector<std::pair<ecs::Entity, gi::GpuDirectionalLight>> suns;
-        w.view<DirectionalLight>().each([&](ecs::Entity e, const DirectionalLight& d) {
-            // A dark sun (the night side of a day cycle) adds nothing: left out, so the
-            // directional pass is not run for it.
-            const glm::vec3 c = d.color * d.intensity;
-            if (std::max({c.r, c.g, c.b}) <= 0.0f) return;
-            suns.push_back({e, gi::pack_directional({d.direction, d.color, d.intensity, d.base_shadow_distance,
-                                                      d.bounce_intensity})});
-        });
-        std::sort(suns.begin(), suns.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (const auto& [e, s] : suns) out.suns.push_back(s);
+        offers.clear();
+        const auto emissives = by_entity<EmissiveLight>(w);
+        for (std::uint32_t i = 0; i < emissives.size(); ++i)
+            offers.push_back({emissives[i].second->position, emissives[i].second->radius, i});
+        for (std::uint32_t i : gi::gather_offers(offers, win, offers.size())) {
+            const EmissiveLight& l = *emissives[i].second;
+            out.emissives.push_back(gi::pack_light(l.position, l.color, l.intensity, l.radius));
+        }
+        for (const auto& [e, d] : by_entity<DirectionalLight>(w))
+            if (gi::sun_adds_light(d->color, d->intensity))
+                out.suns.push_back(gi::pack_directional(
+                    {d->direction, d->color, d->intensity, d->base_shadow_distance, d->bounce_intensity}));
     }
     out.hash = hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives);
     out.suns_hash = hash_vector(Hasher(), out.suns);
@@ -125,27 +114,15 @@ void gather_proxies(ecs::SystemContext& ctx, ProxyGatherState& state) {
     state.window_hash = window_hash;
     GatheredProxies out;
     if (view.window) {
-        const gi::GiWindow& win = *view.window;
-        const glm::vec2 center = win.center();
-        std::vector<std::pair<float, ecs::Entity>> candidates;
-        std::vector<gi::GpuShadowProxy> packed;
-        w.view<ShadowProxy>().each([&](ecs::Entity e, const ShadowProxy& p) {
-            const scene::ShadowProxy& s = p.shape;
-            const float reach = std::max(s.size.x, s.size.y) + s.max_length + std::max(s.penumbra_width, s.penumbra_length);
-            if (gi::distance_to_window(win, s.position) <= reach) candidates.push_back({glm::distance(s.position, center), e});
-        });
+        const auto proxies = by_entity<ShadowProxy>(w);
+        std::vector<gi::Offer> offers;
+        for (std::uint32_t i = 0; i < proxies.size(); ++i) {
+            const scene::ShadowProxy& s = proxies[i].second->shape;
+            offers.push_back({s.position, gi::proxy_reach(s), i});
+        }
         const std::size_t cap = std::size_t(std::max(0, config.settings.max_shadow_proxies));
-        if (candidates.size() > cap) {
-            std::sort(candidates.begin(), candidates.end());
-            candidates.resize(cap);
-        }
-        std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
-        for (const auto& [d, e] : candidates) {
-            const scene::ShadowProxy& s = w.get<ShadowProxy>(e).shape;
-            out.proxies.push_back({glm::vec4(s.position, s.size),
-                                   glm::vec4(s.max_length, s.end_cap_blend, s.penumbra_width, s.penumbra_length),
-                                   glm::vec4(s.penumbra_power, float(s.shape), float(s.width_mode), float(s.penumbra_mode))});
-        }
+        for (std::uint32_t i : gi::gather_offers(offers, *view.window, cap))
+            out.proxies.push_back(gi::pack_proxy(proxies[i].second->shape));
     }
     out.hash = hash_vector(Hasher(), out.proxies);
     w.resource<GatheredProxies>() = std::move(out);
@@ -153,11 +130,12 @@ void gather_proxies(ecs::SystemContext& ctx, ProxyGatherState& state) {
 
 } // namespace
 
-std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, const gi::PassPlan& plan,
+std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, gi::PassPlan& plan,
                                                      std::uint64_t wall_version, std::uint64_t lights_hash,
-                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash) {
+                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash,
+                                                     gi::Convergence* convergence) {
     const gi::InputKeys inputs{gi::hash_window(in.window), wall_version, lights_hash, proxies_hash, suns_hash};
-    return gi::derive_keys(in, plan, inputs);
+    return gi::derive_keys(in, plan, inputs, convergence);
 }
 
 GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const WorldSource> source,
@@ -243,12 +221,12 @@ void GiFrame::add_systems() {
         in.directional_lights = lights.suns;
         in.proxies = proxies.proxies;
         f.plan = gi::plan_passes(in, config.lit_image);
-        f.keys = pass_keys(in, f.plan, streaming.version(), lights.hash, lights.suns_hash, proxies.hash);
+        f.keys = pass_keys(in, f.plan, streaming.version(), lights.hash, lights.suns_hash, proxies.hash, &convergence_);
         const ecs::Entity cam = camera();
         const GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
-        for (int p = 0; p < gi::pass_count; ++p) {
+        for (int p = 0; p < gi::registered_pass_count(); ++p) {
             if (!f.plan.run.has(gi::Pass(p))) {
-                f.reason[std::size_t(p)] = "not needed: " + f.plan.reason[p];
+                f.reason[std::size_t(p)] = "not needed: " + std::string(f.plan.reason[p]);
             } else if (cache && cache->keys[std::size_t(p)] == f.keys[std::size_t(p)]) {
                 f.reason[std::size_t(p)] = "cache hit";
             } else {
@@ -275,12 +253,14 @@ void GiFrame::add_systems() {
             if (!ok) {
                 LANTERN_LOG_ERROR("GI frame %llu: %s", static_cast<unsigned long long>(frame_), ok.error().message.c_str());
                 if (cache) cache->keys = {}; // retry everything next frame
+                convergence_.reset();
             } else {
                 streaming.clear_dirty();
                 report_.ran = f.run;
+                convergence_.advance(f.run);
                 if (cache && f.run.bits) {
                     GICache& c = w.patch<GICache>(cam);
-                    for (int p = 0; p < gi::pass_count; ++p)
+                    for (int p = 0; p < gi::registered_pass_count(); ++p)
                         if (f.run.has(gi::Pass(p))) c.keys[std::size_t(p)] = f.keys[std::size_t(p)];
                 }
             }

@@ -38,7 +38,7 @@ class ReferenceBackend final : public GiBackend {
     std::optional<gi::Image> read_lit() override { return store_.lit; }
     std::vector<std::string> texture_names() const override {
         std::vector<std::string> out;
-        for (int t = 0; t < gi::tex_count; ++t) {
+        for (int t = 0; t < gi::registered_texture_count(); ++t) {
             const gi::TextureRow& row = gi::texture_row(gi::Tex(t));
             if (!row.internal && store_.find(row.id)) out.emplace_back(row.name);
         }

@@ -69,7 +69,7 @@ class VulkanBackend final : public GiBackend {
 
     std::vector<std::string> texture_names() const override {
         std::vector<std::string> out;
-        for (int t = 0; t < gi::tex_count; ++t) {
+        for (int t = 0; t < gi::registered_texture_count(); ++t) {
             const gi::TextureRow& row = gi::texture_row(Tex(t));
             if (!row.internal && renderer_.has(row.id)) out.emplace_back(row.name);
         }

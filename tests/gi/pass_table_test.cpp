@@ -110,7 +110,7 @@ bool same(const Texture& a, const Texture& b) {
 std::vector<std::string> stale_outputs(const FrameRun& a, const FrameRun& b, const std::string& what) {
     std::vector<std::string> out;
     const Method& m = method(a.in.settings.method);
-    for (int t = 0; t < tex_count; ++t) {
+    for (int t = 0; t < registered_texture_count(); ++t) {
         // The last planned writer of the texture in each run.
         const PassRow* last_a = nullptr;
         const PassRow* last_b = nullptr;
@@ -157,7 +157,7 @@ std::set<Pass> expected_changes(const FrameRun& r, const std::string& setting) {
         for (Tex t : row->reads) reads_dirty |= dirty[std::size_t(t)];
         if (reads_dirty) changed.insert(row->pass);
         const TexSet out = row->outputs(r.in);
-        for (int t = 0; t < tex_count; ++t)
+        for (int t = 0; t < registered_texture_count(); ++t)
             if (out.has(Tex(t))) dirty[std::size_t(t)] = changed.count(row->pass) > 0;
     }
     return changed;
@@ -179,7 +179,7 @@ TEST(PassTable, EverySettingHasAPerturbationAndEveryRowSettingExists) {
 TEST(PassTable, EverySettingChangesExactlyTheKeysOfThePassesItAffects) {
     const scene::Scene base_scene = every_pass_scene();
     const FrameRun base = run(base_scene);
-    for (int p = 0; p < pass_count; ++p) EXPECT_TRUE(base.plan.run.has(Pass(p))) << pass_name(Pass(p)) << " does not run";
+    for (int p = 0; p < registered_pass_count(); ++p) EXPECT_TRUE(base.plan.run.has(Pass(p))) << pass_name(Pass(p)) << " does not run";
     for (const std::string& key : scene::gi_setting_keys()) {
         const auto value = perturbed(key, base_scene.gi);
         if (!value || value->empty()) continue;
@@ -192,7 +192,7 @@ TEST(PassTable, EverySettingChangesExactlyTheKeysOfThePassesItAffects) {
                                 changed.inputs.lights == base.inputs.lights && changed.inputs.proxies == base.inputs.proxies;
         if (!same_frame) continue; // a plan, window or input change: outputs checked above
         const std::set<Pass> expected = expected_changes(base, key);
-        for (int p = 0; p < pass_count; ++p) {
+        for (int p = 0; p < registered_pass_count(); ++p) {
             const bool key_changed = base.keys[std::size_t(p)] != changed.keys[std::size_t(p)];
             EXPECT_EQ(key_changed, expected.count(Pass(p)) > 0)
                 << "gi." << key << "=" << *value << ": the key of " << pass_name(Pass(p))
@@ -242,7 +242,7 @@ TEST(PassTable, AllocationFollowsThePlannedRowsWrites) {
     EXPECT_EQ(fewer.plan.reason[int(Pass::ao)], "AO disabled");
     EXPECT_EQ(fewer.plan.reason[int(Pass::directional)], "no directional lights");
     // The reference holds every contract texture that was written, and nothing else.
-    for (int t = 0; t < tex_count; ++t) {
+    for (int t = 0; t < registered_texture_count(); ++t) {
         const bool held = fewer.store.find(Tex(t)) != nullptr;
         if (held) {
             EXPECT_TRUE(w2.has(Tex(t))) << tex_name(Tex(t)) << " held but not written";
@@ -254,7 +254,7 @@ TEST(PassTable, AllocationFollowsThePlannedRowsWrites) {
 }
 
 TEST(PassTable, TexturesByName) {
-    for (int t = 0; t < tex_count; ++t) EXPECT_EQ(texture_by_name(tex_name(Tex(t))), Tex(t));
+    for (int t = 0; t < registered_texture_count(); ++t) EXPECT_EQ(texture_by_name(tex_name(Tex(t))), Tex(t));
     EXPECT_FALSE(texture_by_name("no such texture"));
 }
 

@@ -33,7 +33,7 @@ PassSet set_of(std::initializer_list<Pass> passes) {
 
 std::string names(PassSet s) {
     std::string out;
-    for (int p = 0; p < gi::pass_count; ++p)
+    for (int p = 0; p < gi::registered_pass_count(); ++p)
         if (s.has(Pass(p))) out += std::string(out.empty() ? "" : " ") + gi::pass_name(Pass(p));
     return out.empty() ? "(none)" : out;
 }
@@ -204,4 +204,40 @@ TEST(FrameProfiling, SystemsOnWorkerLanesAndPassesOnTheGpuLane) {
         EXPECT_TRUE(systems_seen.count(s)) << s;
     for (const char* p : {"conduction", "direct", "directional", "heat"}) EXPECT_TRUE(passes_seen.count(p)) << p;
     profile::reset();
+}
+
+// One road from lights to the GPU: a scene loaded into the world and gathered by the game's
+// systems gives the frame exactly the lights, suns and proxies gi::gather_frame_inputs (the
+// tools' and tests' path) gives it, on every comparison scene, with caps that bite and a
+// dark sun that both leave out.
+TEST(OneInputPath, GameSystemsGatherWhatTheScenePathGathers) {
+    std::vector<gi_test::NamedScene> scenes = gi_test::comparison_scenes();
+    scene::Scene capped = full_scene();
+    capped.gi.max_lights = 1;
+    capped.gi.max_shadow_proxies = 0;
+    capped.directional_lights.push_back({glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(1.0f), 0.0f, 3.0f, 0.5f}); // dark
+    scenes.push_back({"full, capped, dark sun", capped});
+    for (const gi_test::NamedScene& named : scenes) {
+        Harness h(named.scene, 0, nullptr);
+        h.step();
+        const systems::FramePasses& f = h.world.resource<systems::FramePasses>();
+        auto window = gi::compute_window(named.scene.view, named.scene.gi.padding, named.scene.gi.resolution);
+        ASSERT_TRUE(window) << named.name;
+        const gi::FrameInputs expected = gi::gather_frame_inputs(named.scene, *window);
+        auto bytes = [](const auto& v) {
+            return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v[0]));
+        };
+        EXPECT_EQ(f.inputs.window, expected.window) << named.name;
+        EXPECT_EQ(bytes(f.inputs.point_lights), bytes(expected.point_lights)) << named.name;
+        EXPECT_EQ(bytes(f.inputs.emissive_lights), bytes(expected.emissive_lights)) << named.name;
+        EXPECT_EQ(bytes(f.inputs.directional_lights), bytes(expected.directional_lights)) << named.name;
+        EXPECT_EQ(bytes(f.inputs.proxies), bytes(expected.proxies)) << named.name;
+        EXPECT_EQ(f.plan.run, gi::plan_passes(expected, h.world.resource<systems::GiConfig>().lit_image).run) << named.name;
+    }
+    // The capped scene really was capped, and its dark sun left out.
+    const auto window = gi::compute_window(capped.view, capped.gi.padding, capped.gi.resolution);
+    const gi::FrameInputs in = gi::gather_frame_inputs(capped, *window);
+    EXPECT_EQ(in.point_lights.size(), 1u);
+    EXPECT_TRUE(in.proxies.empty());
+    EXPECT_EQ(in.directional_lights.size(), 1u);
 }

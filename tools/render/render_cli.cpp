@@ -109,7 +109,7 @@ struct FrameRecord {
 
 nlohmann::json passes_json(const FrameRecord& f, double& total) {
     nlohmann::json passes = nlohmann::json::array();
-    for (int p = 0; p < gi::pass_count; ++p) {
+    for (int p = 0; p < gi::registered_pass_count(); ++p) {
         const bool ran = f.ran.has(gi::Pass(p));
         nlohmann::json e{{"name", gi::pass_name(gi::Pass(p))}, {"ran", ran}, {"gpu_ms", f.ms[std::size_t(p)]}};
         if (!ran) e["reason"] = f.reason[std::size_t(p)];
@@ -210,7 +210,7 @@ void print_frame(const Options& o, const FrameRecord& f) {
     if (o.quiet) return;
     std::string ran, skipped;
     char ms[32];
-    for (int p = 0; p < gi::pass_count; ++p) {
+    for (int p = 0; p < gi::registered_pass_count(); ++p) {
         const std::string name = gi::pass_name(gi::Pass(p));
         if (f.ran.has(gi::Pass(p))) {
             std::snprintf(ms, sizeof(ms), " %.3f ms", f.ms[std::size_t(p)]);

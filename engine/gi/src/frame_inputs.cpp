@@ -5,10 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace lantern::gi {
-namespace {
 
 GpuPointLight pack_light(glm::vec2 position, glm::vec3 color, float intensity, float radius) {
     return GpuPointLight{glm::vec4(position, radius, 0.0f), glm::vec4(color * intensity, 0.0f)};
@@ -25,23 +23,27 @@ float proxy_reach(const scene::ShadowProxy& p) {
     return std::max(p.size.x, p.size.y) + p.max_length + std::max(p.penumbra_width, p.penumbra_length);
 }
 
-// Indices of `items` passing `keep`, ordered by (distance to `center`, index), first `cap`.
-template <typename T, typename Keep>
-std::vector<std::uint32_t> select(const std::vector<T>& items, Keep keep, glm::vec2 center, std::size_t cap) {
-    std::vector<std::uint32_t> ids;
-    for (std::uint32_t i = 0; i < items.size(); ++i)
-        if (keep(items[i])) ids.push_back(i);
-    if (ids.size() > cap) {
-        std::stable_sort(ids.begin(), ids.end(), [&](std::uint32_t a, std::uint32_t b) {
-            return glm::distance(items[a].position, center) < glm::distance(items[b].position, center);
-        });
-        ids.resize(cap);
-        std::sort(ids.begin(), ids.end()); // keep scene order for the GPU (stable sums)
-    }
-    return ids;
+bool sun_adds_light(glm::vec3 color, float intensity) {
+    const glm::vec3 c = color * intensity;
+    return std::max({c.r, c.g, c.b}) > 0.0f;
 }
 
-} // namespace
+std::vector<std::uint32_t> gather_offers(const std::vector<Offer>& offers, const GiWindow& window, std::size_t cap) {
+    std::vector<std::uint32_t> ids;
+    for (std::uint32_t i = 0; i < offers.size(); ++i)
+        if (distance_to_window(window, offers[i].position) <= offers[i].reach) ids.push_back(i);
+    if (ids.size() > cap) {
+        const glm::vec2 center = window.center();
+        std::vector<float> priority(offers.size());
+        for (std::uint32_t i : ids) priority[i] = glm::distance(offers[i].position, center) - offers[i].bonus;
+        std::sort(ids.begin(), ids.end(), [&](std::uint32_t a, std::uint32_t b) {
+            return priority[a] != priority[b] ? priority[a] < priority[b] : offers[a].order < offers[b].order;
+        });
+        ids.resize(cap);
+    }
+    std::sort(ids.begin(), ids.end(), [&](std::uint32_t a, std::uint32_t b) { return offers[a].order < offers[b].order; });
+    return ids;
+}
 
 float distance_to_window(const GiWindow& w, glm::vec2 p) {
     const glm::vec2 lo(w.view.min_x, w.view.min_z);
@@ -63,23 +65,28 @@ FrameInputs gather_frame_inputs(const scene::Scene& s, const GiWindow& window) {
     in.walls = WallView::of(s.walls);
     in.wall_height = s.wall_height;
     in.settings = s.gi;
-    const glm::vec2 center = window.center();
-    auto reaches = [&](const auto& light) { return distance_to_window(window, light.position) <= light.radius; };
-
-    in.point_light_ids = select(s.point_lights, reaches, center, std::size_t(std::max(0, s.gi.max_lights)));
+    std::vector<Offer> offers;
+    auto light_offers = [&](const auto& lights) {
+        offers.clear();
+        for (std::uint32_t i = 0; i < lights.size(); ++i) offers.push_back({lights[i].position, lights[i].radius, i});
+        return offers;
+    };
+    in.point_light_ids = gather_offers(light_offers(s.point_lights), window, std::size_t(std::max(0, s.gi.max_lights)));
     for (std::uint32_t i : in.point_light_ids) {
         const auto& l = s.point_lights[i];
         in.point_lights.push_back(pack_light(l.position, l.color, l.intensity, l.radius));
     }
-    in.emissive_ids = select(s.emissive_lights, reaches, center, s.emissive_lights.size());
+    in.emissive_ids = gather_offers(light_offers(s.emissive_lights), window, s.emissive_lights.size());
     for (std::uint32_t i : in.emissive_ids) {
         const auto& l = s.emissive_lights[i];
         in.emissive_lights.push_back(pack_light(l.position, l.color, l.intensity, l.radius));
     }
-    for (const auto& d : s.directional_lights) in.directional_lights.push_back(pack_directional(d));
-    in.proxy_ids = select(
-        s.shadow_proxies, [&](const scene::ShadowProxy& p) { return distance_to_window(window, p.position) <= proxy_reach(p); },
-        center, std::size_t(std::max(0, s.gi.max_shadow_proxies)));
+    for (const auto& d : s.directional_lights)
+        if (sun_adds_light(d.color, d.intensity)) in.directional_lights.push_back(pack_directional(d));
+    offers.clear();
+    for (std::uint32_t i = 0; i < s.shadow_proxies.size(); ++i)
+        offers.push_back({s.shadow_proxies[i].position, proxy_reach(s.shadow_proxies[i]), i});
+    in.proxy_ids = gather_offers(offers, window, std::size_t(std::max(0, s.gi.max_shadow_proxies)));
     for (std::uint32_t i : in.proxy_ids) in.proxies.push_back(pack_proxy(s.shadow_proxies[i]));
     return in;
 }

@@ -10,7 +10,7 @@ namespace {
 // Every row of the frame's method, in pipeline order, with whether it ran and why not.
 void report_passes(FrameResult& r, const FrameInputs& in, const PassPlan& plan) {
     for (const PassRow* row : method(in.settings.method).rows)
-        r.passes.push_back({row->pass, plan.run.has(row->pass), plan.reason[int(row->pass)], 0.0});
+        r.passes.push_back({row->pass, plan.run.has(row->pass), std::string(plan.reason[int(row->pass)]), 0.0});
 }
 
 void add_time(FrameResult& r, Pass pass, double ms) {
@@ -28,7 +28,7 @@ FrameResult run_reference_frame(const FrameInputs& in, const PassPlan& plan, con
     execute_reference(in, plan, plan.run, options, store, [](void* user, Pass pass, std::int64_t start, std::int64_t end) {
         add_time(*static_cast<FrameResult*>(user), pass, double(end - start) * 1e-6);
     }, &r);
-    for (int t = 0; t < tex_count; ++t) {
+    for (int t = 0; t < registered_texture_count(); ++t) {
         std::optional<Texture>& slot = store.textures[std::size_t(t)];
         if (slot && !texture_row(Tex(t)).internal) {
             std::string name = slot->name;
@@ -55,7 +55,7 @@ Result<FrameResult> run_vulkan_frame(vk::Renderer& renderer, const FrameInputs& 
     r.cpu_record_ms = double(now_ns() - start) * 1e-6;
     for (const vk::PassTiming& t : renderer.wait_timings()) add_time(r, t.pass, t.gpu_ms);
     if (!read_textures) return r;
-    for (int t = 0; t < tex_count; ++t) {
+    for (int t = 0; t < registered_texture_count(); ++t) {
         const TextureRow& row = texture_row(Tex(t));
         if (!row.internal && renderer.has(row.id)) {
             Texture texture = renderer.read_back(row.id);

@@ -10,7 +10,8 @@
 #include "rows/rows.hpp"
 
 #include <algorithm>
-#include <map>
+#include <bit>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,7 @@ namespace {
 
 using enum Tex;
 
-constexpr TextureRow texture_rows[tex_count] = {
+constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {conduction, "conduction", TexFormat::r8},
     {ao, "ao", TexFormat::r8},
     {direct, "direct", TexFormat::rgba16f},
@@ -48,50 +49,85 @@ constexpr TextureRow texture_rows[tex_count] = {
 };
 
 constexpr bool rows_in_order() {
-    for (int t = 0; t < tex_count; ++t)
-        if (int(texture_rows[t].id) != t) return false;
+    for (int t = 0; t < builtin_tex_count; ++t)
+        if (int(builtin_textures[t].id) != t) return false;
     return true;
 }
-static_assert(rows_in_order(), "texture_rows must list the textures in the order of Tex");
+static_assert(rows_in_order(), "builtin_textures must list the textures in the order of Tex");
 
 // Seed 000's heat diffusion: the pipeline order.
 constexpr const PassRow* heat_rows[] = {
     &rows::conduction, &rows::ao,   &rows::direct,        &rows::directional, &rows::emission,
     &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::lit,
 };
-constexpr Method methods[] = {
-    {scene::GiMethod::heat, "heat", heat_rows},
+
+// The registry: the built-in textures, rows and methods, then what add_texture/add_row
+// added at start-up. Read without a lock afterwards (pass_table.hpp, "Threads").
+struct Registry {
+    std::array<TextureRow, tex_count> textures{};
+    int texture_count = 0;
+    std::array<PassRow, pass_count> rows{}; // copies of the added rows (built-ins: rows::*)
+    std::array<const PassRow*, pass_count> row_of{};
+    int pass_count_used = 0;
+    // For each pass id, the positions of its row's settings in gi_setting_keys(): resolved
+    // once, so a frame hashes settings without looking up names.
+    std::array<std::vector<int>, pass_count> setting_indices;
+    struct MethodRows {
+        Method method;
+        std::vector<const PassRow*> rows;
+    };
+    std::vector<MethodRows> methods;
+    std::mutex adding; // add_texture/add_row among themselves
+
+    Registry() {
+        for (const TextureRow& t : builtin_textures) textures[std::size_t(texture_count++)] = t;
+        methods.push_back({{scene::GiMethod::heat, "heat", {}}, {std::begin(heat_rows), std::end(heat_rows)}});
+        const std::vector<std::string> keys = scene::gi_setting_keys();
+        for (MethodRows& m : methods) {
+            m.method.rows = m.rows;
+            for (const PassRow* r : m.rows) {
+                row_of[std::size_t(r->pass)] = r;
+                auto indices = resolve_settings(*r, keys);
+                LANTERN_VERIFY(indices.has_value(), "a built-in pass row lists a setting that is not a gi key");
+                setting_indices[std::size_t(r->pass)] = std::move(*indices);
+            }
+        }
+        pass_count_used = builtin_pass_count;
+    }
+
+    static std::optional<std::vector<int>> resolve_settings(const PassRow& row, const std::vector<std::string>& keys) {
+        std::vector<int> out;
+        for (std::string_view key : row.settings) {
+            const auto it = std::find(keys.begin(), keys.end(), key);
+            if (it == keys.end()) return std::nullopt;
+            out.push_back(int(it - keys.begin()));
+        }
+        return out;
+    }
 };
 
-// For each row of each method, the positions of its settings in gi_setting_keys(): resolved
-// once (the first frame), so a frame hashes settings without looking up names.
+Registry& registry() {
+    static Registry r;
+    return r;
+}
+
 const std::vector<int>& setting_indices(const PassRow& row) {
-    static const std::map<const PassRow*, std::vector<int>> table = [] {
-        const std::vector<std::string> keys = scene::gi_setting_keys();
-        std::map<const PassRow*, std::vector<int>> out;
-        for (const Method& m : methods)
-            for (const PassRow* r : m.rows) {
-                std::vector<int>& indices = out[r];
-                for (std::string_view key : r->settings) {
-                    const auto it = std::find(keys.begin(), keys.end(), key);
-                    LANTERN_VERIFY(it != keys.end(), "a pass row lists a setting that is not a gi key");
-                    indices.push_back(int(it - keys.begin()));
-                }
-            }
-        return out;
-    }();
-    const auto it = table.find(&row);
-    if (it != table.end()) return it->second;
+    Registry& reg = registry();
+    if (int(row.pass) < pass_count && reg.row_of[std::size_t(row.pass)] == &row)
+        return reg.setting_indices[std::size_t(row.pass)];
     // A row of a method built in code (tests): resolved on each call.
     thread_local std::vector<int> indices;
-    indices.clear();
-    const std::vector<std::string> keys = scene::gi_setting_keys();
-    for (std::string_view key : row.settings) {
-        const auto k = std::find(keys.begin(), keys.end(), key);
-        LANTERN_VERIFY(k != keys.end(), "a pass row lists a setting that is not a gi key");
-        indices.push_back(int(k - keys.begin()));
-    }
+    auto found = Registry::resolve_settings(row, scene::gi_setting_keys());
+    LANTERN_VERIFY(found.has_value(), "a pass row lists a setting that is not a gi key");
+    indices = std::move(*found);
     return indices;
+}
+
+bool is_file_stem(std::string_view name) {
+    if (name.empty() || name.size() > 64) return false;
+    for (char c : name)
+        if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_')) return false;
+    return true;
 }
 
 // What a row's own work depends on, without its upstream textures.
@@ -112,23 +148,29 @@ std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan&
 } // namespace
 
 const TextureRow& texture_row(Tex t) {
-    LANTERN_ASSERT(int(t) < tex_count, "texture id out of range");
-    return texture_rows[int(t)];
+    const Registry& reg = registry();
+    LANTERN_ASSERT(int(t) < reg.texture_count, "texture id not registered");
+    return reg.textures[std::size_t(t)];
 }
 
 const char* tex_name(Tex t) { return texture_row(t).name.data(); }
 
+int registered_texture_count() { return registry().texture_count; }
+
 std::optional<Tex> texture_by_name(std::string_view name) {
-    for (const TextureRow& row : texture_rows)
-        if (row.name == name) return row.id;
+    const Registry& reg = registry();
+    for (int t = 0; t < reg.texture_count; ++t)
+        if (reg.textures[std::size_t(t)].name == name) return Tex(t);
     return std::nullopt;
 }
 
 glm::ivec2 texture_size(Tex t, const FrameInputs& in) {
-    if (texture_row(t).scale == TexScale::heat_grid) {
+    const TextureRow& row = texture_row(t);
+    if (row.scale == TexScale::heat_grid) {
         const HeatGrid g = heat_grid(in.window, in.settings.heat_scale);
         return {g.width, g.height};
     }
+    if (row.scale == TexScale::custom) return row.size(in);
     return {in.window.width, in.window.height};
 }
 
@@ -140,10 +182,17 @@ TexSet PassRow::outputs(const FrameInputs& in) const {
 }
 
 const Method& method(scene::GiMethod id) {
-    for (const Method& m : methods)
-        if (m.id == id) return m;
+    Registry& reg = registry();
+    for (const Registry::MethodRows& m : reg.methods)
+        if (m.method.id == id) return m.method;
     LANTERN_VERIFY(false, "gi.method has no method in the pass table");
-    return methods[0];
+    return reg.methods[0].method;
+}
+
+std::vector<const Method*> methods() {
+    std::vector<const Method*> out;
+    for (const Registry::MethodRows& m : registry().methods) out.push_back(&m.method);
+    return out;
 }
 
 const PassRow* find_row(const Method& m, Pass pass) {
@@ -152,10 +201,65 @@ const PassRow* find_row(const Method& m, Pass pass) {
     return nullptr;
 }
 
+const PassRow* find_row(Pass pass) {
+    if (int(pass) >= pass_count) return nullptr;
+    return registry().row_of[std::size_t(pass)];
+}
+
 const char* pass_name(Pass p) {
-    for (const Method& m : methods)
-        if (const PassRow* row = find_row(m, p)) return row->name.data();
-    return "?";
+    const PassRow* row = find_row(p);
+    return row ? row->name.data() : "?";
+}
+
+int registered_pass_count() { return registry().pass_count_used; }
+
+Result<Tex> add_texture(TextureRow row) {
+    Registry& reg = registry();
+    std::lock_guard lock(reg.adding);
+    const std::string what = "add_texture(\"" + std::string(row.name) + "\"): ";
+    if (!is_file_stem(row.name)) return make_error(what + "the name must be 1-64 of a-z, 0-9 and _", 1);
+    if (texture_by_name(row.name)) return make_error(what + "a texture of that name exists", 1);
+    if (row.scale == TexScale::custom && !row.size) return make_error(what + "a custom scale needs a size function", 1);
+    if (reg.texture_count >= tex_count)
+        return make_error(what + "the texture table is full (" + std::to_string(tex_count) + ")", 1);
+    row.id = Tex(reg.texture_count);
+    reg.textures[std::size_t(reg.texture_count)] = row;
+    ++reg.texture_count;
+    return row.id;
+}
+
+Result<Pass> add_row(scene::GiMethod id, Pass after, PassRow row) {
+    Registry& reg = registry();
+    std::lock_guard lock(reg.adding);
+    const std::string what = "add_row(\"" + std::string(row.name) + "\"): ";
+    Registry::MethodRows* m = nullptr;
+    for (Registry::MethodRows& candidate : reg.methods)
+        if (candidate.method.id == id) m = &candidate;
+    if (!m) return make_error(what + "no such gi.method", 1);
+    const auto at = std::find_if(m->rows.begin(), m->rows.end(), [&](const PassRow* r) { return r->pass == after; });
+    if (at == m->rows.end())
+        return make_error(what + "pass '" + pass_name(after) + "' is not in gi.method " + std::string(m->method.name), 1);
+    if (!is_file_stem(row.name)) return make_error(what + "the name must be 1-64 of a-z, 0-9 and _", 1);
+    for (int p = 0; p < reg.pass_count_used; ++p)
+        if (reg.row_of[std::size_t(p)] && reg.row_of[std::size_t(p)]->name == row.name)
+            return make_error(what + "a pass of that name exists", 1);
+    if (!row.record || !row.reference) return make_error(what + "a row needs a recorder and a reference", 1);
+    for (std::span<const Tex> list : {row.reads, row.writes})
+        for (Tex t : list)
+            if (int(t) >= reg.texture_count) return make_error(what + "a texture id is not registered", 1);
+    auto indices = Registry::resolve_settings(row, scene::gi_setting_keys());
+    if (!indices) return make_error(what + "a listed setting is not a gi key (docs/scenes.md, the gi table)", 1);
+    if (reg.pass_count_used >= pass_count)
+        return make_error(what + "the pass table is full (" + std::to_string(pass_count) + ")", 1);
+    const int id_index = reg.pass_count_used++;
+    row.pass = Pass(id_index);
+    PassRow& stored = reg.rows[std::size_t(id_index)];
+    stored = row;
+    reg.row_of[std::size_t(id_index)] = &stored;
+    reg.setting_indices[std::size_t(id_index)] = std::move(*indices);
+    m->rows.insert(at + 1, &stored);
+    m->method.rows = m->rows;
+    return row.pass;
 }
 
 PassPlan plan_passes(const FrameInputs& in, bool lit_image, Pass through) {
@@ -170,7 +274,7 @@ PassPlan plan_passes(const FrameInputs& in, bool lit_image, Pass through) {
             plan.reason[int(row->pass)] = why;
         } else {
             plan.run.add(row->pass);
-            plan.reason[int(row->pass)].clear();
+            plan.reason[int(row->pass)] = {};
         }
         if (row->pass == through) requested = false;
     }
@@ -198,12 +302,19 @@ InputKeys input_keys_of(const FrameInputs& in) {
     return k;
 }
 
-std::array<std::uint64_t, pass_count> derive_keys(const FrameInputs& in, const PassPlan& plan, const InputKeys& inputs) {
-    return derive_keys(method(in.settings.method), in, plan, inputs);
+void Convergence::advance(PassSet ran) {
+    for (int p = 0; p < pass_count; ++p)
+        if (ran.has(Pass(p)) && settled_key[std::size_t(p)] != 0 && frames[std::size_t(p)] < 0xFFFF)
+            ++frames[std::size_t(p)];
 }
 
-std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameInputs& in, const PassPlan& plan,
-                                                  const InputKeys& inputs) {
+std::array<std::uint64_t, pass_count> derive_keys(const FrameInputs& in, PassPlan& plan, const InputKeys& inputs,
+                                                  Convergence* convergence) {
+    return derive_keys(method(in.settings.method), in, plan, inputs, convergence);
+}
+
+std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameInputs& in, PassPlan& plan,
+                                                  const InputKeys& inputs, Convergence* convergence) {
     std::array<std::uint64_t, pass_count> keys{};
     // The settings' values change rarely: kept per thread while the settings stay equal.
     thread_local std::optional<scene::GiSettings> last_settings;
@@ -234,8 +345,23 @@ std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameIn
             if (plan.run.has(later) && (outputs[int(later)].bits & out.bits)) h.add(own[int(later)]);
         }
         keys[int(row.pass)] = h.value();
-        for (int t = 0; t < tex_count; ++t)
-            if (out.has(Tex(t))) producer[std::size_t(t)] = keys[int(row.pass)];
+        if (row.converge_frames) {
+            // Settled key = without history; the history counts frames since it changed.
+            const std::size_t p = std::size_t(row.pass);
+            int history = 0;
+            if (convergence) {
+                if (convergence->settled_key[p] != keys[p]) {
+                    convergence->settled_key[p] = keys[p];
+                    convergence->frames[p] = 0;
+                }
+                history = convergence->frames[p];
+            }
+            plan.history[p] = std::uint16_t(history);
+            const int last = std::max(1, row.converge_frames(in)) - 1;
+            keys[p] = Hasher(keys[p]).add(std::min(history, last)).value();
+        }
+        for (std::uint64_t bits = out.bits; bits; bits &= bits - 1)
+            producer[std::size_t(std::countr_zero(bits))] = keys[int(row.pass)];
     }
     return keys;
 }
@@ -274,18 +400,19 @@ ShadingInputs ReferenceStore::shading_inputs(const FrameInputs& in) const {
 
 void execute_reference(const FrameInputs& in, const PassPlan& plan, PassSet subset, const RefOptions& options,
                        ReferenceStore& store, PassTimer timed, void* user) {
-    ReferenceContext context{in, plan, options, store};
     for (const PassRow* row : method(in.settings.method).rows) {
         if (!plan.run.has(row->pass) || !subset.has(row->pass)) continue;
         const std::int64_t start = now_ns();
-        row->reference(context);
+        ReferenceContext context{in, plan, options, store, 0, plan.history[int(row->pass)]};
+        const int iterations = row->iteration_count(in);
+        for (context.iteration = 0; context.iteration < iterations; ++context.iteration) row->reference(context);
         if (timed) timed(user, row->pass, start, now_ns());
     }
 }
 
 void release_unwritten(const FrameInputs& in, const PassPlan& plan, ReferenceStore& store) {
     const TexSet written = textures_written(in, plan);
-    for (int t = 0; t < tex_count; ++t)
+    for (int t = 0; t < registered_texture_count(); ++t)
         if (!written.has(Tex(t))) store.textures[std::size_t(t)].reset();
     if (!written.has(Tex::lit)) store.lit.reset();
 }

@@ -203,18 +203,29 @@ Texture upsample(const FrameInputs& in, const HeatGrid& g, const Texture& heat, 
 
 Texture reference_heat(const FrameInputs& in, const Texture& emission, const Texture& shadow, const RefOptions& options,
                        int rounds_override) {
+    Texture heat = reference_heat_seed(in, emission, shadow, options);
+    const int rounds = rounds_override >= 0 ? rounds_override : in.settings.heat_rounds;
+    for (int r = 0; r < rounds; ++r) heat = reference_heat_round(in, heat, options);
+    return reference_heat_upsample(in, heat, options);
+}
+
+Texture reference_heat_seed(const FrameInputs& in, const Texture& emission, const Texture& shadow,
+                            const RefOptions& options) {
+    return heat_seed(heat_grid(in.window, in.settings.heat_scale), emission, shadow, options);
+}
+
+Texture reference_heat_round(const FrameInputs& in, const Texture& heat, const RefOptions& options) {
     const HeatGrid g = heat_grid(in.window, in.settings.heat_scale);
     const auto taps = heat_taps(in.settings.diffusion_distance * g.texels_per_unit);
-    Texture a = heat_seed(g, emission, shadow, options);
-    Texture b = a;
-    const int rounds = rounds_override >= 0 ? rounds_override : in.settings.heat_rounds;
-    for (int r = 0; r < rounds; ++r) {
-        for_each_row(g.height, options, [&](int j) {
-            for (int i = 0; i < g.width; ++i) store4(b, i, j, heat_texel(in, g, taps, a, i, j));
-        });
-        std::swap(a, b);
-    }
-    return upsample(in, g, a, options);
+    Texture out(heat.name, TexFormat::rgba16f, g.width, g.height);
+    for_each_row(g.height, options, [&](int j) {
+        for (int i = 0; i < g.width; ++i) store4(out, i, j, heat_texel(in, g, taps, heat, i, j));
+    });
+    return out;
+}
+
+Texture reference_heat_upsample(const FrameInputs& in, const Texture& heat, const RefOptions& options) {
+    return upsample(in, heat_grid(in.window, in.settings.heat_scale), heat, options);
 }
 
 Texture reference_blur(const FrameInputs& in, const Texture& indirect, const RefOptions& options) {

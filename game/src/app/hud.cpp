@@ -1,5 +1,7 @@
 #include "app/hud.hpp"
 
+#include "lantern/gi/pass_table.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -122,7 +124,7 @@ HudActions Hud::draw(const HudInputs& in) {
         }
     }
     if (in.report && ImGui::CollapsingHeader("GI passes this frame", ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (int p = 0; p < gi::pass_count; ++p) {
+        for (int p = 0; p < gi::registered_pass_count(); ++p) {
             const bool ran = in.report->ran.has(gi::Pass(p));
             const std::string& why = in.report->reason[std::size_t(p)];
             ImGui::TextColored(ran ? ImVec4(0.5f, 1.0f, 0.5f, 1.0f) : ImVec4(0.7f, 0.7f, 0.7f, 1.0f), "%-14s %s",
@@ -147,6 +149,13 @@ HudActions Hud::draw(const HudInputs& in) {
     }
     if (in.config && ImGui::CollapsingHeader("GI settings (live)", ImGuiTreeNodeFlags_DefaultOpen)) {
         scene::GiSettings& g = in.config->settings;
+        // gi.method: the rows of the pass table a frame runs (docs/gi.md, "The pass table").
+        const std::vector<const gi::Method*> methods = gi::methods();
+        if (ImGui::BeginCombo("method", gi::method(g.method).name.data())) {
+            for (const gi::Method* m : methods)
+                if (ImGui::Selectable(m->name.data(), m->id == g.method)) g.method = m->id;
+            ImGui::EndCombo();
+        }
         ImGui::SliderInt("resolution", &g.resolution, 1, 16);
         ImGui::SliderInt("heat rounds", &g.heat_rounds, 0, 64);
         int scale = g.heat_scale == scene::HeatScale::full ? 0 : g.heat_scale == scene::HeatScale::half ? 1 : 2;

@@ -3,7 +3,7 @@
 // settings and inputs, its Vulkan recorder and its C++ reference.
 #include "rows/rows.hpp"
 
-#include "vulkan/pass_recorder.hpp"
+#include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -4,7 +4,7 @@
 #include "rows/rows.hpp"
 
 #include "lantern/gi/reference_indirect.hpp"
-#include "vulkan/pass_recorder.hpp"
+#include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <cstdint>
 #include <utility>
@@ -58,71 +58,88 @@ void reference_emission_row(ReferenceContext& c) {
     c.store.put(Tex::emission, reference_emission(c.in, c.store.at(Tex::direct), c.options));
 }
 
-// ---- heat transfer
+// ---- heat transfer: heat_rounds + 2 iterations (seed and tap masks, the rounds, upsample)
+
+int heat_iterations(const FrameInputs& in) { return in.settings.heat_rounds + 2; }
+
+// The heat texture round `round` (1-based) reads; after the last round, the result.
+Tex heat_source(int round) { return round % 2 == 1 ? Tex::heat_a : Tex::heat_b; }
+Tex heat_result(int rounds) { return rounds % 2 == 1 ? Tex::heat_b : Tex::heat_a; }
 
 void record_heat(PassRecorder& r) {
     const GiWindow& w = r.in.window;
     const scene::GiSettings& s = r.in.settings;
     const HeatGrid g = heat_grid(w, s.heat_scale);
-    // Seed.
-    r.cmd.bind(r.pipeline<HeatSeedParams>("gi_heat_seed.comp", {.proxies = false}));
-    r.cmd.push_descriptors(gpu::DescriptorWrites()
-                               .uniform_texel_buffer(0, r.view(Tex::emission))
-                               .uniform_texel_buffer(1, r.view(Tex::shadow))
-                               .storage_buffer(2, r.buffer(Tex::heat_a)));
-    auto seed = r.params<HeatSeedParams>(g.width, g.height);
-    seed.pass = {.full_width = w.width, .full_height = w.height, .full_pitch = r.pitch(Tex::emission), .scale = g.scale};
-    r.cmd.push_constants(seed);
-    r.dispatch(g.width, g.height);
-    r.cmd.barrier_compute_to_compute();
-    // Tap masks: which taps each heat texel may use (air, segment clear), once per frame.
     const float distance = s.diffusion_distance * g.texels_per_unit;
-    r.cmd.bind(r.pipeline<HeatMaskParams>("gi_heat_mask.comp", {.proxies = false, .segment_check = s.segment_check}));
-    r.cmd.push_descriptors(gpu::DescriptorWrites()
-                               .uniform_texel_buffer(0, r.walls())
-                               .uniform_buffer(1, r.proxies())
-                               .storage_buffer(2, r.buffer(Tex::heat_mask)));
-    auto mask = r.params<HeatMaskParams>(g.width, g.height);
-    mask.pass = {.texels_per_unit = g.texels_per_unit, .distance = distance,
-                 .segment_radius = s.diffusion_distance * 2.0f + 2.0f};
-    r.cmd.push_constants(mask);
-    r.dispatch(g.width, g.height);
-    r.cmd.barrier_compute_to_compute();
-    // Rounds, ping-pong.
-    const gpu::ComputePipeline& round_pipeline =
-        r.pipeline<HeatRoundParams>("gi_heat.comp", {.proxies = false, .per_channel = s.per_channel});
-    auto round = r.params<HeatRoundParams>(g.width, g.height);
-    round.pass = {.texels_per_unit = g.texels_per_unit, .distance = distance, .rate = s.diffusion_rate,
-                  .range_boost = s.range_boost, .intensity_multiplier = s.intensity_multiplier};
-    Tex src = Tex::heat_a, dst = Tex::heat_b;
-    for (int i = 0; i < s.heat_rounds; ++i) {
-        r.cmd.bind(round_pipeline);
+    const int rounds = s.heat_rounds;
+    if (r.iteration == 0) {
+        // Seed.
+        r.cmd.bind(r.pipeline<HeatSeedParams>("gi_heat_seed.comp", {.proxies = false}));
+        r.cmd.push_descriptors(gpu::DescriptorWrites()
+                                   .uniform_texel_buffer(0, r.view(Tex::emission))
+                                   .uniform_texel_buffer(1, r.view(Tex::shadow))
+                                   .storage_buffer(2, r.buffer(Tex::heat_a)));
+        auto seed = r.params<HeatSeedParams>(g.width, g.height);
+        seed.pass = {.full_width = w.width, .full_height = w.height, .full_pitch = r.pitch(Tex::emission),
+                     .scale = g.scale};
+        r.cmd.push_constants(seed);
+        r.dispatch(g.width, g.height);
+        r.cmd.barrier_compute_to_compute();
+        // Tap masks: which taps each heat texel may use (air, segment clear), once per frame.
+        r.cmd.bind(r.pipeline<HeatMaskParams>("gi_heat_mask.comp", {.proxies = false, .segment_check = s.segment_check}));
+        r.cmd.push_descriptors(gpu::DescriptorWrites()
+                                   .uniform_texel_buffer(0, r.walls())
+                                   .uniform_buffer(1, r.proxies())
+                                   .storage_buffer(2, r.buffer(Tex::heat_mask)));
+        auto mask = r.params<HeatMaskParams>(g.width, g.height);
+        mask.pass = {.texels_per_unit = g.texels_per_unit, .distance = distance,
+                     .segment_radius = s.diffusion_distance * 2.0f + 2.0f};
+        r.cmd.push_constants(mask);
+        r.dispatch(g.width, g.height);
+        r.cmd.barrier_compute_to_compute();
+    } else if (r.iteration <= rounds) {
+        // One round, ping-pong.
+        const Tex src = heat_source(r.iteration), dst = src == Tex::heat_a ? Tex::heat_b : Tex::heat_a;
+        r.cmd.bind(r.pipeline<HeatRoundParams>("gi_heat.comp", {.proxies = false, .per_channel = s.per_channel}));
         r.cmd.push_descriptors(gpu::DescriptorWrites()
                                    .uniform_texel_buffer(0, r.view_u32(Tex::heat_mask))
                                    .uniform_texel_buffer(1, r.view(src))
                                    .storage_buffer(2, r.buffer(dst)));
+        auto round = r.params<HeatRoundParams>(g.width, g.height);
+        round.pass = {.texels_per_unit = g.texels_per_unit, .distance = distance, .rate = s.diffusion_rate,
+                      .range_boost = s.range_boost, .intensity_multiplier = s.intensity_multiplier};
         r.cmd.push_constants(round);
         r.dispatch(g.width, g.height);
         r.cmd.barrier_compute_to_compute();
-        std::swap(src, dst);
+    } else {
+        // Upsample (or copy) into the indirect texture.
+        const Tex src = heat_result(rounds);
+        r.cmd.bind(r.pipeline<UpsampleParams>("gi_upsample.comp", {.proxies = false}));
+        r.cmd.push_descriptors(gpu::DescriptorWrites()
+                                   .uniform_texel_buffer(0, r.walls())
+                                   .uniform_buffer(1, r.proxies())
+                                   .uniform_texel_buffer(2, r.view(src))
+                                   .storage_buffer(3, r.buffer(Tex::indirect)));
+        auto up = r.params<UpsampleParams>(w.width, w.height);
+        up.pass = {.heat_width = g.width, .heat_height = g.height, .heat_pitch = r.pitch(src),
+                   .texels_per_unit = g.texels_per_unit, .scale = g.scale};
+        r.cmd.push_constants(up);
+        r.dispatch(w.width, w.height);
+        r.cmd.barrier_compute_to_compute();
     }
-    // Upsample (or copy) into the indirect texture.
-    r.cmd.bind(r.pipeline<UpsampleParams>("gi_upsample.comp", {.proxies = false}));
-    r.cmd.push_descriptors(gpu::DescriptorWrites()
-                               .uniform_texel_buffer(0, r.walls())
-                               .uniform_buffer(1, r.proxies())
-                               .uniform_texel_buffer(2, r.view(src))
-                               .storage_buffer(3, r.buffer(Tex::indirect)));
-    auto up = r.params<UpsampleParams>(w.width, w.height);
-    up.pass = {.heat_width = g.width, .heat_height = g.height, .heat_pitch = r.pitch(src),
-               .texels_per_unit = g.texels_per_unit, .scale = g.scale};
-    r.cmd.push_constants(up);
-    r.dispatch(w.width, w.height);
-    r.cmd.barrier_compute_to_compute();
 }
 
 void reference_heat_row(ReferenceContext& c) {
-    c.store.put(Tex::indirect, reference_heat(c.in, c.store.at(Tex::emission), c.store.at(Tex::shadow), c.options));
+    const int rounds = c.in.settings.heat_rounds;
+    if (c.iteration == 0) {
+        c.store.put(Tex::heat_a,
+                    reference_heat_seed(c.in, c.store.at(Tex::emission), c.store.at(Tex::shadow), c.options));
+    } else if (c.iteration <= rounds) {
+        const Tex src = heat_source(c.iteration), dst = src == Tex::heat_a ? Tex::heat_b : Tex::heat_a;
+        c.store.put(dst, reference_heat_round(c.in, c.store.at(src), c.options));
+    } else {
+        c.store.put(Tex::indirect, reference_heat_upsample(c.in, c.store.at(heat_result(rounds)), c.options));
+    }
 }
 
 // ---- blur (in place on the indirect texture)
@@ -213,6 +230,7 @@ constinit const PassRow heat{
     .writes = heat_writes,
     .settings = heat_settings,
     .inputs = input_walls,
+    .iterations = heat_iterations,
     .record = record_heat,
     .reference = reference_heat_row,
 };

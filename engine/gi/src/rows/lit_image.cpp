@@ -2,7 +2,7 @@
 // tests; the game shades in its raster pass instead, from the same shading library).
 #include "rows/rows.hpp"
 
-#include "vulkan/pass_recorder.hpp"
+#include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <cstdint>
 

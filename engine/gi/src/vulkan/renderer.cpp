@@ -3,8 +3,8 @@
 #include "lantern/gi/reference_indirect.hpp"
 #include "lantern/gpu/reflect.hpp"
 #include "lantern_gi_shaders.hpp"
-#include "vulkan/pass_params.hpp"
-#include "vulkan/pass_recorder.hpp"
+#include "lantern/gi/vulkan/pass_params.hpp"
+#include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -59,17 +59,19 @@ std::span<const std::byte> bytes_of(const void* data, std::size_t size) {
 // Pipelines by (shader, specialisation), created on first use and kept.
 struct Renderer::Pipelines {
     gpu::Device* device = nullptr;
-    std::map<std::tuple<std::string, bool, bool, bool, bool>, gpu::ComputePipeline> cache;
+    std::map<std::tuple<ShaderLookup, std::string, bool, bool, bool, bool>, gpu::ComputePipeline> cache;
 
-    const gpu::ComputePipeline& get(const char* shader, std::span<const gpu::ScalarKind> kinds, std::uint32_t block_h,
-                                    std::uint32_t gx, std::uint32_t gy, bool proxies = true, bool walls = true,
-                                    bool per_channel = true, bool segment_check = true) {
-        auto key = std::make_tuple(std::string(shader), proxies, walls, per_channel, segment_check);
+    const gpu::ComputePipeline& get(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds,
+                                    std::uint32_t block_h, std::uint32_t gx, std::uint32_t gy, bool proxies = true,
+                                    bool walls = true, bool per_channel = true, bool segment_check = true) {
+        if (!shaders) shaders = lantern_gi_shaders_spirv;
+        auto key = std::make_tuple(shaders, std::string(shader), proxies, walls, per_channel, segment_check);
         auto it = cache.find(key);
         if (it != cache.end()) return it->second;
         gpu::ComputePipelineDesc desc;
-        desc.spirv = lantern_gi_shaders_spirv(shader);
-        LANTERN_VERIFY(!desc.spirv.empty(), "GI shader missing from lantern_gi_shaders");
+        desc.spirv = shaders(shader);
+        LANTERN_VERIFY(!desc.spirv.empty(), (std::string("GI shader '") + shader + "' missing from its pass row's "
+                                             "shader library").c_str());
         check_params_layout(shader, desc.spirv, kinds); // the bindings come from the shader itself
         desc.specialization = {{spec_block_h, block_h},       {spec_group_x, gx},
                                {spec_group_y, gy},            {spec_has_proxies, proxies ? 1u : 0u},
@@ -172,7 +174,7 @@ Result<void> Renderer::prepare(const FrameInputs& in, const PassPlan& plan) {
 
     // Exactly the textures the planned rows write (pass table); the others are released.
     const TexSet written = textures_written(in, plan);
-    for (int t = 0; t < tex_count; ++t) {
+    for (int t = 0; t < registered_texture_count(); ++t) {
         const TextureRow& row = texture_row(Tex(t));
         if (!written.has(row.id)) {
             drop_texture(row.id);
@@ -309,8 +311,11 @@ void Renderer::record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, c
     }
     const PassRow* row = find_row(method(in.settings.method), pass);
     LANTERN_ASSERT(row && row->record, "record() of a pass that is not in the frame's gi.method");
-    PassRecorder recorder(*this, cmd, in, plan, *row);
-    row->record(recorder);
+    const int iterations = row->iteration_count(in);
+    for (int i = 0; i < iterations; ++i) {
+        PassRecorder recorder(*this, cmd, in, plan, *row, i);
+        row->record(recorder);
+    }
     if (set) set->queries.end(cmd, region);
 }
 
@@ -323,9 +328,9 @@ void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const P
         if (plan.run.has(row->pass) && subset.has(row->pass)) record(cmd, row->pass, in, plan);
 }
 
-const gpu::ComputePipeline& Renderer::pipeline(const char* shader, const PipelineSpec& spec,
+const gpu::ComputePipeline& Renderer::pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
                                                std::span<const gpu::ScalarKind> kinds) {
-    return pipelines_->get(shader, kinds, spec.block_h ? spec.block_h : block_h_, spec.group_x ? spec.group_x : group_x_,
+    return pipelines_->get(shaders, shader, kinds, spec.block_h ? spec.block_h : block_h_, spec.group_x ? spec.group_x : group_x_,
                            spec.group_y ? spec.group_y : group_y_, spec.proxies, spec.walls, spec.per_channel,
                            spec.segment_check);
 }
@@ -391,7 +396,7 @@ std::vector<std::uint64_t> Renderer::pass_bytes_written(Pass pass, const FrameIn
     case Pass::blur: return {texels * 8, texels * 8};
     case Pass::wall_indirect: return {texels * 4 * 8};
     case Pass::lit: return {texels * 4};
-    case Pass::count: break;
+    default: break; // rows added at run time: no copy baseline
     }
     return {};
 }
@@ -412,7 +417,7 @@ double Renderer::time_copy_dispatches(const std::vector<std::uint64_t>& bytes_wr
     auto queries = device_.create_timestamp_queries(1, "copy");
     if (!queries) return 0.0;
     const auto kinds = field_kinds<NoParams>();
-    const auto& pipeline = pipelines_->get("gi_copy.comp", kinds, block_h_, group_x_, group_y_, false);
+    const auto& pipeline = pipelines_->get(nullptr, "gi_copy.comp", kinds, block_h_, group_x_, group_y_, false);
     std::vector<double> samples;
     for (int rep = 0; rep < repeats + 1; ++rep) { // the first run warms up
         gpu::CommandList cmd = device_.begin("copy baseline");

@@ -15,6 +15,7 @@
 #include "lantern/components/components.hpp"
 #include "lantern/ecs/schedule.hpp"
 #include "lantern/gi/frame_inputs.hpp"
+#include "lantern/gi/pass_table.hpp"
 #include "lantern/systems/gi_backend.hpp"
 #include "lantern/systems/streaming.hpp"
 
@@ -115,13 +116,16 @@ class GiFrame {
     std::uint64_t frame_ = 0;
     std::uint32_t gpu_lane_ = 0;
     FrameReport report_;
+    gi::Convergence convergence_; // the camera's converging rows (cache_keys, gpu_submit)
 };
 
 // Per-pass cache keys of a frame (exposed for tests and the HUD): gi::derive_keys over the
 // frame's input versions. A pass's key hashes what its pass-table row lists and the keys of
 // the passes it reads, so a change reruns exactly its dependents.
-std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, const gi::PassPlan& plan,
+// With `convergence`, converging rows count their history (gi::derive_keys).
+std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, gi::PassPlan& plan,
                                                      std::uint64_t wall_version, std::uint64_t lights_hash,
-                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash);
+                                                     std::uint64_t suns_hash, std::uint64_t proxies_hash,
+                                                     gi::Convergence* convergence = nullptr);
 
 } // namespace lantern::systems

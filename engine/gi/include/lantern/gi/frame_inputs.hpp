@@ -83,14 +83,39 @@ struct FrameInputs {
 // Distance from p to the window's world rectangle (0 inside).
 float distance_to_window(const GiWindow& window, glm::vec2 p);
 
-// Culls and packs a scene's lights and proxies for a window. Point lights and emissives are
-// kept when their radius reaches the window (even if they stand outside it); point lights
-// beyond max_lights are dropped by a stable priority (distance to the window centre, then
-// scene order). Proxies are kept when their reach, max(size) + max_length +
-// max(penumbra_width, penumbra_length), touches the window; the closest
-// max_shadow_proxies to the window centre are kept.
-FrameInputs gather_frame_inputs(const scene::Scene& scene, const GiWindow& window);
+// ---- gathering: the one road from lights to the GPU ------------------------------------
+// The game's gathering systems (systems/gi_frame.cpp, over ECS components) and the scene
+// path below (tools, benchmarks, tests) both choose and pack what a frame sees with these.
 
+// A light or shadow proxy offered to a frame: where it stands, how far it reaches, its
+// order (scene index or entity rank: the GPU order and the last tie-break) and a priority
+// bonus (hysteresis: kept last frame).
+struct Offer {
+    glm::vec2 position{0.0f};
+    float reach = 0.0f;
+    std::uint32_t order = 0;
+    float bonus = 0.0f;
+};
+// The offers that reach the window (distance to it <= reach); when more than `cap` do, the
+// `cap` of smallest (distance to the window centre - bonus, order) are kept. Returned as
+// indices into `offers`, by order (so sums on the GPU do not depend on priorities).
+std::vector<std::uint32_t> gather_offers(const std::vector<Offer>& offers, const GiWindow& window, std::size_t cap);
+
+// How far a proxy's shadow reaches: max(size) + max_length + max(penumbra_width,
+// penumbra_length).
+float proxy_reach(const scene::ShadowProxy& proxy);
+GpuPointLight pack_light(glm::vec2 position, glm::vec3 color, float intensity, float radius);
+GpuShadowProxy pack_proxy(const scene::ShadowProxy& proxy);
 GpuDirectionalLight pack_directional(const scene::DirectionalLight& light);
+// A dark sun (the night side of a day cycle) adds nothing and is left out, so the
+// directional pass does not run for it.
+bool sun_adds_light(glm::vec3 color, float intensity);
+
+// A scene's lights and proxies for a window, chosen as the game's gathering systems choose
+// them (gather_offers): point lights and emissives are kept when their radius reaches the
+// window (even if they stand outside it), point lights beyond max_lights by priority
+// (distance to the window centre, then scene order); proxies when their reach touches the
+// window, the closest max_shadow_proxies kept; suns unless dark.
+FrameInputs gather_frame_inputs(const scene::Scene& scene, const GiWindow& window);
 
 } // namespace lantern::gi

@@ -2,20 +2,27 @@
 //
 // Every GI pass is one row: its name, the textures it reads and writes, the gi settings
 // (keys of the scene format's one settings table) and the frame inputs it depends on, when
-// it is needed, its Vulkan recorder and its C++ reference. A GI method (gi.method) is a named
-// list of rows in pipeline order. One sequencer walks that list to
+// it is needed, how often it repeats, whether it converges over frames, its Vulkan recorder
+// and its C++ reference. A GI method (gi.method) is a named list of rows in pipeline order.
+// One sequencer walks that list to
 //   - plan a frame (plan_passes: which rows run, and why the others do not),
 //   - choose the textures to allocate (textures_written: only what planned rows write),
-//   - derive every cache key (derive_keys: inputs + listed settings + upstream keys), and
+//   - derive every cache key (derive_keys: inputs + listed settings + upstream keys, and
+//     the history of converging rows), and
 //   - record (vk::Renderer::record_plan) or execute (execute_reference) the planned rows.
 // The backends (the Vulkan renderer, the reference, the frame runner, the frame systems)
 // are thin adapters over these functions; the pass order is written once, in the method.
 //
-// Threads: the table is immutable after start-up; every function here is safe to call
-// from any thread. The row functions run on the caller's thread (Vulkan recorders on the
-// thread that records the command list).
+// Code outside the engine adds textures and rows at start-up (add_texture, add_row): a new
+// pass is a shader, a reference function and one row (docs/gi.md, "A new pass").
+//
+// Threads: add_texture and add_row run at start-up, before any frame is planned, on one
+// thread; after that the table is immutable and every function here is safe to call from
+// any thread. The row functions run on the caller's thread (Vulkan recorders on the thread
+// that records the command list).
 #pragma once
 
+#include "lantern/core/result.hpp"
 #include "lantern/gi/frame_inputs.hpp"
 #include "lantern/gi/passes.hpp"
 #include "lantern/gi/reference.hpp"
@@ -28,6 +35,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace lantern::gi {
 
@@ -62,41 +70,51 @@ enum class Tex : std::uint8_t {
     wall_direct_point_nx,
     wall_direct_point_pz,
     wall_direct_point_nz,
-    count
+    builtin_count
 };
-inline constexpr int tex_count = int(Tex::count);
+// Texture ids: the built-ins above, then textures added at run time (add_texture) up to
+// this capacity. Arrays indexed by Tex have tex_count entries.
+inline constexpr int tex_count = 64;
+inline constexpr int builtin_tex_count = int(Tex::builtin_count);
 
 // The resolution a texture is allocated at.
 enum class TexScale : std::uint8_t {
     window,    // the GI window: window.width x window.height
     heat_grid, // heat_grid(window, gi.heat_scale): full, half or quarter
+    custom,    // TextureRow::size(in): cascade levels, probe atlases, plain buffers (height 1)
 };
 
+// A texture is a GPU buffer of pitch x height texels (pitch = width rounded up to 4) and a
+// C++ Texture on the reference. A plain buffer (a probe atlas, a list) is a words32 texture
+// of custom size: one 32-bit word per element, width x height elements.
 struct TextureRow {
-    Tex id;
-    std::string_view name; // the --dump file stem ("wall_direct_px", ...)
-    TexFormat format;
+    Tex id = Tex::builtin_count;
+    std::string_view name{}; // the --dump file stem ("wall_direct_px", ...); static storage
+    TexFormat format = TexFormat::rgba16f;
     TexScale scale = TexScale::window;
     bool words32 = false;  // stored as one 32-bit word per texel (the lit image, heat tap masks)
     bool internal = false; // scratch or intermediate: never read back, not a contract texture
+    glm::ivec2 (*size)(const FrameInputs& in) = nullptr; // TexScale::custom
 };
 
 const TextureRow& texture_row(Tex t);
 const char* tex_name(Tex t);
 std::optional<Tex> texture_by_name(std::string_view name);
+// Texture ids in use: 0 .. registered_texture_count() - 1.
+int registered_texture_count();
 // The size of `t` for this frame (its row's scale).
 glm::ivec2 texture_size(Tex t, const FrameInputs& in);
 
 struct TexSet {
-    std::uint32_t bits = 0;
+    std::uint64_t bits = 0;
     bool has(Tex t) const { return (bits >> int(t)) & 1u; }
     TexSet& add(Tex t) {
-        bits |= 1u << int(t);
+        bits |= std::uint64_t(1) << int(t);
         return *this;
     }
     friend bool operator==(TexSet, TexSet) = default;
 };
-static_assert(tex_count <= 32, "TexSet holds 32 textures");
+static_assert(tex_count <= 64, "TexSet holds 64 textures");
 
 // ---- rows ------------------------------------------------------------------------------
 
@@ -122,7 +140,7 @@ struct InputKeys {
 InputKeys input_keys_of(const FrameInputs& in);
 
 namespace vk {
-class PassRecorder; // engine/gi/src/vulkan/pass_recorder.hpp
+class PassRecorder; // lantern/gi/vulkan/pass_recorder.hpp
 }
 
 // What a reference row reads and writes: the textures of the frame by id (kept between
@@ -142,10 +160,16 @@ struct ReferenceContext {
     const PassPlan& plan;
     const RefOptions& options;
     ReferenceStore& store;
+    int iteration = 0; // 0 .. iterations - 1 (PassRow::iterations)
+    int history = 0;   // converging rows: frames accumulated before this one (plan.history)
 };
 
+// A shader library's lookup (the function lantern_add_shader_library generates):
+// the SPIR-V of "<name>.<stage>", empty when the library has no such shader.
+using ShaderLookup = std::span<const std::uint32_t> (*)(std::string_view name);
+
 struct PassRow {
-    Pass pass = Pass::count;
+    Pass pass = Pass::builtin_count;
     std::string_view name{};
     std::span<const Tex> reads{};  // textures read (an absent one reads as nothing)
     std::span<const Tex> writes{}; // textures written (allocated when the row is planned)
@@ -156,10 +180,23 @@ struct PassRow {
     std::uint32_t inputs = 0;                    // InputBits
     // nullptr when the row is needed this frame, else why not ("no directional lights").
     const char* (*not_needed)(const FrameInputs& in, bool lit_image, bool walls_in_window) = nullptr;
+    // How many times the row runs in a frame (heat rounds, jump-flood steps, cascade
+    // levels): record/reference are called once per iteration, each seeing its index
+    // (PassRecorder::iteration, ReferenceContext::iteration). nullptr: once.
+    int (*iterations)(const FrameInputs& in) = nullptr;
+    // A converging row (temporal accumulation, bounce feedback) runs every frame until it
+    // has accumulated converge_frames(in) frames since its inputs last changed; its key
+    // includes the frame index until then, so it and the rows downstream rerun, and a
+    // still scene then stops submitting. Its outputs persist between frames (both backends
+    // keep every texture); history 0 means "start afresh". nullptr: not converging.
+    int (*converge_frames)(const FrameInputs& in) = nullptr;
     void (*record)(vk::PassRecorder& recorder) = nullptr;
     void (*reference)(ReferenceContext& context) = nullptr;
+    // Where the recorder's shaders come from; nullptr: the engine's lantern_gi_shaders.
+    ShaderLookup shaders = nullptr;
 
     TexSet outputs(const FrameInputs& in) const;
+    int iteration_count(const FrameInputs& in) const { return iterations ? iterations(in) : 1; }
 };
 
 struct Method {
@@ -170,25 +207,54 @@ struct Method {
 
 // The method of gi.method (every value of the setting has one).
 const Method& method(scene::GiMethod id);
+// Every method, in the order of scene::GiMethod (the HUD's choice).
+std::vector<const Method*> methods();
 // The row of `pass` in the method that has it, or nullptr.
 const PassRow* find_row(const Method& m, Pass pass);
+// The registered row of `pass` (any method), or nullptr.
+const PassRow* find_row(Pass pass);
+
+// ---- extensions (start-up only; see "Threads" above)
+
+// Adds a texture; its id is assigned (row.id is ignored). Errors: the name is taken or not
+// a file stem, a custom scale without a size function, the table is full.
+Result<Tex> add_texture(TextureRow row);
+// Adds `row` to method `m` right after the row of `after`; its id is assigned (row.pass is
+// ignored) and returned. The row is copied; the spans it points at must be static. Errors:
+// `after` is not in the method, a listed setting is not a gi key, a texture id is not
+// registered, the name is taken, no record or reference function, the table is full.
+Result<Pass> add_row(scene::GiMethod m, Pass after, PassRow row);
 
 // ---- the sequencer ----------------------------------------------------------------------
 
 // The textures the planned rows write: what a backend allocates (the others it releases).
 TexSet textures_written(const FrameInputs& in, const PassPlan& plan);
 
+// The history of the converging rows between frames, kept by whoever keeps the cache keys
+// (the frame systems, a tool's frame loop). One per view.
+struct Convergence {
+    std::array<std::uint64_t, pass_count> settled_key{}; // the row's key without its history
+    std::array<std::uint16_t, pass_count> frames{};      // frames accumulated since it changed
+    // After a frame ran: counts one more frame for each converging row in `ran`.
+    void advance(PassSet ran);
+    // Forget everything (a failed frame: every row starts afresh).
+    void reset() { *this = {}; }
+};
+
 // Every pass's cache key (0 for passes not planned): a hash of the window, the inputs the
 // row lists, the values of the settings it lists, the textures it writes, the keys of the
 // planned rows that last wrote each texture it reads, and the own keys of later planned
 // rows that overwrite its outputs in place (so that turning such a row on or off, or
 // changing it, reruns the producer). A pass whose key is unchanged keeps last frame's
-// outputs.
-std::array<std::uint64_t, pass_count> derive_keys(const FrameInputs& in, const PassPlan& plan,
-                                                  const InputKeys& inputs);
-// The same for the rows of `m` (a method built in code: tests, methods of extensions).
-std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameInputs& in, const PassPlan& plan,
-                                                  const InputKeys& inputs);
+// outputs. With `convergence`, a converging row whose key without history changed starts
+// afresh, plan.history is set for every converging row, and its key includes
+// min(history, converge_frames - 1): it changes every frame until the row has converged.
+// Without it, converging rows have history 0 (one frame: tools' single frames).
+std::array<std::uint64_t, pass_count> derive_keys(const FrameInputs& in, PassPlan& plan, const InputKeys& inputs,
+                                                  Convergence* convergence = nullptr);
+// The same for the rows of `m` (a method built in code: tests).
+std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameInputs& in, PassPlan& plan,
+                                                  const InputKeys& inputs, Convergence* convergence = nullptr);
 
 // Runs the planned rows that are in `subset` on the C++ reference, in pipeline order;
 // `timed` (optional) is called with each pass's start and end (now_ns()).

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace lantern::gi {
 
@@ -19,13 +20,20 @@ enum class Pass : std::uint8_t {
     blur,
     wall_indirect,
     lit,         // the lit image (tools; the game shades in its raster pass instead)
-    count
+    builtin_count
 };
-inline constexpr int pass_count = int(Pass::count);
+// Pass ids: the built-in rows above, then rows registered at run time (add_row in
+// pass_table.hpp) up to this capacity. Arrays indexed by Pass have pass_count entries.
+inline constexpr int pass_count = 32;
+inline constexpr int builtin_pass_count = int(Pass::builtin_count);
+// The row's name ("heat"); "?" for an id no row has.
 const char* pass_name(Pass pass);
+// Pass ids in use: 0 .. registered_pass_count() - 1 (the built-ins and the rows added).
+int registered_pass_count();
 
 struct PassSet {
     std::uint32_t bits = 0;
+    static_assert(pass_count <= 32, "PassSet holds 32 passes");
     bool has(Pass p) const { return (bits >> int(p)) & 1u; }
     PassSet& add(Pass p) {
         bits |= 1u << int(p);
@@ -43,8 +51,11 @@ struct PassSet {
 // limits the pipeline to the rows up to it (e.g. Pass::directional for direct light only).
 struct PassPlan {
     PassSet run;
-    std::string reason[pass_count]; // empty for passes that run
+    std::string_view reason[pass_count] = {}; // static text; empty for passes that run
     bool has_walls_in_window = false;
+    // Converging rows (PassRow::converge_frames): how many frames of history the row has
+    // accumulated before this one (0: start afresh). Set by derive_keys from a Convergence.
+    std::uint16_t history[pass_count] = {};
 };
 PassPlan plan_passes(const FrameInputs& in, bool lit_image, Pass through = Pass::lit);
 

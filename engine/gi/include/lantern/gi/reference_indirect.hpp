@@ -40,6 +40,12 @@ Texture reference_emission(const FrameInputs& in, const Texture& direct, const R
 // round count (tests).
 Texture reference_heat(const FrameInputs& in, const Texture& emission, const Texture& shadow,
                        const RefOptions& options = {}, int rounds_override = -1);
+// Its three stages, as the heat row runs them (one iteration each): the seed at the heat
+// grid, one round, and the upsample of the last round into the indirect light.
+Texture reference_heat_seed(const FrameInputs& in, const Texture& emission, const Texture& shadow,
+                            const RefOptions& options = {});
+Texture reference_heat_round(const FrameInputs& in, const Texture& heat, const RefOptions& options = {});
+Texture reference_heat_upsample(const FrameInputs& in, const Texture& heat, const RefOptions& options = {});
 
 // Two-pass separable blur (5 taps, Gaussian sigma 1) that only mixes texels of the same
 // conduction class and renormalises, so a uniform region keeps its brightness.

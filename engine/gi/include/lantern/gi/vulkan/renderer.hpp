@@ -31,10 +31,10 @@
 namespace lantern::gi::vk {
 
 template <typename P>
-struct GiPush;         // vulkan/pass_params.hpp
+struct GiPush;         // lantern/gi/vulkan/pass_params.hpp
 struct NoParams;
 using GiPassParams = GiPush<NoParams>;
-struct PassState;      // vulkan/pass_recorder.hpp
+struct PassState;      // lantern/gi/vulkan/pass_recorder.hpp
 struct PipelineSpec;
 
 // The textures are the pass table's (pass_table.hpp); these names keep vk:: code short.
@@ -150,7 +150,7 @@ class Renderer {
     void clear(gpu::CommandList& cmd, Tex t);
     GiPassParams params(const FrameInputs& in, int width, int height) const;
     void dispatch_blocks(gpu::CommandList& cmd, int width, int height);
-    const gpu::ComputePipeline& pipeline(const char* shader, const PipelineSpec& spec,
+    const gpu::ComputePipeline& pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
                                          std::span<const gpu::ScalarKind> kinds);
     static FrameTimings collect_timings(const QuerySet& set, const gpu::TimestampResult& result);
 

@@ -1,11 +1,16 @@
 // What a pass row's Vulkan recorder sees (pass_table.hpp): the frame, the command list, the
-// renderer's textures (by Tex), wall grid and light buffers, the GI pipelines, the dispatch
-// and clear helpers, and a state object of its own that lives as long as the renderer.
+// renderer's textures (by Tex), wall grid and light buffers, the GI pipelines (from the
+// row's shader library), the dispatch and clear helpers, the iteration and history of the
+// row, and a state object of its own that lives as long as the renderer.
+//
+// Threads: a PassRecorder lives for one call of a row's recorder, on the renderer's
+// submission thread. Ownership: it borrows everything; what it returns (buffers, views,
+// pipelines) belongs to the renderer and is valid until the next Renderer::prepare.
 #pragma once
 
 #include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
-#include "vulkan/pass_params.hpp"
+#include "lantern/gi/vulkan/pass_params.hpp"
 
 #include <memory>
 
@@ -29,12 +34,15 @@ struct PipelineSpec {
 class PassRecorder {
   public:
     PassRecorder(Renderer& renderer, gpu::CommandList& command_list, const FrameInputs& inputs,
-                 const PassPlan& frame_plan, const PassRow& row)
-        : cmd(command_list), in(inputs), plan(frame_plan), r_(renderer), row_(row) {}
+                 const PassPlan& frame_plan, const PassRow& row, int iteration_index = 0)
+        : cmd(command_list), in(inputs), plan(frame_plan), iteration(iteration_index),
+          history(frame_plan.history[int(row.pass)]), r_(renderer), row_(row) {}
 
     gpu::CommandList& cmd;
     const FrameInputs& in;
     const PassPlan& plan;
+    const int iteration; // 0 .. iterations - 1 (PassRow::iterations)
+    const int history;   // converging rows: frames accumulated before this one (0: afresh)
 
     gpu::Device& device() { return r_.device_; }
     bool has(Tex t) const { return r_.has(t); }
@@ -50,13 +58,14 @@ class PassRecorder {
     std::uint32_t group_x() const { return r_.group_x_; }
     std::uint32_t group_y() const { return r_.group_y_; }
 
-    // The pipeline of a shader of lantern_gi_shaders ("gi_ao.comp") whose parameters are P
-    // (GI_PASS_PARAMS in the shader), created on first use; its push-constant block is then
-    // checked against GiPush<P>.
+    // The pipeline of a shader of the row's library (PassRow::shaders; the engine's
+    // lantern_gi_shaders by default: "gi_ao.comp") whose parameters are P (GI_PASS_PARAMS in
+    // the shader), created on first use; its push-constant block is then checked against
+    // GiPush<P> and its bindings come from the shader itself.
     template <typename P = NoParams>
     const gpu::ComputePipeline& pipeline(const char* shader, const PipelineSpec& spec = {}) {
         const std::array<gpu::ScalarKind, 8> kinds = field_kinds<P>();
-        return r_.pipeline(shader, spec, kinds);
+        return r_.pipeline(row_.shaders, shader, spec, kinds);
     }
     // The push constants of a width x height texture: the shared fields (window, grid,
     // counts) filled, `pass` for the caller.
