@@ -17,15 +17,15 @@ namespace {
 using namespace lantern;
 
 // Counts passes; does no GPU work (isolates the systems' CPU time).
-class CountingBackend final : public systems::GiBackend {
+class CountingBackend final : public gi::Backend {
   public:
     std::string name() const override { return "counting backend"; }
     Result<void> execute(std::uint64_t, const gi::FrameInputs&, const gi::PassPlan&, gi::PassSet run,
-                         const systems::WallUpdate&) override {
+                         const gi::WallUpdate&) override {
         for (int p = 0; p < gi::registered_pass_count(); ++p) passes += run.has(gi::Pass(p));
         return {};
     }
-    std::vector<systems::FrameTimes> completed_times() override { return {}; }
+    std::vector<gi::FrameTimes> completed_times() override { return {}; }
     std::optional<gi::Texture> read(const std::string&) override { return std::nullopt; }
     std::optional<gi::Image> read_lit() override { return std::nullopt; }
     std::vector<std::string> texture_names() const override { return {}; }
@@ -40,7 +40,7 @@ struct World {
     CountingBackend* counter = nullptr;
     std::unique_ptr<systems::GiFrame> frame;
 
-    World(int light_count, std::unique_ptr<systems::GiBackend> backend = nullptr) {
+    World(int light_count, std::unique_ptr<gi::Backend> backend = nullptr) {
         ecs::Entity cam = world.create();
         world.emplace<Camera>(cam, Camera{scene::OrthoView{{1000.0f, 1000.0f}, {30.0f, 16.875f}}});
         world.emplace<GICache>(cam);
@@ -91,7 +91,7 @@ void BM_UnchangedFrameVulkan(benchmark::State& state) {
     }
     auto renderer = gi::vk::Renderer::create(**device);
     {
-        World w(1000, systems::make_vulkan_backend(**renderer));
+        World w(1000, gi::make_vulkan_backend(**renderer));
         (*device)->wait_idle();
         const std::uint64_t submitted = (*device)->last_submitted_serial();
         for (auto _ : state) w.frame->step();

@@ -139,7 +139,7 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, g
 }
 
 GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const WorldSource> source,
-                 std::unique_ptr<GiBackend> backend, GiConfig config, GiFrameOptions options)
+                 std::unique_ptr<gi::Backend> backend, GiConfig config, GiFrameOptions options)
     : world_(world), jobs_(jobs), backend_(std::move(backend)), schedule_(jobs) {
     // The one owner of the wall bytes (the mirror) and of the chunk bookkeeping: a world
     // resource, so systems reach it through the world like any other, and declare it.
@@ -246,7 +246,7 @@ void GiFrame::add_systems() {
         report_.ran = {};
         if (view.window) {
             Streaming& streaming = w.resource<Streaming>();
-            const WallUpdate walls{streaming.resized(), streaming.dirty()};
+            const gi::WallUpdate walls{streaming.resized(), streaming.dirty()};
             auto ok = backend_->execute(frame_, f.inputs, f.plan, f.run, walls);
             const ecs::Entity cam = camera();
             GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
@@ -272,8 +272,8 @@ void GiFrame::add_systems() {
         report_.reason = f.reason;
         report_.window = view.window;
         report_.completed = backend_->completed_times();
-        for (const FrameTimes& t : report_.completed)
-            for (const PassTime& p : t.passes)
+        for (const gi::FrameTimes& t : report_.completed)
+            for (const gi::PassTime& p : t.passes)
                 profile::record_gpu(gpu_lane_, t.frame, gi::pass_name(p.pass), p.cpu_begin_ns, p.cpu_end_ns);
     })
         .main_thread()

@@ -57,12 +57,12 @@ struct Harness {
 
     Harness(const scene::Scene& s, int worker_count, gpu::Device* device) : jobs(workers(worker_count)) {
         sw = systems::populate_world(s, world);
-        std::unique_ptr<systems::GiBackend> backend;
+        std::unique_ptr<gi::Backend> backend;
         if (device) {
             renderer = std::move(gi::vk::Renderer::create(*device).value());
-            backend = systems::make_vulkan_backend(*renderer);
+            backend = gi::make_vulkan_backend(*renderer);
         } else {
-            backend = systems::make_reference_backend(nullptr);
+            backend = gi::make_reference_backend(nullptr);
         }
         frame = std::make_unique<systems::GiFrame>(world, jobs, sw.source, std::move(backend), sw.config);
         frame->warm_up();

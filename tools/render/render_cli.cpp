@@ -150,7 +150,7 @@ nlohmann::json timings_json(const Options& o, const std::string& device, const g
     return j;
 }
 
-Result<void> write_outputs(const Options& o, systems::GiBackend& backend, const nlohmann::json& timings) {
+Result<void> write_outputs(const Options& o, gi::Backend& backend, const nlohmann::json& timings) {
     if (!o.dump.empty()) {
         if (auto ok = ensure_directory(o.dump); !ok) return ok;
         for (const std::string& name : backend.texture_names()) {
@@ -226,13 +226,13 @@ void print_frame(const Options& o, const FrameRecord& f) {
 struct Backend {
     std::unique_ptr<gpu::Device> device;
     std::unique_ptr<gi::vk::Renderer> renderer;
-    std::unique_ptr<systems::GiBackend> backend;
+    std::unique_ptr<gi::Backend> backend;
 };
 
 Result<Backend> make_backend(const Options& o, jobs::JobSystem& jobs) {
     Backend b;
     if (o.backend == "cpu") {
-        b.backend = systems::make_reference_backend(&jobs);
+        b.backend = gi::make_reference_backend(&jobs);
         return b;
     }
     auto device = gpu::Device::create();
@@ -241,7 +241,7 @@ Result<Backend> make_backend(const Options& o, jobs::JobSystem& jobs) {
     auto renderer = gi::vk::Renderer::create(*b.device);
     if (!renderer) return renderer.error();
     b.renderer = std::move(renderer.value());
-    b.backend = systems::make_vulkan_backend(*b.renderer);
+    b.backend = gi::make_vulkan_backend(*b.renderer);
     return b;
 }
 
@@ -269,7 +269,7 @@ int render_main(int argc, char** argv) {
     frame.warm_up();
     profile::set_enabled(true);
     std::vector<FrameRecord> records;
-    std::vector<systems::FrameTimes> times;
+    std::vector<gi::FrameTimes> times;
     for (int k = 0; k < o.frames; ++k) {
         if (k > 0) scripted_change(k, world, sw, frame);
         profile::begin_frame();
@@ -280,11 +280,11 @@ int render_main(int argc, char** argv) {
     }
     // GPU times arrive after their frames: attach each to the frame that submitted it.
     frame.backend().wait_idle();
-    for (const systems::FrameTimes& t : frame.backend().completed_times()) times.push_back(t);
-    for (const systems::FrameTimes& t : times)
+    for (const gi::FrameTimes& t : frame.backend().completed_times()) times.push_back(t);
+    for (const gi::FrameTimes& t : times)
         for (FrameRecord& r : records)
             if (r.frame == t.frame)
-                for (const systems::PassTime& p : t.passes) r.ms[std::size_t(p.pass)] = p.ms;
+                for (const gi::PassTime& p : t.passes) r.ms[std::size_t(p.pass)] = p.ms;
     const auto& view = world.resource<systems::GiView>();
     if (!view.window) return fail(o.scene + ": no GI for the last frame: " + view.bail_reason, 1);
     if (!o.quiet)

@@ -115,7 +115,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
             .writes_resource<Controls, GameClock>();
         add_gameplay_systems(schedule);
     };
-    s->frame = std::make_unique<systems::GiFrame>(w, jobs_, s->info.source, systems::make_vulkan_backend(*gi_renderer_),
+    s->frame = std::make_unique<systems::GiFrame>(w, jobs_, s->info.source, gi::make_vulkan_backend(*gi_renderer_),
                                                   config, std::move(fo));
     if (save) s->frame->streaming().restore_edits(save->edits);
     add_systems(s->frame->schedule(), *s);

@@ -1,25 +1,16 @@
+// The Vulkan GI renderer: creation, the textures the plan needs, uploads of walls and
+// lights, and recording the planned rows (renderer.hpp). Timestamps: renderer_timings.cpp;
+// read back and the copy baseline: renderer_read_back.cpp.
 #include "lantern/gi/vulkan/renderer.hpp"
 
-#include "lantern/gi/reference_indirect.hpp"
-#include "lantern/gpu/reflect.hpp"
-#include "lantern_gi_shaders.hpp"
-#include "lantern/gi/vulkan/pass_params.hpp"
 #include "lantern/gi/vulkan/pass_recorder.hpp"
+#include "vulkan/renderer_internal.hpp"
 
 #include <algorithm>
-#include <cstddef>
-#include <cmath>
 #include <cstring>
-#include <map>
-#include <span>
-#include <tuple>
 
 namespace lantern::gi::vk {
 namespace {
-
-constexpr int num_query_sets = 3; // frames in flight + one being recorded
-
-int pitch_of(int width) { return (width + 3) & ~3; }
 
 VkFormat view_format(TexFormat f, bool rgba8) {
     if (rgba8) return VK_FORMAT_R8G8B8A8_UNORM; // also the 32-bit heat tap masks (read as R32_UINT)
@@ -31,8 +22,8 @@ VkFormat view_format(TexFormat f, bool rgba8) {
     return VK_FORMAT_UNDEFINED;
 }
 
-// Checks a GI shader's push-constant block against GiPush<P>: the size, the shared fields'
-// offsets, and each of the pass's parameters (offset and scalar type, in order).
+} // namespace
+
 void check_params_layout(const char* shader, std::span<const std::uint32_t> spirv,
                          std::span<const gpu::ScalarKind> kinds) {
     auto layout = gpu::reflect_spirv(spirv);
@@ -49,48 +40,6 @@ void check_params_layout(const char* shader, std::span<const std::uint32_t> spir
                     "pass's row): size, order or scalar types of the parameters differ")
                        .c_str());
 }
-
-std::span<const std::byte> bytes_of(const void* data, std::size_t size) {
-    return {static_cast<const std::byte*>(data), size};
-}
-
-} // namespace
-
-// Pipelines by (shader, specialisation), created on first use and kept.
-struct Renderer::Pipelines {
-    gpu::Device* device = nullptr;
-    std::map<std::tuple<ShaderLookup, std::string, bool, bool, bool, bool>, gpu::ComputePipeline> cache;
-
-    const gpu::ComputePipeline& get(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds,
-                                    std::uint32_t block_h, std::uint32_t gx, std::uint32_t gy, bool proxies = true,
-                                    bool walls = true, bool per_channel = true, bool segment_check = true) {
-        if (!shaders) shaders = lantern_gi_shaders_spirv;
-        auto key = std::make_tuple(shaders, std::string(shader), proxies, walls, per_channel, segment_check);
-        auto it = cache.find(key);
-        if (it != cache.end()) return it->second;
-        gpu::ComputePipelineDesc desc;
-        desc.spirv = shaders(shader);
-        LANTERN_VERIFY(!desc.spirv.empty(), (std::string("GI shader '") + shader + "' missing from its pass row's "
-                                             "shader library").c_str());
-        check_params_layout(shader, desc.spirv, kinds); // the bindings come from the shader itself
-        desc.specialization = {{spec_block_h, block_h},       {spec_group_x, gx},
-                               {spec_group_y, gy},            {spec_has_proxies, proxies ? 1u : 0u},
-                               {spec_has_walls, walls ? 1u : 0u}, {spec_per_channel, per_channel ? 1u : 0u},
-                               {spec_segment_check, segment_check ? 1u : 0u}};
-        if (std::string(shader) == "gi_direct.comp" || std::string(shader) == "gi_light_bins.comp")
-            desc.specialization.push_back({spec_max_lights, max_gpu_lights});
-        desc.push_constant_size = sizeof(GiPassParams);
-        desc.name = shader;
-        return cache.emplace(key, device->create_compute_pipeline(desc)).first->second;
-    }
-};
-
-struct Renderer::QuerySet {
-    gpu::TimestampQueries queries;
-    std::vector<Pass> passes; // region i measured passes[i]
-    bool pending = false;     // recorded, not yet read
-    std::uint64_t frame = 0;
-};
 
 Renderer::Renderer(gpu::Device& device) : device_(device), pipelines_(new Pipelines) { pipelines_->device = &device; }
 Renderer::~Renderer() = default;
@@ -216,14 +165,6 @@ void Renderer::update_walls(gpu::CommandList& cmd, const WallView& walls, std::s
     if (!ranges.empty()) cmd.barrier_transfer_to_compute();
 }
 
-std::vector<std::uint8_t> Renderer::read_back_walls() {
-    if (!walls_) return {};
-    const auto bytes = device_.read_back(walls_);
-    std::vector<std::uint8_t> out(bytes.size());
-    std::memcpy(out.data(), bytes.data(), bytes.size());
-    return out;
-}
-
 void Renderer::upload_lights(gpu::CommandList& cmd, const FrameInputs& in) {
     std::vector<GpuPointLight> lights(in.point_lights);
     lights.insert(lights.end(), in.emissive_lights.begin(), in.emissive_lights.end());
@@ -256,52 +197,6 @@ void Renderer::dispatch_blocks(gpu::CommandList& cmd, int width, int height) {
 
 void Renderer::clear(gpu::CommandList& cmd, Tex t) { cmd.fill_buffer(textures_[int(t)].buffer, 0); }
 
-void Renderer::begin_frame(gpu::CommandList& cmd, std::uint64_t frame) {
-    if (queries_.empty()) return;
-    frame_slot_ = (frame_slot_ + 1) % int(queries_.size());
-    QuerySet& set = queries_[std::size_t(frame_slot_)];
-    if (set.pending) {
-        // Three recordings old: its submission is normally done. Read it if so; a set whose
-        // submission is still running is dropped rather than waited for.
-        if (auto done = set.queries.try_resolve()) resolved_.push_back(collect_timings(set, *done));
-        set.pending = false;
-    }
-    set.queries.reset(cmd);
-    set.passes.clear();
-    set.pending = true;
-    set.frame = frame;
-}
-
-FrameTimings Renderer::collect_timings(const QuerySet& set, const gpu::TimestampResult& result) {
-    FrameTimings out{set.frame, {}};
-    for (std::size_t i = 0; i < result.regions.size() && i < set.passes.size(); ++i)
-        out.passes.push_back({set.passes[i], double(result.regions[i].duration_ns) * 1e-6, result.regions[i]});
-    return out;
-}
-
-std::vector<FrameTimings> Renderer::completed_timings() {
-    std::vector<FrameTimings> out = std::move(resolved_);
-    resolved_.clear();
-    // Oldest first: walk the sets from the one after the newest.
-    for (int k = 1; k <= int(queries_.size()); ++k) {
-        QuerySet& set = queries_[std::size_t((frame_slot_ + k) % int(queries_.size()))];
-        if (!set.pending) continue;
-        if (auto done = set.queries.try_resolve()) {
-            out.push_back(collect_timings(set, *done));
-            set.pending = false;
-        }
-    }
-    return out;
-}
-
-std::vector<PassTiming> Renderer::wait_timings() {
-    if (queries_.empty() || frame_slot_ < 0) return {};
-    QuerySet& set = queries_[std::size_t(frame_slot_)];
-    if (!set.pending) return {};
-    set.pending = false;
-    return collect_timings(set, set.queries.resolve()).passes;
-}
-
 void Renderer::record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, const PassPlan& plan) {
     QuerySet* set = (!queries_.empty() && frame_slot_ >= 0) ? &queries_[std::size_t(frame_slot_)] : nullptr;
     std::uint32_t region = 0;
@@ -333,115 +228,6 @@ const gpu::ComputePipeline& Renderer::pipeline(ShaderLookup shaders, const char*
     return pipelines_->get(shaders, shader, kinds, spec.block_h ? spec.block_h : block_h_, spec.group_x ? spec.group_x : group_x_,
                            spec.group_y ? spec.group_y : group_y_, spec.proxies, spec.walls, spec.per_channel,
                            spec.segment_check);
-}
-
-// ---- read back
-
-Texture Renderer::read_back(Tex t) { return read_back(t, tex_name(t)); }
-
-Texture Renderer::read_back(Tex t, const char* name) {
-    const GpuTexture& g = textures_[int(t)];
-    LANTERN_ASSERT(bool(g.buffer), "read_back of a texture this frame did not allocate");
-    Texture out(name, g.format, g.width, g.height);
-    const auto bytes = device_.read_back(g.buffer);
-    const int bpt = bytes_per_texel(g.format);
-    for (int y = 0; y < g.height; ++y)
-        for (int x = 0; x < g.width; ++x) {
-            const std::byte* src = bytes.data() + (std::size_t(y) * std::size_t(g.pitch) + std::size_t(x)) * std::size_t(bpt);
-            float* dst = out.at(x, y);
-            if (g.format == TexFormat::rgba16f) {
-                for (int c = 0; c < 4; ++c) {
-                    std::uint16_t h;
-                    std::memcpy(&h, src + 2 * c, 2);
-                    dst[c] = half_to_float(h);
-                }
-            } else {
-                for (int c = 0; c < bpt; ++c) dst[c] = unorm8_to_float(std::uint8_t(src[c]));
-            }
-        }
-    return out;
-}
-
-std::vector<std::uint8_t> Renderer::read_back_lit_rgb() {
-    const GpuTexture& g = textures_[int(Tex::lit)];
-    LANTERN_ASSERT(bool(g.buffer), "read_back_lit_rgb without a lit pass");
-    const auto bytes = device_.read_back(g.buffer);
-    std::vector<std::uint8_t> rgb(std::size_t(g.width) * std::size_t(g.height) * 3);
-    for (int y = 0; y < g.height; ++y)
-        for (int x = 0; x < g.width; ++x)
-            for (int c = 0; c < 3; ++c)
-                rgb[(std::size_t(y) * std::size_t(g.width) + std::size_t(x)) * 3 + std::size_t(c)] =
-                    std::uint8_t(bytes[(std::size_t(y) * std::size_t(g.pitch) + std::size_t(x)) * 4 + std::size_t(c)]);
-    return rgb;
-}
-
-// ---- benchmark baseline
-
-std::vector<std::uint64_t> Renderer::pass_bytes_written(Pass pass, const FrameInputs& in) {
-    const std::uint64_t texels = std::uint64_t(pitch_of(in.window.width)) * std::uint64_t(in.window.height);
-    const HeatGrid g = heat_grid(in.window, in.settings.heat_scale);
-    const std::uint64_t heat_texels = std::uint64_t(pitch_of(g.width)) * std::uint64_t(g.height);
-    switch (pass) {
-    case Pass::conduction:
-    case Pass::ao: return {texels};
-    case Pass::direct:
-    case Pass::directional: return {texels * (8 + 2 + 4 * 8)};
-    case Pass::emission: return {texels * 8};
-    case Pass::heat: {
-        std::vector<std::uint64_t> out{heat_texels * 8, heat_texels * 4};
-        for (int r = 0; r < in.settings.heat_rounds; ++r) out.push_back(heat_texels * 8);
-        out.push_back(texels * 8);
-        return out;
-    }
-    case Pass::blur: return {texels * 8, texels * 8};
-    case Pass::wall_indirect: return {texels * 4 * 8};
-    case Pass::lit: return {texels * 4};
-    default: break; // rows added at run time: no copy baseline
-    }
-    return {};
-}
-
-double Renderer::time_copy_dispatches(const std::vector<std::uint64_t>& bytes_written, int repeats) {
-    if (bytes_written.empty() || queries_.empty()) return 0.0;
-    const std::uint64_t max_bytes = *std::max_element(bytes_written.begin(), bytes_written.end());
-    // Copy texels laid out as rows of 1024 (the kernel needs a 2D grid).
-    constexpr int row = 1024;
-    gpu::BufferDesc desc;
-    desc.size = ((max_bytes + 8 * row - 1) / (8 * row)) * (8 * row);
-    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-    desc.name = "copy src";
-    gpu::Buffer src = device_.create_buffer(desc);
-    desc.name = "copy dst";
-    gpu::Buffer dst = device_.create_buffer(desc);
-    gpu::BufferView src_view = device_.create_buffer_view(src, VK_FORMAT_R16G16B16A16_SFLOAT);
-    auto queries = device_.create_timestamp_queries(1, "copy");
-    if (!queries) return 0.0;
-    const auto kinds = field_kinds<NoParams>();
-    const auto& pipeline = pipelines_->get(nullptr, "gi_copy.comp", kinds, block_h_, group_x_, group_y_, false);
-    std::vector<double> samples;
-    for (int rep = 0; rep < repeats + 1; ++rep) { // the first run warms up
-        gpu::CommandList cmd = device_.begin("copy baseline");
-        cmd.fill_buffer(src, 0x3C003C00u); // 1.0 halves
-        cmd.barrier_transfer_to_compute();
-        queries->reset(cmd);
-        const std::uint32_t region = queries->begin(cmd, "copy");
-        for (std::uint64_t bytes : bytes_written) {
-            const int height = int((bytes / 8 + row - 1) / row);
-            cmd.bind(pipeline);
-            cmd.push_descriptors(gpu::DescriptorWrites().uniform_texel_buffer(0, src_view).storage_buffer(1, dst));
-            GiPassParams p{};
-            p.size = glm::ivec4(row, height, row, 1);
-            cmd.push_constants(p);
-            dispatch_blocks(cmd, row, height);
-            cmd.barrier_compute_to_compute();
-        }
-        queries->end(cmd, region);
-        device_.submit(std::move(cmd));
-        const auto result = queries->resolve();
-        if (rep > 0) samples.push_back(double(result.regions[0].duration_ns) * 1e-6);
-    }
-    std::sort(samples.begin(), samples.end());
-    return samples[samples.size() / 2];
 }
 
 } // namespace lantern::gi::vk

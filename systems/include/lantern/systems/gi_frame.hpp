@@ -14,9 +14,9 @@
 
 #include "lantern/components/components.hpp"
 #include "lantern/ecs/schedule.hpp"
+#include "lantern/gi/backend.hpp"
 #include "lantern/gi/frame_inputs.hpp"
 #include "lantern/gi/pass_table.hpp"
-#include "lantern/systems/gi_backend.hpp"
 #include "lantern/systems/streaming.hpp"
 
 #include <array>
@@ -70,7 +70,7 @@ struct FrameReport {
     gi::PassSet ran;
     std::array<std::string, gi::pass_count> reason;
     std::optional<gi::GiWindow> window;
-    std::vector<FrameTimes> completed; // GPU times of earlier frames that finished since
+    std::vector<gi::FrameTimes> completed; // GPU times of earlier frames that finished since
 };
 
 struct GiFrameOptions {
@@ -87,7 +87,7 @@ class GiFrame {
     // `source` gives the walls; `backend` runs the passes. Registers the resources and the
     // GI systems in the world and schedule.
     GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const WorldSource> source,
-            std::unique_ptr<GiBackend> backend, GiConfig config, GiFrameOptions options = {});
+            std::unique_ptr<gi::Backend> backend, GiConfig config, GiFrameOptions options = {});
     ~GiFrame();
 
     // Game systems go here (before the first step).
@@ -95,7 +95,7 @@ class GiFrame {
     ecs::World& world() { return world_; }
     // The world resource Streaming (registered by the constructor, removed by the destructor).
     Streaming& streaming() { return world_.resource<Streaming>(); }
-    GiBackend& backend() { return *backend_; }
+    gi::Backend& backend() { return *backend_; }
     GiConfig& config() { return world_.resource<GiConfig>(); }
 
     // Loads the walls the camera's first window needs and waits for them (start-up).
@@ -111,7 +111,7 @@ class GiFrame {
 
     ecs::World& world_;
     jobs::JobSystem& jobs_;
-    std::unique_ptr<GiBackend> backend_;
+    std::unique_ptr<gi::Backend> backend_;
     ecs::Schedule schedule_;
     std::uint64_t frame_ = 0;
     std::uint32_t gpu_lane_ = 0;

@@ -1,23 +1,23 @@
-// GiBackend on the Vulkan renderer: one submission per frame that has work, at most two in
+// Backend on the Vulkan renderer: one submission per frame that has work, at most two in
 // flight, timestamps read back from earlier frames without stalling.
-#include "lantern/gi/vulkan/renderer.hpp"
-#include "lantern/profile/profiler.hpp"
-#include "lantern/systems/gi_backend.hpp"
+#include "lantern/gi/backend.hpp"
 
-namespace lantern::systems {
+#include "lantern/gi/vulkan/renderer.hpp"
+
+namespace lantern::gi {
 namespace {
 
-using gi::vk::Tex;
+using vk::Tex;
 
 constexpr std::uint64_t frames_in_flight = 2;
 
-class VulkanBackend final : public GiBackend {
+class VulkanBackend final : public Backend {
   public:
-    explicit VulkanBackend(gi::vk::Renderer& r) : renderer_(r) {}
+    explicit VulkanBackend(vk::Renderer& r) : renderer_(r) {}
 
     std::string name() const override { return renderer_.device().name(); }
 
-    Result<void> execute(std::uint64_t frame, const gi::FrameInputs& in, const gi::PassPlan& plan, gi::PassSet run,
+    Result<void> execute(std::uint64_t frame, const FrameInputs& in, const PassPlan& plan, PassSet run,
                          const WallUpdate& walls) override {
         gpu::Device& device = renderer_.device();
         // Throttle: wait for the submission two frames back before recording a third.
@@ -38,7 +38,7 @@ class VulkanBackend final : public GiBackend {
         else
             renderer_.update_walls(cmd, in.walls, walls.ranges);
         uploaded_walls_ = true;
-        if (run.has(gi::Pass::direct) || run.has(gi::Pass::directional)) renderer_.upload_lights(cmd, in);
+        if (run.has(Pass::direct) || run.has(Pass::directional)) renderer_.upload_lights(cmd, in);
         renderer_.record_plan(cmd, in, plan, run);
         device.submit(std::move(cmd));
         return {};
@@ -46,31 +46,31 @@ class VulkanBackend final : public GiBackend {
 
     std::vector<FrameTimes> completed_times() override {
         std::vector<FrameTimes> out;
-        for (const gi::vk::FrameTimings& f : renderer_.completed_timings()) {
+        for (const vk::FrameTimings& f : renderer_.completed_timings()) {
             FrameTimes t{f.frame, {}};
-            for (const gi::vk::PassTiming& p : f.passes)
+            for (const vk::PassTiming& p : f.passes)
                 t.passes.push_back({p.pass, p.gpu_ms, p.region.cpu_begin_ns, p.region.cpu_end_ns});
             out.push_back(std::move(t));
         }
         return out;
     }
 
-    std::optional<gi::Texture> read(const std::string& name) override {
-        const std::optional<Tex> t = gi::texture_by_name(name);
-        if (!t || gi::texture_row(*t).internal || !renderer_.has(*t)) return std::nullopt;
+    std::optional<Texture> read(const std::string& name) override {
+        const std::optional<Tex> t = texture_by_name(name);
+        if (!t || texture_row(*t).internal || !renderer_.has(*t)) return std::nullopt;
         return renderer_.read_back(*t);
     }
 
-    std::optional<gi::Image> read_lit() override {
+    std::optional<Image> read_lit() override {
         if (!renderer_.has(Tex::lit)) return std::nullopt;
         const glm::ivec2 size = renderer_.size(Tex::lit);
-        return gi::Image{size.x, size.y, renderer_.read_back_lit_rgb()};
+        return Image{size.x, size.y, renderer_.read_back_lit_rgb()};
     }
 
     std::vector<std::string> texture_names() const override {
         std::vector<std::string> out;
-        for (int t = 0; t < gi::registered_texture_count(); ++t) {
-            const gi::TextureRow& row = gi::texture_row(Tex(t));
+        for (int t = 0; t < registered_texture_count(); ++t) {
+            const TextureRow& row = texture_row(Tex(t));
             if (!row.internal && renderer_.has(row.id)) out.emplace_back(row.name);
         }
         return out;
@@ -79,14 +79,14 @@ class VulkanBackend final : public GiBackend {
     void wait_idle() override { renderer_.device().wait_idle(); }
 
   private:
-    gi::vk::Renderer& renderer_;
+    vk::Renderer& renderer_;
     bool uploaded_walls_ = false;
 };
 
 } // namespace
 
-std::unique_ptr<GiBackend> make_vulkan_backend(gi::vk::Renderer& renderer) {
+std::unique_ptr<Backend> make_vulkan_backend(vk::Renderer& renderer) {
     return std::make_unique<VulkanBackend>(renderer);
 }
 
-} // namespace lantern::systems
+} // namespace lantern::gi
