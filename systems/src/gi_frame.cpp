@@ -35,6 +35,14 @@ std::uint64_t hash_vector(Hasher h, const std::vector<T>& v) {
     return h.value();
 }
 
+// out = prefix + why, assigned only when it differs (an unchanged frame allocates nothing).
+void set_reason(std::string& out, std::string_view prefix, std::string_view why) {
+    if (out.size() == prefix.size() + why.size() && std::string_view(out).starts_with(prefix) &&
+        std::string_view(out).ends_with(why))
+        return;
+    out.assign(prefix).append(why);
+}
+
 struct LightGatherState {
     std::uint64_t window_hash = ~0ull;
     std::unordered_set<std::uint64_t> kept; // entities kept last time (hysteresis)
@@ -226,9 +234,9 @@ void GiFrame::add_systems() {
         const GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
         for (int p = 0; p < gi::registered_pass_count(); ++p) {
             if (!f.plan.run.has(gi::Pass(p))) {
-                f.reason[std::size_t(p)] = "not needed: " + std::string(f.plan.reason[p]);
+                set_reason(f.reason[std::size_t(p)], "not needed: ", f.plan.reason[p]);
             } else if (cache && cache->keys[std::size_t(p)] == f.keys[std::size_t(p)]) {
-                f.reason[std::size_t(p)] = "cache hit";
+                set_reason(f.reason[std::size_t(p)], "cache hit", {});
             } else {
                 f.run.add(gi::Pass(p));
                 f.reason[std::size_t(p)].clear();

@@ -94,7 +94,9 @@ void Renderer::ensure_texture(Tex t, TexFormat format, int width, int height, bo
     if (rgba8) g.view_u32 = device_.create_buffer_view(g.buffer, VK_FORMAT_R32_UINT, 0, VK_WHOLE_SIZE, tex_name(t));
 }
 
-void Renderer::drop_texture(Tex t) { textures_[int(t)] = GpuTexture{}; }
+void Renderer::drop_texture(Tex t) {
+    if (textures_[int(t)].buffer) textures_[int(t)] = GpuTexture{};
+}
 
 Result<void> Renderer::prepare(const FrameInputs& in, const PassPlan& plan) {
     const GiWindow& w = in.window;
