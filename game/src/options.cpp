@@ -1,5 +1,6 @@
 #include "lantern/game/options.hpp"
 
+#include "lantern/core/file.hpp"
 #include "lantern/scene/loader.hpp"
 
 #include <charconv>
@@ -94,6 +95,7 @@ Result<GameOptions> parse_options(int argc, const char* const* argv, bool* help)
     scene::Scene overrides;
     overrides.gi = o.gi;
     bool world_given = false;
+    bool out_given = false;
     if (help) *help = false;
     for (int i = 1; i < argc; ++i) {
         const std::string_view a = argv[i];
@@ -148,6 +150,7 @@ Result<GameOptions> parse_options(int argc, const char* const* argv, bool* help)
             auto v = value("--out");
             if (!v || v->empty()) return need("--out");
             o.out_dir = *v;
+            out_given = true;
         } else if (a == "--screenshots") {
             auto v = value("--screenshots");
             if (!v) return need("--screenshots");
@@ -199,6 +202,12 @@ Result<GameOptions> parse_options(int argc, const char* const* argv, bool* help)
         }
     }
     o.gi = overrides.gi;
+    // Outputs are checked before the game starts (a folder, FIFO or device named as a file,
+    // a file named as the output folder): one line, exit 2, nothing written.
+    if (out_given)
+        if (auto ok = check_output_folder(o.out_dir); !ok) return Error{"lantern: --out " + ok.error().message, 2};
+    if (!o.status_file.empty())
+        if (auto ok = check_output_file(o.status_file); !ok) return Error{"lantern: --status-file " + ok.error().message, 2};
     return o;
 }
 

@@ -448,7 +448,7 @@ Result<void> write_save(const std::string& path, const SaveState& state) {
 }
 
 Result<SaveState> read_save(const std::string& path) {
-    auto text = read_text_file(path);
+    auto text = read_text_file(path, max_save_file_bytes);
     if (!text) return text.error();
     return parse_save(*text, path);
 }

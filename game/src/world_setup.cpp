@@ -98,17 +98,26 @@ const char* world_kind_name(WorldKind kind) {
 }
 
 glm::ivec2 find_open_tile(const systems::WorldSource& source, glm::ivec2 from, int clearance, int max_radius) {
+    // Ring by ring (the square's rim at Chebyshev distance r), the closest open tile of the
+    // first ring that has one; ties go to the first in row-major order. Only the rim is
+    // visited: O(r) per ring, linear in the area scanned.
     for (int r = 0; r <= max_radius; ++r) {
         std::optional<glm::ivec2> best;
         float best_d = 0.0f;
-        for (int dz = -r; dz <= r; ++dz)
-            for (int dx = -r; dx <= r; ++dx) {
-                if (std::max(std::abs(dx), std::abs(dz)) != r) continue; // the square's rim only
-                const glm::ivec2 t = from + glm::ivec2(dx, dz);
-                if (!open_around(source, t, clearance)) continue;
-                const float d = float(dx * dx + dz * dz);
-                if (!best || d < best_d) best = t, best_d = d;
+        auto consider = [&](int dx, int dz) {
+            const glm::ivec2 t = from + glm::ivec2(dx, dz);
+            if (!open_around(source, t, clearance)) return;
+            const float d = float(dx * dx + dz * dz);
+            if (!best || d < best_d) best = t, best_d = d;
+        };
+        for (int dz = -r; dz <= r; ++dz) {
+            if (dz == -r || dz == r) {
+                for (int dx = -r; dx <= r; ++dx) consider(dx, dz);
+            } else {
+                consider(-r, dz);
+                consider(r, dz);
             }
+        }
         if (best) return *best;
     }
     return from;

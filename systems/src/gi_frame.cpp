@@ -3,7 +3,6 @@
 #include "lantern/gi/pass_table.hpp"
 
 #include "lantern/core/hash.hpp"
-#include "lantern/core/log.hpp"
 #include "lantern/profile/profiler.hpp"
 
 #include <glm/geometric.hpp>
@@ -259,9 +258,9 @@ void GiFrame::add_systems() {
             const ecs::Entity cam = camera();
             GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
             if (!ok) {
-                LANTERN_LOG_ERROR("GI frame %llu: %s", static_cast<unsigned long long>(frame_), ok.error().message.c_str());
                 if (cache) cache->keys = {}; // retry everything next frame
                 convergence_.reset();
+                report_.error = ok.error();
             } else {
                 streaming.clear_dirty();
                 report_.ran = f.run;

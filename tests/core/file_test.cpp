@@ -7,6 +7,7 @@
 #include <csignal>
 #include <filesystem>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -61,4 +62,84 @@ TEST(File, KillDuringWriteLeavesOldOrNewContents) {
         EXPECT_TRUE(*contents == old_contents || *contents == new_contents)
             << "partial file of " << contents->size() << " bytes";
     }
+}
+
+// Hostile paths: a folder, a FIFO with no writer, a device that never ends, a file over
+// its limit. Each is refused with exit code 2 and one line naming the path, before a byte
+// is read and without blocking.
+TEST(File, ReadingRefusesWhatIsNotARegularFile) {
+    TempDir dir;
+    const std::string fifo = dir.file("pipe");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& path : {dir.path().string(), fifo, std::string("/dev/zero"), std::string("/dev/null")}) {
+        auto r = lantern::read_text_file(path, lantern::max_scene_file_bytes);
+        ASSERT_FALSE(r.ok()) << path;
+        EXPECT_EQ(r.error().exit_code, 2) << path;
+        EXPECT_NE(r.error().message.find(path + ": is "), std::string::npos) << r.error().message;
+        EXPECT_NE(r.error().message.find("not a regular file"), std::string::npos) << r.error().message;
+        EXPECT_EQ(r.error().message.find('\n'), std::string::npos);
+    }
+}
+
+TEST(File, ReadingRefusesAFileOverItsLimit) {
+    TempDir dir;
+    const std::string path = dir.file("big.json");
+    ASSERT_TRUE(lantern::write_file_atomic(path, std::string(1001, 'x')).ok());
+    auto r = lantern::read_text_file(path, 1000);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().exit_code, 2);
+    EXPECT_NE(r.error().message.find("1001 bytes, over the limit of 1000 bytes"), std::string::npos) << r.error().message;
+    auto fits = lantern::read_text_file(path, 1001);
+    ASSERT_TRUE(fits.ok());
+    EXPECT_EQ(fits->size(), 1001u);
+}
+
+TEST(File, OutputsMustBeRegularFilesInAWritableFolder) {
+    TempDir dir;
+    const std::string fifo = dir.file("pipe");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_TRUE(lantern::check_output_file(dir.file("new.png")).ok());
+    for (const std::string& bad : {dir.path().string(), fifo, std::string("/dev/null"), dir.file("no/such/out.png")}) {
+        auto r = lantern::check_output_file(bad);
+        ASSERT_FALSE(r.ok()) << bad;
+        EXPECT_EQ(r.error().exit_code, 2);
+    }
+    // The atomic writer refuses them too, and leaves the FIFO a FIFO.
+    EXPECT_FALSE(lantern::write_file_atomic(fifo, std::string("x")).ok());
+    EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+    EXPECT_FALSE(lantern::write_file_atomic(dir.path().string(), std::string("x")).ok());
+}
+
+TEST(File, StagedFolderAppearsWholeOrNotAtAll) {
+    TempDir dir;
+    const std::string target = dir.file("dump");
+    {
+        auto staged = lantern::StagedFolder::create(target);
+        ASSERT_TRUE(staged.ok()) << staged.error().message;
+        ASSERT_TRUE(lantern::write_file_atomic(staged->file("a.pfm"), std::string("a")).ok());
+        EXPECT_FALSE(std::filesystem::exists(target)); // nothing before commit
+    } // dropped: nothing left, not even the staging folder
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+    auto staged = lantern::StagedFolder::create(target);
+    ASSERT_TRUE(staged.ok());
+    ASSERT_TRUE(lantern::write_file_atomic(staged->file("a.pfm"), std::string("a")).ok());
+    ASSERT_TRUE(lantern::write_file_atomic(staged->file("b.pfm"), std::string("b")).ok());
+    ASSERT_TRUE(staged->commit().ok());
+    EXPECT_EQ(*lantern::read_text_file(target + "/b.pfm"), "b");
+    // Into an existing folder: the files are moved in, other files stay.
+    ASSERT_TRUE(lantern::write_file_atomic(target + "/keep.txt", std::string("k")).ok());
+    auto again = lantern::StagedFolder::create(target);
+    ASSERT_TRUE(again.ok());
+    ASSERT_TRUE(lantern::write_file_atomic(again->file("a.pfm"), std::string("new")).ok());
+    ASSERT_TRUE(again->commit().ok());
+    EXPECT_EQ(*lantern::read_text_file(target + "/a.pfm"), "new");
+    EXPECT_EQ(*lantern::read_text_file(target + "/keep.txt"), "k");
+    int entries = 0;
+    for (auto& e : std::filesystem::directory_iterator(dir.path())) entries += e.path().filename().string()[0] == '.';
+    EXPECT_EQ(entries, 0) << "a staging folder was left behind";
+    // Missing parents are created; a target under a file, or a file, is refused before
+    // anything is created.
+    EXPECT_TRUE(lantern::StagedFolder::create(dir.file("new/parents/dump")).ok());
+    EXPECT_FALSE(lantern::StagedFolder::create(target + "/keep.txt").ok());
+    EXPECT_FALSE(lantern::StagedFolder::create(target + "/keep.txt/dump").ok());
 }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <set>
 #include <string>
 
@@ -31,4 +33,33 @@ TEST(Hasher, FloatBitPatterns) {
 TEST(Hasher, KnownValueIsStableAcrossBuilds) {
     // Cache keys are written to disk by later tools: the hash must not drift silently.
     EXPECT_EQ(Hasher(0).add_u64(0).value(), lantern::mix64(lantern::mix64(0 ^ 0x9e3779b97f4a7c15ull)));
+}
+
+// Structs with padding cannot be hashed as bytes (a static_assert in Hasher::add); the trait
+// says which can.
+namespace {
+struct Padded {
+    std::uint8_t a;
+    std::uint32_t b;
+};
+struct Packed {
+    std::uint32_t a, b;
+};
+struct Floats {
+    float x, y;
+};
+} // namespace
+static_assert(!lantern::hash_as_bytes<Padded>, "padding bytes would enter the hash");
+static_assert(lantern::hash_as_bytes<Packed>);
+static_assert(!lantern::hash_as_bytes<Floats>, "float aggregates opt in explicitly");
+static_assert(lantern::hash_as_bytes<float> && lantern::hash_as_bytes<std::uint16_t>);
+
+TEST(Hash, PaddedStructsAreHashedFieldByField) {
+    // Two equal values whose padding bytes differ give the same key when hashed by field.
+    Padded a{}, b{};
+    std::memset(&a, 0x00, sizeof a);
+    std::memset(&b, 0xff, sizeof b);
+    a.a = b.a = 7;
+    a.b = b.b = 9;
+    EXPECT_EQ(lantern::Hasher().add(a.a).add(a.b).value(), lantern::Hasher().add(b.a).add(b.b).value());
 }

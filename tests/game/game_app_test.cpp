@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <glm/geometric.hpp>
 
 #include <chrono>
@@ -389,7 +391,13 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--set", "gi.resolution=99"}, "gi.resolution"},
         {{"--palette", "neon"}, "unknown palette 'neon'"},
         {{"--bogus"}, "unknown argument '--bogus'"},
+        // Paths that are not regular files: refused before they are read or block.
+        {{"--map", dir.path().string()}, "is a folder, not a regular file"},
+        {{"--map", dir.file("pipe")}, "is a FIFO, not a regular file"},
+        {{"--load", "/dev/zero"}, "is a character device, not a regular file"},
+        {{"--status-file", dir.path().string()}, "--status-file " + dir.path().string() + ": is a folder"},
     };
+    ASSERT_EQ(::mkfifo(dir.file("pipe").c_str(), 0600), 0);
     for (const Case& c : cases) {
         std::vector<std::string> args = c.args;
         for (const char* a : {"--headless", "--frames", "5", "--out"}) args.emplace_back(a);
@@ -402,4 +410,10 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         EXPECT_NE(log.find(c.expect), std::string::npos) << log;
         EXPECT_FALSE(std::filesystem::exists(out)) << "output written despite the error";
     }
+    // --out naming a file.
+    const int status = run_game({"--headless", "--frames", "5", "--out", dir.file("bad.map")}, dir.file("log.txt"));
+    EXPECT_EQ(status, 2);
+    EXPECT_NE(test::read_file(dir.file("log.txt")).find("--out " + dir.file("bad.map") + ": is a regular file, not a folder"),
+              std::string::npos)
+        << test::read_file(dir.file("log.txt"));
 }

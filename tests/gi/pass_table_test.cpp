@@ -253,6 +253,35 @@ TEST(PassTable, AllocationFollowsThePlannedRowsWrites) {
     }
 }
 
+// Memory is estimated before it is allocated: the per-texel figures docs/gi.md quotes, the
+// budget's edge on both storages, and one line naming the need and the limit.
+TEST(PassTable, TextureBudget) {
+    scene::Scene s = every_pass_scene();
+    s.gi.heat_scale = scene::HeatScale::full;
+    auto window = compute_window(s.view, s.gi.padding, s.gi.resolution);
+    ASSERT_TRUE(window);
+    FrameInputs in = gather_frame_inputs(s, *window);
+    const PassPlan plan = plan_passes(in, true);
+    ASSERT_EQ(plan.run.bits, (1u << builtin_pass_count) - 1) << "every pass runs";
+    const std::uint64_t texels = std::uint64_t(in.window.width) * std::uint64_t(in.window.height);
+    ASSERT_EQ(in.window.width % 4, 0); // no row padding in the per-texel figure
+    EXPECT_EQ(texture_bytes(in, plan, TextureStorage::gpu), 166 * texels);
+    EXPECT_EQ(texture_bytes(in, plan, TextureStorage::reference), 336 * texels);
+    EXPECT_TRUE(check_texture_budget(in, plan, TextureStorage::gpu).ok());
+    in.window.width = in.window.height = 4000; // 4000^2 x 166 bytes: 2533 MiB
+    auto over = check_texture_budget(in, plan, TextureStorage::gpu);
+    ASSERT_FALSE(over.ok());
+    EXPECT_EQ(over.error().exit_code, 2);
+    EXPECT_EQ(over.error().message,
+              "GI window of 4000 x 4000 texels needs 2533 MiB of GPU textures, over the budget of 2048 MiB (docs/gi.md, "
+              "\"Memory budget\"); lower gi.resolution or gi.padding");
+    in.window.width = in.window.height = 3500;
+    EXPECT_TRUE(check_texture_budget(in, plan, TextureStorage::gpu).ok());
+    EXPECT_FALSE(check_texture_budget(in, plan, TextureStorage::reference).ok());
+    in.window.width = in.window.height = 2500;
+    EXPECT_TRUE(check_texture_budget(in, plan, TextureStorage::reference).ok());
+}
+
 TEST(PassTable, TexturesByName) {
     for (int t = 0; t < registered_texture_count(); ++t) EXPECT_EQ(texture_by_name(tex_name(Tex(t))), Tex(t));
     EXPECT_FALSE(texture_by_name("no such texture"));

@@ -297,8 +297,16 @@ TEST(GiStability, WindowBeyondTheDeviceLimitIsAClearError) {
     auto w = compute_window(s.view, s.gi.padding, 1, nullptr, 1 << 20);
     ASSERT_TRUE(w);
     FrameInputs in = gather_frame_inputs(s, *w);
-    auto result = run_vulkan_frame(*r, in, plan_passes(in, false));
+    // Conduction alone (one byte per texel) stays within the memory budget, so the device's
+    // own limit is what refuses it: a runtime failure (exit 1) naming the device.
+    auto result = run_vulkan_frame(*r, in, plan_passes(in, false, Pass::conduction));
     ASSERT_FALSE(result.ok());
     EXPECT_NE(result.error().message.find("does not fit the device"), std::string::npos) << result.error().message;
+    EXPECT_EQ(result.error().exit_code, 1);
+    // The whole pipeline is over the memory budget first: bad input (exit 2), nothing allocated.
+    auto whole = run_vulkan_frame(*r, in, plan_passes(in, false));
+    ASSERT_FALSE(whole.ok());
+    EXPECT_NE(whole.error().message.find("over the budget"), std::string::npos) << whole.error().message;
+    EXPECT_EQ(whole.error().exit_code, 2);
     // And a window just inside it still works (allocation only; not rendered here).
 }

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
@@ -104,6 +106,68 @@ TEST(RenderCli, BadScenesExitTwoAndWriteNothing) {
     auto s = run((dir.path() / "ok.json").string() + " --backend cpu --set gi.resolution=99");
     EXPECT_EQ(s.status, 2);
     EXPECT_NE(s.output.find("--set gi.resolution"), std::string::npos) << s.output;
+}
+
+// Every path that is not a regular file (a folder, a FIFO, a device), and every output that
+// cannot be written, is refused with exit 2 and one line before any work: no wait on a
+// FIFO, no endless read of /dev/zero, nothing written, no staging or .tmp files left.
+TEST(RenderCli, HostilePathsAreRefusedBeforeWork) {
+    TempDir dir;
+    write(dir.path() / "ok.json", small_scene);
+    const std::string ok = (dir.path() / "ok.json").string();
+    const fs::path fifo = dir.path() / "pipe";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    write(dir.path() / "fifo_map.json",
+          R"({"lantern_scene": 1, "world": {"map": "pipe"}, "view": {"center": [1,1], "size": [4,4]}})");
+    const fs::path out = dir.path() / "out";
+    fs::create_directories(out);
+    struct Case {
+        std::string args;
+        const char* expect;
+    };
+    const std::vector<Case> cases = {
+        {dir.path().string(), "is a folder, not a regular file"},
+        {fifo.string(), "is a FIFO, not a regular file"},
+        {"/dev/zero", "is a character device, not a regular file"},
+        {(dir.path() / "fifo_map.json").string(), "is a FIFO, not a regular file"},
+        {ok + " --out " + out.string(), "is a folder, not a regular file"},
+        {ok + " --timings " + fifo.string(), "is a FIFO, not a regular file"},
+        {ok + " --out /dev/null", "is a character device"},
+        {ok + " --dump " + ok, "not a folder"},
+        {ok + " --out " + (out / "no" / "such" / "img.png").string(), "does not exist"},
+        {ok + " --dump " + (out / "d").string() + " --out " + out.string(), "is a folder"},
+    };
+    for (const Case& c : cases) {
+        auto r = run(c.args + " --backend cpu --quiet");
+        EXPECT_EQ(r.status, 2) << c.args << ": " << r.output;
+        EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one clear message: " << r.output;
+        EXPECT_EQ(file_count(out), 0u) << c.args << " wrote output";
+    }
+    for (const auto& e : fs::directory_iterator(dir.path()))
+        EXPECT_NE(e.path().filename().string()[0], '.') << "left behind: " << e.path();
+    EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+// A frame over the GI memory budget (docs/gi.md) is refused before anything is allocated,
+// on both backends, and the run leaves nothing behind.
+TEST(RenderCli, AFrameOverTheMemoryBudgetFailsAndWritesNothing) {
+    TempDir dir;
+    write(dir.path() / "huge.json", R"({"lantern_scene": 1, "world": {"rows": ["."]},
+        "view": {"center": [0, 0], "size": [1800, 1800]}, "gi": {"resolution": 4, "padding": 1.25}})");
+    const fs::path out = dir.path() / "out";
+    fs::create_directories(out);
+    for (const char* backend : {"cpu", "vulkan"}) {
+        auto r = run((dir.path() / "huge.json").string() + " --quiet --backend " + backend + " --timings " +
+                     (out / "t.json").string() + " --dump " + (out / "dump").string());
+        if (std::string(backend) == "vulkan" && r.output.find("try --backend cpu") != std::string::npos) continue;
+        EXPECT_EQ(r.status, 2) << backend << ": " << r.output;
+        EXPECT_NE(r.output.find("over the budget of 2048 MiB"), std::string::npos) << backend << ": " << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one clear message: " << r.output;
+        EXPECT_EQ(file_count(out), 0u) << backend;
+        EXPECT_FALSE(fs::exists(out / "dump")) << backend;
+    }
+    for (const auto& e : fs::directory_iterator(out)) ADD_FAILURE() << "left behind: " << e.path();
 }
 
 TEST(RenderCli, DumpTimingsAndImageOnTheCpuBackend) {

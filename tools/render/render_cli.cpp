@@ -96,6 +96,12 @@ std::optional<int> parse_args(int argc, char** argv, Options& o) {
     if (o.scene.empty()) return fail("no scene file given (see --help)", 2);
     if (o.backend != "vulkan" && o.backend != "cpu")
         return fail("--backend must be vulkan or cpu, not '" + o.backend + "'", 2);
+    // Outputs are checked before any work, so a bad one costs nothing and writes nothing.
+    for (const std::string* path : {&o.out, &o.timings})
+        if (!path->empty())
+            if (auto ok = check_output_file(*path); !ok) return fail(ok.error().message, 2);
+    if (!o.dump.empty())
+        if (auto ok = check_output_folder(o.dump); !ok) return fail(ok.error().message, 2);
     return std::nullopt;
 }
 
@@ -152,14 +158,17 @@ nlohmann::json timings_json(const Options& o, const std::string& device, const g
 
 Result<void> write_outputs(const Options& o, gi::Backend& backend, const nlohmann::json& timings) {
     if (!o.dump.empty()) {
-        if (auto ok = ensure_directory(o.dump); !ok) return ok;
+        // Every texture goes into a staging folder first; only a complete set is moved into
+        // place (core/file.hpp: StagedFolder), so a failure leaves no partial dump.
+        auto staged = StagedFolder::create(o.dump);
+        if (!staged) return staged.error();
         for (const std::string& name : backend.texture_names()) {
             auto texture = backend.read(name);
             if (!texture) continue;
             std::string error;
-            const std::string path = (std::filesystem::path(o.dump) / (name + ".pfm")).string();
-            if (!gi::write_pfm(*texture, path, &error)) return make_error(error, 1);
+            if (!gi::write_pfm(*texture, staged->file(name + ".pfm"), &error)) return make_error(error, 1);
         }
+        if (auto ok = staged->commit(); !ok) return ok;
     }
     if (!o.out.empty()) {
         auto lit = backend.read_lit();
@@ -275,6 +284,7 @@ int render_main(int argc, char** argv) {
         profile::begin_frame();
         systems::FrameReport report = frame.step();
         profile::end_frame();
+        if (report.error) return fail(report.error->message, report.error->exit_code);
         records.push_back({report.frame, report.ran, report.reason, {}});
         times.insert(times.end(), report.completed.begin(), report.completed.end());
     }

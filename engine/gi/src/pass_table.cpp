@@ -288,6 +288,35 @@ TexSet textures_written(const FrameInputs& in, const PassPlan& plan) {
     return set;
 }
 
+std::uint64_t texture_bytes(const FrameInputs& in, const PassPlan& plan, TextureStorage storage) {
+    const TexSet written = textures_written(in, plan);
+    std::uint64_t total = 0;
+    for (int t = 0; t < registered_texture_count(); ++t) {
+        if (!written.has(Tex(t))) continue;
+        const TextureRow& row = texture_row(Tex(t));
+        const glm::ivec2 size = texture_size(Tex(t), in);
+        const std::uint64_t w = std::uint64_t(std::max(size.x, 0)), h = std::uint64_t(std::max(size.y, 0));
+        if (storage == TextureStorage::gpu) {
+            const std::uint64_t texel = row.words32 ? 4 : std::uint64_t(bytes_per_texel(row.format));
+            total += ((w + 3) & ~std::uint64_t(3)) * h * texel;
+        } else {
+            total += w * h * std::uint64_t(channel_count(row.format)) * sizeof(float);
+        }
+    }
+    return total;
+}
+
+Result<void> check_texture_budget(const FrameInputs& in, const PassPlan& plan, TextureStorage storage) {
+    const std::uint64_t need = texture_bytes(in, plan, storage);
+    if (need <= max_gi_texture_bytes) return {};
+    const auto mib = [](std::uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20) + " MiB"; };
+    return make_error("GI window of " + std::to_string(in.window.width) + " x " + std::to_string(in.window.height) +
+                          " texels needs " + mib(need) + " of " +
+                          (storage == TextureStorage::gpu ? "GPU" : "reference") + " textures, over the budget of " +
+                          mib(max_gi_texture_bytes) + " (docs/gi.md, \"Memory budget\"); lower gi.resolution or gi.padding",
+                      2);
+}
+
 InputKeys input_keys_of(const FrameInputs& in) {
     InputKeys k;
     k.window = hash_window(in.window);

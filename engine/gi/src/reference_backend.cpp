@@ -18,6 +18,7 @@ class ReferenceBackend final : public Backend {
 
     Result<void> execute(std::uint64_t frame, const FrameInputs& in, const PassPlan& plan, PassSet run,
                          const WallUpdate&) override {
+        if (auto ok = check_texture_budget(in, plan, TextureStorage::reference); !ok) return ok;
         FrameTimes times{frame, {}};
         release_unwritten(in, plan, store_); // as the GPU backend releases them
         execute_reference(in, plan, run, options_, store_, [](void* user, Pass pass, std::int64_t start, std::int64_t end) {

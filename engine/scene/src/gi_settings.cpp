@@ -16,6 +16,8 @@ template <typename... F>
 struct Overloaded : F... {
     using F::operator()...;
 };
+template <typename... F>
+Overloaded(F...) -> Overloaded<F...>; // C++20 deduces this; clang 14 does not yet
 
 constexpr std::array<EnumName<HeatScale>, 3> heat_scale_names{{
     {"full", HeatScale::full},

@@ -324,7 +324,7 @@ ShadowProxy tree_proxy(glm::ivec2 tile) {
 Result<void> import_map(const MapSpec& spec, const std::string& scene_file,
                         const std::string& base_dir, Scene& scene) {
     const std::string path = (std::filesystem::path(base_dir) / spec.path).string();
-    auto text = read_text_file(path);
+    auto text = read_text_file(path, max_map_file_bytes);
     if (!text) return file_error(scene_file, {spec.position, "world.map", text.error().message});
     auto map = parse_moving_ai_map(*text, path, spec.options);
     if (!map) return map.error();
@@ -376,7 +376,7 @@ Result<Scene> parse_scene(std::string_view json_text, const std::string& file_na
 }
 
 Result<Scene> load_scene(const std::string& path) {
-    auto text = read_text_file(path);
+    auto text = read_text_file(path, max_scene_file_bytes);
     if (!text) return make_error(text.error().message); // exit code 2: a bad input path
     return parse_scene(*text, path, std::filesystem::path(path).parent_path().string());
 }

@@ -192,7 +192,7 @@ Result<ImportedMap> parse_moving_ai_map(std::string_view text, const std::string
 }
 
 Result<ImportedMap> import_moving_ai_map(const std::string& path, const MapImportOptions& options) {
-    auto text = read_text_file(path);
+    auto text = read_text_file(path, max_map_file_bytes);
     if (!text) return make_error(text.error().message); // exit code 2: a bad input path
     return parse_moving_ai_map(*text, path, options);
 }

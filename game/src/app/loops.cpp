@@ -2,11 +2,22 @@
 #include "app/game.hpp"
 
 namespace lantern::game::app {
+namespace {
+
+// A frame the GI backend refused (the window does not fit the device, too many lights):
+// the game goes on (every pass reruns next frame) and says why.
+void report_refused(const systems::FrameReport& report) {
+    if (report.error)
+        LANTERN_LOG_ERROR("GI frame %llu: %s", static_cast<unsigned long long>(report.frame),
+                          report.error->message.c_str());
+}
+
+} // namespace
 
 int Game::run_window() {
     while (!quit_) {
         profile::begin_frame();
-        session_->frame->step();
+        report_refused(session_->frame->step());
         profile::end_frame();
         ++window_frames_;
         if (save_requested_) {
@@ -49,7 +60,7 @@ int Game::run_headless() {
     for (headless_frame_ = 0; headless_frame_ < frames; ++headless_frame_) {
         profile::begin_frame();
         const std::int64_t t0 = now_ns();
-        session_->frame->step();
+        report_refused(session_->frame->step());
         const std::int64_t t1 = now_ns();
         profile::end_frame();
         frame_ms.push_back(double(t1 - t0) * 1e-6);

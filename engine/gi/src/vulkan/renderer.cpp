@@ -99,6 +99,7 @@ void Renderer::drop_texture(Tex t) {
 }
 
 Result<void> Renderer::prepare(const FrameInputs& in, const PassPlan& plan) {
+    if (auto ok = check_texture_budget(in, plan, TextureStorage::gpu); !ok) return ok;
     const GiWindow& w = in.window;
     const auto& caps = device_.capabilities();
     const std::uint64_t texels = std::uint64_t(pitch_of(w.width)) * std::uint64_t(w.height);

@@ -71,6 +71,10 @@ struct FrameReport {
     std::array<std::string, gi::pass_count> reason;
     std::optional<gi::GiWindow> window;
     std::vector<gi::FrameTimes> completed; // GPU times of earlier frames that finished since
+    // The backend refused this frame (the window does not fit the device, too many lights
+    // for one pass): nothing ran, every pass reruns next frame. Tools fail on it; the game
+    // logs it and goes on.
+    std::optional<Error> error;
 };
 
 struct GiFrameOptions {

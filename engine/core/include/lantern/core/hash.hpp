@@ -25,6 +25,15 @@ constexpr std::uint64_t mix64(std::uint64_t x) {
     return x;
 }
 
+// Types Hasher hashes as their bytes (add, add_span): those with unique object
+// representations (no padding bits, no floats) and arithmetic types. A struct with padding
+// would hash whatever its padding bytes hold, so keys of equal values could differ: hash
+// such a struct field by field. A float aggregate whose author has checked it has no
+// padding (a static_assert of its size beside it) may opt in:
+//   template <> inline constexpr bool lantern::hash_as_bytes<MyType> = true;
+template <typename T>
+inline constexpr bool hash_as_bytes = std::has_unique_object_representations_v<T> || std::is_arithmetic_v<T>;
+
 class Hasher {
   public:
     constexpr explicit Hasher(std::uint64_t seed = 0x6c616e7465726e00ull) : state_(seed) {}
@@ -56,11 +65,15 @@ class Hasher {
         } else if constexpr (std::is_same_v<T, double>) {
             return add_u64(std::bit_cast<std::uint64_t>(value));
         } else {
+            static_assert(hash_as_bytes<T>, "Hasher::add: T may have padding; hash it field by field, or opt in with "
+                                            "lantern::hash_as_bytes (core/hash.hpp)");
             return add_bytes(&value, sizeof(T));
         }
     }
     template <typename T>
     Hasher& add_span(std::span<const T> values) {
+        static_assert(hash_as_bytes<T>, "Hasher::add_span: T may have padding; hash it field by field, or opt in with "
+                                        "lantern::hash_as_bytes (core/hash.hpp)");
         add_u64(values.size());
         return add_bytes(values.data(), values.size_bytes());
     }

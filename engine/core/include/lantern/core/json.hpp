@@ -57,15 +57,16 @@ class Value {
         bool integer_literal = false;
     };
 
-    Value() = default; // null at 1:1
-    Value(std::nullptr_t, Position at) : position_(at) {}
+    // Defined after Member: the variant needs Member complete (clang checks that eagerly).
+    Value();                           // null at 1:1
+    Value(std::nullptr_t, Position at);
     template <std::same_as<bool> B> // not from pointers or integers
-    Value(B b, Position at) : data_(b), position_(at) {}
-    Value(Number n, Position at) : data_(n), position_(at) {}
-    Value(std::string s, Position at) : data_(std::move(s)), position_(at) {}
-    Value(const char* s, Position at) : data_(std::string(s)), position_(at) {}
-    Value(Array a, Position at) : data_(std::move(a)), position_(at) {}
-    Value(Object o, Position at) : data_(std::move(o)), position_(at) {}
+    Value(B b, Position at);
+    Value(Number n, Position at);
+    Value(std::string s, Position at);
+    Value(const char* s, Position at);
+    Value(Array a, Position at);
+    Value(Object o, Position at);
 
     Type type() const { return static_cast<Type>(data_.index()); }
     Position position() const { return position_; }
@@ -105,6 +106,16 @@ struct Member {
     Position key_position; // of the key's opening quote
     Value value;
 };
+
+inline Value::Value() = default;
+inline Value::Value(std::nullptr_t, Position at) : position_(at) {}
+template <std::same_as<bool> B>
+Value::Value(B b, Position at) : data_(b), position_(at) {}
+inline Value::Value(Number n, Position at) : data_(n), position_(at) {}
+inline Value::Value(std::string s, Position at) : data_(std::move(s)), position_(at) {}
+inline Value::Value(const char* s, Position at) : data_(std::string(s)), position_(at) {}
+inline Value::Value(Array a, Position at) : data_(std::move(a)), position_(at) {}
+inline Value::Value(Object o, Position at) : data_(std::move(o)), position_(at) {}
 
 // Deepest nesting of arrays and objects parse() accepts.
 inline constexpr int max_depth = 256;

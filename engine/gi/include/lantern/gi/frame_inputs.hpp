@@ -5,6 +5,7 @@
 // (std140 / std430-compatible: vec4 members only), hence alignas(16) and static_asserts.
 #pragma once
 
+#include "lantern/core/hash.hpp"
 #include "lantern/gi/window.hpp"
 #include "lantern/scene/scene.hpp"
 
@@ -119,3 +120,13 @@ bool sun_adds_light(glm::vec3 color, float intensity);
 FrameInputs gather_frame_inputs(const scene::Scene& scene, const GiWindow& window);
 
 } // namespace lantern::gi
+
+namespace lantern {
+// vec4 members only, sizes asserted above: no padding, so cache keys hash them as bytes.
+template <>
+inline constexpr bool hash_as_bytes<gi::GpuPointLight> = true;
+template <>
+inline constexpr bool hash_as_bytes<gi::GpuDirectionalLight> = true;
+template <>
+inline constexpr bool hash_as_bytes<gi::GpuShadowProxy> = true;
+} // namespace lantern

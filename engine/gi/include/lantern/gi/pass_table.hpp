@@ -230,6 +230,16 @@ Result<Pass> add_row(scene::GiMethod m, Pass after, PassRow row);
 // The textures the planned rows write: what a backend allocates (the others it releases).
 TexSet textures_written(const FrameInputs& in, const PassPlan& plan);
 
+// Memory is estimated before it is allocated: the bytes of the textures the planned rows
+// write, as the GPU stores them (8 bytes per rgba16f texel, pitch rounded up to 4) or as
+// the reference does (a float per channel), and a documented budget for each (docs/gi.md,
+// "Memory budget"). check_texture_budget refuses a frame over it with one line naming the
+// need and the limit (exit code 2) before a backend allocates anything.
+enum class TextureStorage : std::uint8_t { gpu, reference };
+inline constexpr std::uint64_t max_gi_texture_bytes = std::uint64_t(2) << 30; // 2 GiB, either storage
+std::uint64_t texture_bytes(const FrameInputs& in, const PassPlan& plan, TextureStorage storage);
+Result<void> check_texture_budget(const FrameInputs& in, const PassPlan& plan, TextureStorage storage);
+
 // The history of the converging rows between frames, kept by whoever keeps the cache keys
 // (the frame systems, a tool's frame loop). One per view.
 struct Convergence {
