@@ -21,9 +21,18 @@ if(LANTERN_ASSERTS)
 endif()
 
 if(LANTERN_SANITIZE STREQUAL "address")
-    set(_lantern_san -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+    # float-cast-overflow: a float converted to an int that cannot hold it (not in
+    # -fsanitize=undefined by default).
+    set(_lantern_san -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow
+                     -fno-omit-frame-pointer)
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+        # The clang build is also the fuzzing build: everything carries libFuzzer's coverage
+        # instrumentation, and tests/fuzz links its targets with -fsanitize=fuzzer.
+        list(APPEND _lantern_san -fsanitize=fuzzer-no-link)
+    endif()
 elseif(LANTERN_SANITIZE STREQUAL "undefined")
-    set(_lantern_san -fsanitize=undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+    set(_lantern_san -fsanitize=undefined,float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow
+                     -fno-omit-frame-pointer)
 elseif(LANTERN_SANITIZE STREQUAL "thread")
     set(_lantern_san -fsanitize=thread -fno-omit-frame-pointer)
 elseif(NOT LANTERN_SANITIZE STREQUAL "")

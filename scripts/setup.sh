@@ -5,6 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
     build-essential cmake ninja-build pkg-config git python3
+    clang libclang-rt-14-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
     glslang-tools glslang-dev spirv-tools

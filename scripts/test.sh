@@ -5,8 +5,10 @@
 #    after scripts/check-deps.py has proved that setup.sh installs every header, library and
 #    program the build uses. LANTERN_REQUIRE_GPU=1: setup.sh always installs lavapipe and
 #    Xvfb, so a GPU or window test that finds no Vulkan device or X server fails, never skips.
-# 2. The engine's CPU suites again under ASan+UBSan (build-asan/) and TSan (build-tsan/), with
-#    the Vulkan driver hidden: their GPU tests skip, and the summary line says how many.
+# 2. The engine's CPU suites again under ASan+UBSan built with clang (build-clang-asan/: the
+#    second compiler) and TSan built with GCC (build-tsan/), with the Vulkan driver hidden:
+#    their GPU tests skip, and the summary line says how many. Then the libFuzzer targets
+#    of the clang build run for LANTERN_FUZZ_SECONDS each (default 60; 0 skips them).
 #    Skip step 2 with LANTERN_TEST_SANITIZERS=0.
 # Each run ends with one summary line: tests passed, failed and skipped, with the reasons.
 #
@@ -44,10 +46,15 @@ if [ "${LANTERN_TEST_SANITIZERS:-1}" != "0" ]; then
         lantern_scene_tests lantern_gpu_reflect_tests lantern_gi_reference_tests lantern_gi_gpu_tests lantern_systems_tests
         lantern_transport_tests lantern_game_logic_tests"
     export VK_DRIVER_FILES=/nonexistent/lantern-sanitizer-run.json
-    echo "== build + test: ASan+UBSan (build-asan/, labels $labels)"
-    bash scripts/build.sh build-asan -DLANTERN_SANITIZE=address -DLANTERN_BUILD_BENCHMARKS=OFF
+    echo "== build + test: ASan+UBSan with clang (build-clang-asan/, labels $labels)"
+    LANTERN_BUILD_TARGETS="$LANTERN_BUILD_TARGETS lantern-fuzz-scene lantern-fuzz-map lantern-fuzz-save lantern-fuzz-set" \
+        CC=clang CXX=clang++ bash scripts/build.sh build-clang-asan -DLANTERN_SANITIZE=address -DLANTERN_BUILD_BENCHMARKS=OFF
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-        run_ctest "ASan+UBSan (GPU hidden)" build-asan -L "$labels"
+        run_ctest "ASan+UBSan, clang (GPU hidden)" build-clang-asan -L "$labels"
+    if [ "${LANTERN_FUZZ_SECONDS:-60}" != "0" ]; then
+        echo "== fuzz: each parser for ${LANTERN_FUZZ_SECONDS:-60} s (build-clang-asan/)"
+        bash scripts/fuzz.sh build-clang-asan "${LANTERN_FUZZ_SECONDS:-60}"
+    fi
     echo "== build + test: TSan (build-tsan/, labels $labels)"
     bash scripts/build.sh build-tsan -DLANTERN_SANITIZE=thread -DLANTERN_BUILD_BENCHMARKS=OFF
     TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \

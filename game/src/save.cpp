@@ -2,6 +2,7 @@
 
 #include "lantern/core/file.hpp"
 #include "lantern/core/json.hpp"
+#include "lantern/core/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -450,7 +451,14 @@ Result<void> write_save(const std::string& path, const SaveState& state) {
 Result<SaveState> read_save(const std::string& path) {
     auto text = read_text_file(path, max_save_file_bytes);
     if (!text) return text.error();
-    return parse_save(*text, path);
+    auto save = parse_save(*text, path);
+    if (!save) return save;
+    // The world file the save refers to must be there: say so naming the save and its key,
+    // before the game starts making the world.
+    if (save->world.kind != WorldKind::caves)
+        if (auto ok = check_input_file(save->world.path); !ok)
+            return make_error(printable(path + ": world.path: " + ok.error().message, 1024), 2);
+    return save;
 }
 
 void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player) {

@@ -285,6 +285,26 @@ TEST(Saves, MalformedSavesAreRejectedWithPositions) {
     EXPECT_NE(r.error().message.find("edits[0].rows[3]: expected '#' (wall) or '.' (floor)"), std::string::npos) << r.error().message;
 }
 
+// A save whose world file is gone (or is not a file) names the save and the key, on one
+// line, before the game makes the world.
+TEST(Saves, AMissingWorldFileNamesTheSaveAndTheKey) {
+    test::TempDir dir;
+    const std::string save = dir.file("s.json");
+    ASSERT_TRUE(write_file_atomic(save, std::string("{\"lantern_save\": 1, \"world\": {\"kind\": \"map\", \"path\": \"") +
+                                            dir.file("gone.map") + "\"}, \"player\": [1, 2]}"));
+    auto r = read_save(save);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().exit_code, 2);
+    EXPECT_EQ(r.error().message.rfind(save + ": world.path: " + dir.file("gone.map") + ": cannot open", 0), 0u)
+        << r.error().message;
+    ASSERT_TRUE(write_file_atomic(save, std::string("{\"lantern_save\": 1, \"world\": {\"kind\": \"scene\", \"path\": \"") +
+                                            dir.path().string() + "\\u0001\"}, \"player\": [1, 2]}"));
+    auto control = read_save(save);
+    ASSERT_FALSE(control);
+    EXPECT_NE(control.error().message.find("world.path: "), std::string::npos) << control.error().message;
+    EXPECT_NE(control.error().message.find("\\x01"), std::string::npos) << control.error().message;
+}
+
 TEST(Saves, KillDuringSaveLeavesThePreviousSaveLoadable) {
     // A large save (many edited chunks) written over and over by a child process that is
     // killed at random moments: the file must always read back as one whole save.

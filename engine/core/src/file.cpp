@@ -101,6 +101,14 @@ Result<std::string> read_text_file(const std::string& path, std::uint64_t max_by
     return std::string(bytes->begin(), bytes->end());
 }
 
+Result<void> check_input_file(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return io_error(path, "cannot open");
+    if (!S_ISREG(st.st_mode)) return not_regular(path, st.st_mode);
+    if (::access(path.c_str(), R_OK) != 0) return io_error(path, "cannot open");
+    return {};
+}
+
 Result<void> check_output_file(const std::string& path) {
     namespace fs = std::filesystem;
     if (path.empty()) return make_error("an output path is empty", 2);

@@ -1,5 +1,7 @@
 #include "json_reader.hpp"
 
+#include "lantern/core/text.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -55,19 +57,22 @@ std::string quote_char(char c) {
     return buffer;
 }
 
+std::string quote_char_at(std::string_view text, std::size_t at) {
+    std::uint32_t cp = 0;
+    const std::size_t n = utf8_char(text.substr(at), &cp);
+    if (n <= 1) return quote_char(text[at]);
+    char code[16];
+    std::snprintf(code, sizeof(code), "U+%04X", unsigned(cp));
+    return "'" + std::string(text.substr(at, n)) + "' (" + code + ")";
+}
+
 std::string format_number(double v) {
     char buffer[32];
     const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v);
     return std::string(buffer, result.ptr);
 }
 
-std::string shorten(std::string_view text) {
-    constexpr std::size_t max_bytes = 40;
-    if (text.size() <= max_bytes) return std::string(text);
-    std::size_t cut = max_bytes;
-    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut; // whole UTF-8
-    return std::string(text.substr(0, cut)) + "...";
-}
+std::string shorten(std::string_view text) { return printable(text, 40); }
 
 bool Range::contains(double v) const {
     if (std::isnan(v)) return false;

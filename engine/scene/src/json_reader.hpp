@@ -63,9 +63,13 @@ std::string format_number(double v);
 
 // A character of a file as messages quote it: 'x' when printable ASCII, else byte 0xNN.
 std::string quote_char(char c);
+// The character of `text` that starts at byte `at`: "'é' (U+00E9)" for a well-formed UTF-8
+// character, as quote_char for ASCII and for a byte that starts no character.
+std::string quote_char_at(std::string_view text, std::size_t at);
 
-// Text from a file as messages quote it: cut to 40 bytes plus "..." when longer, so that
-// hostile input cannot flood the terminal.
+// Text from a file as messages quote it: control characters and bytes that are not UTF-8
+// escaped (\x01), cut to 40 bytes plus "..." when longer, so that hostile input can
+// neither flood the terminal nor break the message's one line (core/text.hpp: printable).
 std::string shorten(std::string_view text);
 
 // "path[index]".

@@ -2,6 +2,7 @@
 
 #include "json_reader.hpp"
 #include "lantern/core/file.hpp"
+#include "lantern/core/text.hpp"
 #include "lantern/scene/loader.hpp"
 
 #include <algorithm>
@@ -33,15 +34,16 @@ class LineReader {
   public:
     explicit LineReader(std::string_view text) : text_(text) {}
 
-    // The next line without its line end, or false at the end of the text. Either way
-    // line_number() is then the number of that line (one past the last at the end).
+    // The next line without its line end (LF, CRLF or a lone CR), or false at the end of
+    // the text. Either way line_number() is then the number of that line (one past the
+    // last at the end).
     bool next(std::string_view& line) {
         ++line_number_;
         if (pos_ >= text_.size()) return false;
-        std::size_t end = std::min(text_.find('\n', pos_), text_.size());
+        const std::size_t end = std::min(text_.find_first_of("\r\n", pos_), text_.size());
         line = text_.substr(pos_, end - pos_);
-        if (line.ends_with('\r')) line.remove_suffix(1);
         pos_ = end + 1;
+        if (end < text_.size() && text_[end] == '\r' && pos_ < text_.size() && text_[pos_] == '\n') ++pos_; // CRLF
         return true;
     }
     int line_number() const { return line_number_; }
@@ -105,9 +107,16 @@ Result<glm::ivec2> read_header(LineReader& lines, const std::string& file) {
     return glm::ivec2(*width, *height);
 }
 
-Error unknown_char_error(const std::string& file, int line, std::size_t column, char c) {
+Error unknown_char_error(const std::string& file, int line, std::string_view row, std::size_t at) {
+    // The column counts characters (code points), as in scene files.
+    std::size_t column = 1;
+    for (std::size_t i = 0; i < at;) {
+        const std::size_t n = utf8_char(row.substr(i));
+        i += n ? n : 1;
+        ++column;
+    }
     return map_error(file, line, column,
-                     "unknown map character " + detail::quote_char(c) +
+                     "unknown map character " + detail::quote_char_at(row, at) +
                          " (the Moving AI format has . G S W @ O T; list it in the scene's "
                          "world.extra_floor_chars to read it as floor)");
 }
@@ -121,8 +130,7 @@ Result<void> read_row(std::string_view line, int line_number, int row,
     const auto unknown =
         std::find_if(line.begin(), line.end(), [&](char c) { return cell_of(c) == Cell::unknown; });
     if (unknown != line.end())
-        return unknown_char_error(file, line_number, std::size_t(unknown - line.begin()) + 1,
-                                  *unknown);
+        return unknown_char_error(file, line_number, line, std::size_t(unknown - line.begin()));
     const std::size_t width = std::size_t(map.walls.width);
     if (line.size() != width)
         return map_error(file, line_number, std::min(line.size(), width) + 1,
@@ -179,6 +187,8 @@ Result<ImportedMap> parse_moving_ai_map(std::string_view text, const std::string
         return make_error("extra_floor_chars: " + *problem);
     if (text.size() >= max_map_bytes)
         return make_error(file_name + ": larger than " + std::to_string(max_map_bytes) + " bytes");
+    // A UTF-8 byte order mark is skipped, as the JSON reader skips it (editors add one).
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
     LineReader lines(text);
     auto size = read_header(lines, file_name);
     if (!size) return size.error();

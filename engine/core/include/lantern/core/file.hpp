@@ -32,6 +32,10 @@ Result<std::string> read_text_file(const std::string& path, std::uint64_t max_by
 Result<std::vector<std::uint8_t>> read_binary_file(const std::string& path,
                                                    std::uint64_t max_bytes = default_max_file_bytes);
 
+// Why `path` cannot be read as an input file (missing, unreadable, not a regular file),
+// or nothing: a cheap check before the read (a save's map, before the world is made).
+Result<void> check_input_file(const std::string& path);
+
 // Why `path` cannot be an output file (a folder, a FIFO, a device, a missing or
 // unwritable parent folder), or nothing when it can: checked before work starts, so a run
 // refuses a bad output before it has written anything. Exit code 2.

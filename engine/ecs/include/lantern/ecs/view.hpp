@@ -133,7 +133,7 @@ class View<Include<T...>, Exclude<X...>> {
     template <typename G>
     static void dispatch(std::size_t lead, G&& g) {
         [&]<std::size_t... I>(std::index_sequence<I...>) {
-            ((lead == I ? (g(std::integral_constant<std::size_t, I>{}), true) : false) || ...);
+            (void)((lead == I ? (g(std::integral_constant<std::size_t, I>{}), true) : false) || ...);
         }(Indices{});
     }
 
