@@ -257,3 +257,21 @@ TEST(MovingAiMap, ArenaNeedsExtraFloorCharsAndSaysWhere) {
               path + ":6:4: unknown map character 's' (the Moving AI format has . G S W @ O "
                      "T; list it in the scene's world.extra_floor_chars to read it as floor)");
 }
+
+// The example maps every clone has (game/maps/, made by scripts/make-example-maps.py).
+TEST(MovingAiMap, ShippedExampleMapsImport) {
+    struct Shipped {
+        const char* file;
+        int width, height;
+    };
+    for (const Shipped& m : {Shipped{"keep.map", 64, 48}, Shipped{"caverns.map", 192, 192}}) {
+        auto map = import_moving_ai_map(std::string(LANTERN_SOURCE_DIR) + "/game/maps/" + m.file,
+                                        {.trees = TreeMode::proxy, .extra_floor_chars = ""});
+        ASSERT_TRUE(map.ok()) << map.error().message;
+        EXPECT_EQ(map->walls.width, m.width) << m.file;
+        EXPECT_EQ(map->walls.height, m.height) << m.file;
+        EXPECT_FALSE(map->trees.empty()) << m.file;
+        const auto floor = std::count(map->walls.cells.begin(), map->walls.cells.end(), 0);
+        EXPECT_GT(floor, m.width * m.height / 4) << m.file << ": mostly walls";
+    }
+}

@@ -116,6 +116,9 @@ bool Reader::read(const json::Value& v, const std::string& path, float& out, con
     if (!read_number(v, path, range, value)) return false;
     if (std::abs(value) > double(std::numeric_limits<float>::max()))
         return fail(v.position(), path, format_number(value) + " does not fit a 32-bit float");
+    // A value that is not 0 must not become 0 (a size or a radius that rounds to nothing).
+    if (value != 0.0 && std::abs(value) < double(std::numeric_limits<float>::min()))
+        return fail(v.position(), path, format_number(value) + " is too close to 0 for a 32-bit float");
     out = static_cast<float>(value);
     return true;
 }

@@ -37,6 +37,12 @@ struct Range {
 };
 
 inline constexpr Range any_number{};
+// World coordinates (x, z of positions, camera points): within +-2^24 world units, where a
+// float still holds every whole tile and a tile index still fits an int; beyond it the
+// renderer could not place a texel (docs/scenes.md, "Size limits").
+inline constexpr double max_world_coordinate = 16777216.0;
+inline constexpr Range world_coordinate{.min = -max_world_coordinate, .max = max_world_coordinate,
+                                        .note = "world coordinates stay within +-2^24"};
 constexpr Range at_least(double min) {
     return {.min = min};
 }

@@ -19,6 +19,7 @@ namespace lantern::scene {
 namespace {
 
 using detail::any_number;
+using detail::world_coordinate;
 using detail::at_least;
 using detail::between;
 using detail::EnumName;
@@ -158,12 +159,16 @@ void read_world(Reader& reader, const json::Value& value, Scene& scene, MapSpec&
 void read_camera(Reader& reader, const json::Value& value, PerspectiveCamera& camera) {
     constexpr detail::Range fov_range{.min = 0.0, .max = 180.0, .min_open = true, .max_open = true};
     Fields fields(reader, value, "camera", {"position", "target", "fov_deg", "aspect"});
-    fields.required("position", camera.position, any_number)
-        .required("target", camera.target, any_number)
+    fields.required("position", camera.position, world_coordinate)
+        .required("target", camera.target, world_coordinate)
         .optional("fov_deg", camera.fov_deg, fov_range)
         .optional("aspect", camera.aspect, greater_than(0.0));
     if (fields.ok() && camera.position == camera.target)
         fields.fail("target", "must differ from camera.position");
+    // The renderer needs the ground rectangle the camera sees: refused here, with the
+    // camera's position, rather than at the first frame.
+    std::string why;
+    if (fields.ok() && !ground_footprint(camera, &why)) fields.fail("target", "the camera sees no ground: " + why);
 }
 
 void read_view(Reader& reader, Fields& top, ViewSpec& view) {
@@ -171,7 +176,7 @@ void read_view(Reader& reader, Fields& top, ViewSpec& view) {
     if (kind == "view") {
         OrthoView ortho;
         Fields(reader, *top.find("view"), "view", {"center", "size"})
-            .required("center", ortho.center, any_number)
+            .required("center", ortho.center, world_coordinate)
             .optional("size", ortho.size, greater_than(0.0));
         view = ortho;
     } else if (kind == "camera") {
@@ -181,18 +186,27 @@ void read_view(Reader& reader, Fields& top, ViewSpec& view) {
     }
 }
 
-// What is wrong with the GI texture size of a top-down view, if anything. The window of a
-// perspective camera depends on the frame and is checked by the GI code.
+// What is wrong with the GI texture size of the scene's view, if anything: a top-down view's
+// size, or the ground a perspective camera sees (the game may move the camera later; its
+// windows are then checked by the GI code each frame).
 std::optional<std::string> gi_window_problem(const ViewSpec& view, const GiSettings& gi) {
-    const OrthoView* ortho = std::get_if<OrthoView>(&view);
-    if (!ortho) return std::nullopt;
+    glm::vec2 size(0.0f);
+    const bool ortho_view = std::holds_alternative<OrthoView>(view);
+    if (const OrthoView* ortho = std::get_if<OrthoView>(&view)) {
+        size = ortho->size;
+    } else if (auto ground = ground_footprint(std::get<PerspectiveCamera>(view))) {
+        size = ground->size;
+    } else {
+        return std::nullopt; // refused by read_camera
+    }
     const double texels_per_unit = double(gi.padding) * gi.resolution;
-    const double width = double(ortho->size.x) * texels_per_unit;
-    const double height = double(ortho->size.y) * texels_per_unit;
+    const double width = double(size.x) * texels_per_unit;
+    const double height = double(size.y) * texels_per_unit;
     if (width <= max_gi_texels_per_side && height <= max_gi_texels_per_side) return std::nullopt;
     return "the GI texture would be " + detail::format_number(std::ceil(width)) + " x " +
            detail::format_number(std::ceil(height)) +
-           " texels (view.size x gi.padding x gi.resolution), above the limit of " +
+           " texels (" + (ortho_view ? "view.size" : "the ground the camera sees") +
+           " x gi.padding x gi.resolution), above the limit of " +
            detail::format_number(max_gi_texels_per_side) + " per side";
 }
 
@@ -200,17 +214,18 @@ void check_gi_window(Reader& reader, const Fields& top, const Scene& scene) {
     if (!reader.ok()) return;
     const std::optional<std::string> problem = gi_window_problem(scene.view, scene.gi);
     if (!problem) return;
-    const json::Value& view = *top.find("view");
-    if (const json::Value* size = view.find("size"))
+    const bool ortho = std::holds_alternative<OrthoView>(scene.view);
+    const json::Value& view = *top.find(ortho ? "view" : "camera");
+    if (const json::Value* size = view.find("size"); ortho && size)
         reader.fail(size->position(), "view.size", *problem);
     else
-        reader.fail(view.position(), "view", *problem);
+        reader.fail(view.position(), ortho ? "view" : "camera", *problem);
 }
 
 void read_point_light(Reader& reader, const json::Value& value, const std::string& path,
                       PointLight& light) {
     Fields(reader, value, path, {"position", "height", "color", "intensity", "radius"})
-        .required("position", light.position, any_number)
+        .required("position", light.position, world_coordinate)
         .optional("height", light.height, at_least(0.0))
         .optional("color", light.color, at_least(0.0))
         .optional("intensity", light.intensity, at_least(0.0))
@@ -220,7 +235,7 @@ void read_point_light(Reader& reader, const json::Value& value, const std::strin
 void read_emissive_light(Reader& reader, const json::Value& value, const std::string& path,
                          EmissiveLight& light) {
     Fields(reader, value, path, {"position", "color", "intensity", "radius"})
-        .required("position", light.position, any_number)
+        .required("position", light.position, world_coordinate)
         .optional("color", light.color, at_least(0.0))
         .optional("intensity", light.intensity, at_least(0.0))
         .optional("radius", light.radius, greater_than(0.0));
@@ -250,7 +265,7 @@ void read_shadow_proxy(Reader& reader, const json::Value& value, const std::stri
     Fields(reader, value, path,
            {"position", "shape", "size", "max_length", "end_cap_blend", "penumbra_width",
             "penumbra_length", "penumbra_power", "width_mode", "penumbra_mode"})
-        .required("position", proxy.position, any_number)
+        .required("position", proxy.position, world_coordinate)
         .optional("shape", proxy.shape, proxy_shapes)
         .optional("size", proxy.size, greater_than(0.0))
         .optional("max_length", proxy.max_length, at_least(0.0))

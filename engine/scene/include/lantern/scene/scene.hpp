@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -142,6 +143,17 @@ struct PerspectiveCamera {
 };
 
 using ViewSpec = std::variant<OrthoView, PerspectiveCamera>;
+
+// The rectangle of ground (y = 0) a perspective camera sees: its four viewport corners
+// projected on the ground (the seed's CalculateCameraVisibleArea), in double precision.
+// nullopt when a corner ray is parallel to the ground (|dir.y| < 1e-4) or hits it behind
+// the camera, or a value is not finite; `reason` then says which. The scene loader refuses
+// such a camera; the GI window (gi::visible_area) is built on this rectangle.
+struct GroundArea {
+    glm::vec2 min{0.0f};
+    glm::vec2 size{0.0f};
+};
+std::optional<GroundArea> ground_footprint(const PerspectiveCamera& camera, std::string* reason = nullptr);
 
 struct Scene {
     std::string source; // file the scene came from (for messages); empty if built in code
