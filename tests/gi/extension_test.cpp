@@ -10,6 +10,7 @@
 #include "test_scenes.hpp"
 
 #include "gpu_test_support.hpp"
+#include "shared_renderer.hpp"
 #include "lantern/gi/frame_runner.hpp"
 #include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/vulkan/pass_recorder.hpp"
@@ -160,16 +161,6 @@ std::vector<std::string> row_names() {
     return out;
 }
 
-// Created on first use, after the shared Device, so it is destroyed before the Device.
-vk::Renderer& shared_renderer(lantern::gpu::Device& device) {
-    static std::unique_ptr<vk::Renderer> renderer = [&] {
-        auto r = vk::Renderer::create(device);
-        EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
-        return std::move(r.value());
-    }();
-    return *renderer;
-}
-
 } // namespace
 
 TEST(PassTableExtension, AddedRowsTakeTheirPlaceInTheMethod) {
@@ -253,7 +244,7 @@ TEST_F(PassTableExtensionGpu, AddedRowsMatchTheReference) {
         const gi_test::NamedScene named = gi_test::comparison_scene(name);
         const FrameInputs in = scene_inputs(named);
         const PassPlan plan = plan_passes(in, true);
-        auto gpu = run_vulkan_frame(shared_renderer(device()), in, plan);
+        auto gpu = run_vulkan_frame(gi_test::shared_renderer(device()), in, plan);
         ASSERT_TRUE(gpu.ok()) << gpu.error().message;
         const FrameResult ref = run_reference_frame(in, plan);
         ASSERT_TRUE(ref.textures.count("tinted") && ref.textures.count("accumulated"));
@@ -275,7 +266,7 @@ TEST_F(PassTableExtensionGpu, ConvergingRowStopsSubmittingOnceConverged) {
     const Added& a = added_rows();
     gi_test::NamedScene named = gi_test::comparison_scene("rooms");
     FrameInputs in = scene_inputs(named);
-    vk::Renderer& renderer = shared_renderer(device());
+    vk::Renderer& renderer = gi_test::shared_renderer(device());
     ReferenceStore store;
     Convergence convergence;
     std::array<std::uint64_t, pass_count> last_keys{};

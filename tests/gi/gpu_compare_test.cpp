@@ -4,6 +4,7 @@
 #include "test_scenes.hpp"
 
 #include "gpu_test_support.hpp"
+#include "shared_renderer.hpp"
 #include "lantern/gi/frame_runner.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 
@@ -13,16 +14,6 @@ using namespace lantern::gi;
 using gi_test::NamedScene;
 
 namespace {
-
-// Created on first use, after the shared Device, so it is destroyed before the Device.
-vk::Renderer& shared_renderer(lantern::gpu::Device& device) {
-    static std::unique_ptr<vk::Renderer> renderer = [&] {
-        auto r = vk::Renderer::create(device);
-        EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().message);
-        return std::move(r.value());
-    }();
-    return *renderer;
-}
 
 class GiGpuCompare : public lantern::test::GpuTest {
   protected:
@@ -35,7 +26,7 @@ class GiGpuCompare : public lantern::test::GpuTest {
         ASSERT_TRUE(window) << why;
         FrameInputs in = gather_frame_inputs(s, *window);
         PassPlan plan = plan_passes(in, lit, through);
-        auto gpu = run_vulkan_frame(shared_renderer(device()), in, plan);
+        auto gpu = run_vulkan_frame(gi_test::shared_renderer(device()), in, plan);
         ASSERT_TRUE(gpu.ok()) << gpu.error().message;
         FrameResult ref = run_reference_frame(in, plan);
         ASSERT_EQ(gpu->textures.size(), ref.textures.size()) << named.name;
@@ -117,7 +108,7 @@ TEST_F(GiGpuCompare, PhaseLockSubTileMotionIsBitIdentical) {
         auto w = compute_window(s.scene.view, s.scene.gi.padding, s.scene.gi.resolution);
         EXPECT_TRUE(w);
         FrameInputs in = gather_frame_inputs(s.scene, *w);
-        auto r = run_vulkan_frame(shared_renderer(device()), in, plan_passes(in, true));
+        auto r = run_vulkan_frame(gi_test::shared_renderer(device()), in, plan_passes(in, true));
         EXPECT_TRUE(r.ok());
         return std::make_pair(*w, std::move(r.value()));
     };

@@ -28,12 +28,10 @@ FrameResult run_reference_frame(const FrameInputs& in, const PassPlan& plan, con
     execute_reference(in, plan, plan.run, options, store, [](void* user, Pass pass, std::int64_t start, std::int64_t end) {
         add_time(*static_cast<FrameResult*>(user), pass, double(end - start) * 1e-6);
     }, &r);
-    for (int t = 0; t < registered_texture_count(); ++t) {
-        std::optional<Texture>& slot = store.textures[std::size_t(t)];
-        if (slot && !texture_row(Tex(t)).internal) {
-            std::string name = slot->name;
-            r.textures.emplace(std::move(name), std::move(*slot));
-        }
+    for (Tex t : contract_textures([&](Tex held) { return store.find(held) != nullptr; })) {
+        Texture& texture = *store.textures[std::size_t(t)];
+        std::string name = texture.name;
+        r.textures.emplace(std::move(name), std::move(texture));
     }
     r.lit = std::move(store.lit);
     return r;
@@ -55,13 +53,10 @@ Result<FrameResult> run_vulkan_frame(vk::Renderer& renderer, const FrameInputs& 
     r.cpu_record_ms = double(now_ns() - start) * 1e-6;
     for (const vk::PassTiming& t : renderer.wait_timings()) add_time(r, t.pass, t.gpu_ms);
     if (!read_textures) return r;
-    for (int t = 0; t < registered_texture_count(); ++t) {
-        const TextureRow& row = texture_row(Tex(t));
-        if (!row.internal && renderer.has(row.id)) {
-            Texture texture = renderer.read_back(row.id);
-            std::string name = texture.name;
-            r.textures.emplace(std::move(name), std::move(texture));
-        }
+    for (Tex t : contract_textures([&](Tex held) { return renderer.has(held); })) {
+        Texture texture = renderer.read_back(t);
+        std::string name = texture.name;
+        r.textures.emplace(std::move(name), std::move(texture));
     }
     if (plan.run.has(Pass::lit)) r.lit = Image{in.window.width, in.window.height, renderer.read_back_lit_rgb()};
     return r;

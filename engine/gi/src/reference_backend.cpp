@@ -39,10 +39,7 @@ class ReferenceBackend final : public Backend {
     std::optional<Image> read_lit() override { return store_.lit; }
     std::vector<std::string> texture_names() const override {
         std::vector<std::string> out;
-        for (int t = 0; t < registered_texture_count(); ++t) {
-            const TextureRow& row = texture_row(Tex(t));
-            if (!row.internal && store_.find(row.id)) out.emplace_back(row.name);
-        }
+        for (Tex t : contract_textures([&](Tex held) { return store_.find(held) != nullptr; })) out.emplace_back(tex_name(t));
         return out;
     }
     void wait_idle() override {}

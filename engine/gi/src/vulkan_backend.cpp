@@ -69,10 +69,7 @@ class VulkanBackend final : public Backend {
 
     std::vector<std::string> texture_names() const override {
         std::vector<std::string> out;
-        for (int t = 0; t < registered_texture_count(); ++t) {
-            const TextureRow& row = texture_row(Tex(t));
-            if (!row.internal && renderer_.has(row.id)) out.emplace_back(row.name);
-        }
+        for (Tex t : contract_textures([&](Tex held) { return renderer_.has(held); })) out.emplace_back(tex_name(t));
         return out;
     }
 

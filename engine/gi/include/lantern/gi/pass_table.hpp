@@ -102,6 +102,15 @@ const char* tex_name(Tex t);
 std::optional<Tex> texture_by_name(std::string_view name);
 // Texture ids in use: 0 .. registered_texture_count() - 1.
 int registered_texture_count();
+// The contract textures (not internal) for which `held(t)` is true, in table order: what a
+// backend lists, reads back and dumps.
+template <typename Held>
+std::vector<Tex> contract_textures(Held&& held) {
+    std::vector<Tex> out;
+    for (int t = 0; t < registered_texture_count(); ++t)
+        if (!texture_row(Tex(t)).internal && held(Tex(t))) out.push_back(Tex(t));
+    return out;
+}
 // The size of `t` for this frame (its row's scale).
 glm::ivec2 texture_size(Tex t, const FrameInputs& in);
 
