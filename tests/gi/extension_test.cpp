@@ -34,12 +34,15 @@ struct TintParams {
     std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0;
 };
 
+// An rgba16f window texture added to the table (called once per name).
+Tex add_test_texture(std::string_view name) {
+    auto added = add_texture({.name = name, .format = TexFormat::rgba16f});
+    EXPECT_TRUE(added.ok()) << added.error().message;
+    return *added;
+}
+
 Tex tinted_tex() {
-    static const Tex t = [] {
-        auto added = add_texture({.name = "tinted", .format = TexFormat::rgba16f});
-        EXPECT_TRUE(added.ok()) << added.error().message;
-        return *added;
-    }();
+    static const Tex t = add_test_texture("tinted");
     return t;
 }
 
@@ -82,11 +85,7 @@ struct AccumulateParams {
 };
 
 Tex accumulated_tex() {
-    static const Tex t = [] {
-        auto added = add_texture({.name = "accumulated", .format = TexFormat::rgba16f});
-        EXPECT_TRUE(added.ok()) << added.error().message;
-        return *added;
-    }();
+    static const Tex t = add_test_texture("accumulated");
     return t;
 }
 
