@@ -18,11 +18,6 @@
 layout(set = 0, binding = 14) uniform samplerBuffer u_boxes;
 
 
-layout(push_constant) uniform Push {
-    mat4 view_projection; // WorldRenderer::view_projection (Vulkan clip space)
-    vec4 camera;          // xyz camera position
-} push;
-
 layout(location = 0) out vec3 out_position;     // world position
 layout(location = 1) flat out int out_material;
 layout(location = 2) flat out vec4 out_color;   // rgb colour, a emissive
@@ -46,13 +41,13 @@ void main() {
     const vec3 center = in_center_material.xyz, half_extent = max(in_half_mask.xyz, vec3(0.0));
     const int mask = int(in_half_mask.w + 0.5);
     const vec3 face_point = center + half_extent * n;
-    const bool drawn = ((mask >> face) & 1) != 0 && dot(push.camera.xyz - face_point, n) > 0.0;
+    const bool drawn = ((mask >> face) & 1) != 0 && dot(pc.camera.xyz - face_point, n) > 0.0;
     if (!drawn) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // every vertex of the face here: zero area, outside
         return;
     }
     const vec3 world = center + half_extent * (n + face_u[face] * corner.x + face_v[face] * corner.y);
-    gl_Position = push.view_projection * vec4(world, 1.0);
+    gl_Position = pc.view_projection * vec4(world, 1.0);
     out_position = world;
     out_material = int(in_center_material.w + 0.5);
     out_color = in_color_emissive;

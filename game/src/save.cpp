@@ -2,6 +2,7 @@
 
 #include "lantern/core/file.hpp"
 #include "lantern/core/json.hpp"
+#include "lantern/core/json_writer.hpp"
 #include "lantern/core/text.hpp"
 
 #include <algorithm>
@@ -15,28 +16,12 @@ namespace {
 
 // ---------------------------------------------------------------- writing
 
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.9g", v);
-    return buf;
-}
-std::string vec(glm::vec2 v) { return "[" + num(v.x) + ", " + num(v.y) + "]"; }
-std::string vec(glm::vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
-std::string quoted(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-            out += buf;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
+// Vectors as one-line arrays of their floats (shortest text that reads back exactly).
+template <int N>
+void write_vec(json::Writer& w, std::string_view key, glm::vec<N, float> v) {
+    w.key(key).begin_array(json::Layout::one_line);
+    for (int i = 0; i < N; ++i) w.value(v[i]);
+    w.end();
 }
 
 constexpr const char* prop_names[] = {"crystal", "tree", "lamp_post"};
@@ -45,46 +30,52 @@ constexpr const char* width_names[] = {"projected", "max_axis"};
 constexpr const char* penumbra_names[] = {"inward", "outward", "both"};
 constexpr const char* kind_names[] = {"caves", "map", "scene"};
 
-void write_entity(std::ostringstream& o, const SavedEntity& e) {
-    std::vector<std::string> parts;
+// One entity, on one line: {"point_light": {...}, "torch": {...}}.
+void write_entity(json::Writer& w, const SavedEntity& e) {
+    w.begin_object(json::Layout::one_line);
     if (e.point_light) {
         const PointLight& l = *e.point_light;
-        parts.push_back("\"point_light\": {\"position\": " + vec(l.position) + ", \"height\": " + num(l.height) +
-                        ", \"color\": " + vec(l.color) + ", \"intensity\": " + num(l.intensity) +
-                        ", \"radius\": " + num(l.radius) + "}");
+        w.key("point_light").begin_object();
+        write_vec(w, "position", l.position);
+        w.field("height", l.height);
+        write_vec(w, "color", l.color);
+        w.field("intensity", l.intensity).field("radius", l.radius).end();
     }
     if (e.emissive_light) {
         const EmissiveLight& l = *e.emissive_light;
-        parts.push_back("\"emissive_light\": {\"position\": " + vec(l.position) + ", \"color\": " + vec(l.color) +
-                        ", \"intensity\": " + num(l.intensity) + ", \"radius\": " + num(l.radius) + "}");
+        w.key("emissive_light").begin_object();
+        write_vec(w, "position", l.position);
+        write_vec(w, "color", l.color);
+        w.field("intensity", l.intensity).field("radius", l.radius).end();
     }
     if (e.directional_light) {
         const DirectionalLight& l = *e.directional_light;
-        parts.push_back("\"directional_light\": {\"direction\": " + vec(l.direction) + ", \"color\": " + vec(l.color) +
-                        ", \"intensity\": " + num(l.intensity) +
-                        ", \"base_shadow_distance\": " + num(l.base_shadow_distance) +
-                        ", \"bounce_intensity\": " + num(l.bounce_intensity) + "}");
+        w.key("directional_light").begin_object();
+        write_vec(w, "direction", l.direction);
+        write_vec(w, "color", l.color);
+        w.field("intensity", l.intensity).field("base_shadow_distance", l.base_shadow_distance);
+        w.field("bounce_intensity", l.bounce_intensity).end();
     }
     if (e.shadow_proxy) {
         const scene::ShadowProxy& p = e.shadow_proxy->shape;
-        parts.push_back("\"shadow_proxy\": {\"position\": " + vec(p.position) + ", \"shape\": \"" +
-                        shape_names[int(p.shape)] + "\", \"size\": " + vec(p.size) + ", \"max_length\": " +
-                        num(p.max_length) + ", \"end_cap_blend\": " + num(p.end_cap_blend) +
-                        ", \"penumbra_width\": " + num(p.penumbra_width) + ", \"penumbra_length\": " +
-                        num(p.penumbra_length) + ", \"penumbra_power\": " + num(p.penumbra_power) +
-                        ", \"width_mode\": \"" + width_names[int(p.width_mode)] + "\", \"penumbra_mode\": \"" +
-                        penumbra_names[int(p.penumbra_mode)] + "\"}");
+        w.key("shadow_proxy").begin_object();
+        write_vec(w, "position", p.position);
+        w.field("shape", shape_names[int(p.shape)]);
+        write_vec(w, "size", p.size);
+        w.field("max_length", p.max_length).field("end_cap_blend", p.end_cap_blend);
+        w.field("penumbra_width", p.penumbra_width).field("penumbra_length", p.penumbra_length);
+        w.field("penumbra_power", p.penumbra_power).field("width_mode", width_names[int(p.width_mode)]);
+        w.field("penumbra_mode", penumbra_names[int(p.penumbra_mode)]).end();
     }
     if (e.torch)
-        parts.push_back("\"torch\": {\"base_intensity\": " + num(e.torch->base_intensity) + ", \"phase\": " +
-                        num(e.torch->phase) + "}");
-    if (e.prop)
-        parts.push_back(std::string("\"prop\": {\"kind\": \"") + prop_names[int(e.prop->kind)] +
-                        "\", \"position\": " + vec(e.prop->position) + "}");
-    if (e.sun) parts.push_back("\"sun\": true");
-    o << "    {";
-    for (std::size_t i = 0; i < parts.size(); ++i) o << (i ? ", " : "") << parts[i];
-    o << "}";
+        w.key("torch").begin_object().field("base_intensity", e.torch->base_intensity).field("phase", e.torch->phase).end();
+    if (e.prop) {
+        w.key("prop").begin_object().field("kind", prop_names[int(e.prop->kind)]);
+        write_vec(w, "position", e.prop->position);
+        w.end();
+    }
+    if (e.sun) w.field("sun", true);
+    w.end();
 }
 
 // ---------------------------------------------------------------- reading
@@ -326,9 +317,9 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
     // order its entities were created in.
     std::vector<std::pair<std::string, std::size_t>> keyed;
     for (std::size_t i = 0; i < s.entities.size(); ++i) {
-        std::ostringstream o;
-        write_entity(o, s.entities[i]);
-        keyed.push_back({o.str(), i});
+        json::Writer w;
+        write_entity(w, s.entities[i]);
+        keyed.push_back({w.take(), i});
     }
     std::sort(keyed.begin(), keyed.end());
     std::vector<SavedEntity> sorted;
@@ -342,34 +333,31 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
 }
 
 std::string format_save(const SaveState& s) {
-    std::ostringstream o;
-    o << "{\n  \"lantern_save\": " << save_format_version << ",\n";
-    o << "  \"world\": {\"kind\": \"" << kind_names[int(s.world.kind)] << "\", \"path\": " << quoted(s.world.path)
-      << ", \"seed\": " << s.world.seed << ", \"cave_threshold\": " << num(s.world.cave_threshold) << "},\n";
-    o << "  \"player\": " << vec(s.player) << ",\n";
-    o << "  \"day\": {\"time_of_day\": " << num(s.day.time_of_day) << ", \"running\": " << (s.day.running ? "true" : "false")
-      << ", \"day_length\": " << num(s.day.day_length) << ", \"drives_sun\": " << (s.day.drives_sun ? "true" : "false")
-      << "},\n";
-    o << "  \"entities\": [";
-    for (std::size_t i = 0; i < s.entities.size(); ++i) {
-        o << (i ? ",\n" : "\n");
-        write_entity(o, s.entities[i]);
-    }
-    o << (s.entities.empty() ? "],\n" : "\n  ],\n");
-    o << "  \"edits\": [";
+    json::Writer w;
+    w.begin_object().field("lantern_save", save_format_version);
+    w.key("world").begin_object(json::Layout::one_line).field("kind", kind_names[int(s.world.kind)]);
+    w.field("path", s.world.path).field("seed", s.world.seed).field("cave_threshold", s.world.cave_threshold).end();
+    write_vec(w, "player", s.player);
+    w.key("day").begin_object(json::Layout::one_line).field("time_of_day", s.day.time_of_day);
+    w.field("running", s.day.running).field("day_length", s.day.day_length).field("drives_sun", s.day.drives_sun).end();
+    w.key("entities").begin_array();
+    for (const SavedEntity& e : s.entities) write_entity(w, e);
+    w.end();
+    // Edited chunks: one row of '#' (wall) and '.' (open) per line, as in a map file.
+    w.key("edits").begin_array();
     constexpr int n = systems::chunk_size;
-    for (std::size_t i = 0; i < s.edits.size(); ++i) {
-        const auto& c = s.edits[i];
-        o << (i ? ",\n" : "\n") << "    {\"chunk\": [" << c.coord.x << ", " << c.coord.y << "], \"rows\": [";
-        for (int row = 0; row < n; ++row) {
-            o << (row ? ",\n      \"" : "\n      \"");
-            for (int col = 0; col < n; ++col) o << (c.cells[std::size_t(row * n + col)] ? '#' : '.');
-            o << "\"";
+    std::string row(std::size_t(n), '.');
+    for (const auto& c : s.edits) {
+        w.begin_object().key("chunk").begin_array(json::Layout::one_line).value(c.coord.x).value(c.coord.y).end();
+        w.key("rows").begin_array();
+        for (int y = 0; y < n; ++y) {
+            for (int x = 0; x < n; ++x) row[std::size_t(x)] = c.cells[std::size_t(y * n + x)] ? '#' : '.';
+            w.value(row);
         }
-        o << "]}";
+        w.end().end();
     }
-    o << (s.edits.empty() ? "]\n}\n" : "\n  ]\n}\n");
-    return o.str();
+    w.end().end();
+    return w.take();
 }
 
 Result<SaveState> parse_save(std::string_view text, const std::string& file_name) {

@@ -23,8 +23,12 @@ namespace lantern::game {
 
 namespace {
 
-// Mirror of game_world.frag.glsl's WorldFrame block (std140: vec4 members only).
+// Mirror of lantern/game_world.glsl's WorldFrame struct (std140: vec4 and mat4 members only). The
+// shader reads it as frames[slot] of a two-frame block with `slot` a push constant, always 0:
+// that keeps lavapipe from compiling a shader variant per frame (game_world.glsl says why).
 struct alignas(16) WorldFrame {
+    glm::mat4 view_projection{1.0f};
+    glm::vec4 camera{0.0f};     // xyz camera position
     glm::vec4 window{0.0f};     // min x, min z, width, height (texels)
     glm::vec4 config{0.0f};     // resolution, tone map, white point, directional angle scale
     glm::ivec4 grid{0};         // wall grid width, height, origin x, origin z
@@ -35,14 +39,7 @@ struct alignas(16) WorldFrame {
     std::array<glm::vec4, max_palette_colors> palette{};
     std::array<gi::GpuDirectionalLight, 8> suns{};
 };
-static_assert(sizeof(WorldFrame) == 7 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
-
-// Mirror of game_world.vert.glsl's push block.
-struct alignas(16) WorldPush {
-    glm::mat4 view_projection;
-    glm::vec4 camera;
-};
-static_assert(sizeof(WorldPush) == 80);
+static_assert(sizeof(WorldFrame) == 64 + 8 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
 
 static_assert(offsetof(BoxInstance, half) == 16 && offsetof(BoxInstance, color) == 32,
               "BoxInstance must match game_world.vert.glsl's three texels per box");
@@ -111,10 +108,10 @@ gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int 
     // No vertex input: the vertex shader pulls its face's box from the box texel buffer by
     // gl_VertexIndex / 6, one plain draw per face group. (Measured against per-instance vertex
     // attributes on lavapipe: the same frame time; pulling keeps the mesh in the shader.)
-    p.bindings.push_back(gpu::BindingType::uniform_buffer);
+    p.bindings.push_back(gpu::BindingType::uniform_buffer); // WorldFrames
+    p.push_constant_size = sizeof(std::int32_t);            // WorldSlot
     for (int i = 0; i <= gi_texture_count + 1; ++i) p.bindings.push_back(gpu::BindingType::uniform_texel_buffer);
     p.specialization = {{0, std::uint32_t(face)}, {1, gi ? 1u : 0u}, {2, art ? 1u : 0u}, {3, std::uint32_t(lookup)}};
-    p.push_constant_size = sizeof(WorldPush);
     p.cull = VK_CULL_MODE_NONE; // faces turned away are never listed
     p.depth = {true, true, VK_COMPARE_OP_LESS};
     p.color_format = target.color_format();
@@ -228,7 +225,7 @@ Result<std::unique_ptr<WorldRenderer>> WorldRenderer::create(gpu::Device& device
                  "game world"});
     for (const DrawGroup& g : draw_groups) impl->pipeline(g.face, g.lookup, true, false); // the usual frame
     impl->create_instances(initial_box_capacity * sizeof(BoxInstance));
-    impl->frame = render::StreamBuffer::create(device, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, sizeof(WorldFrame),
+    impl->frame = render::StreamBuffer::create(device, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, 2 * sizeof(WorldFrame),
                                                "game world frame");
     impl->dummy = device.create_buffer(
         {16, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, gpu::MemoryKind::upload, "game world dummy"});
@@ -292,6 +289,8 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
 
     // Frame constants and GI bindings.
     WorldFrame f;
+    f.view_projection = view_projection_matrix;
+    f.camera = glm::vec4(view.camera.position, 1.0f);
     gpu::DescriptorWrites writes;
     writes.uniform_buffer(binding_frame, m.frame.buffer());
     const bool gi_on = view.gi && view.renderer;
@@ -348,7 +347,6 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     m.frame.write(cmd, std::as_bytes(std::span<const WorldFrame>(&f, 1)));
     writes.uniform_texel_buffer(binding_boxes, m.instance_texels);
 
-    const WorldPush push{view_projection_matrix, glm::vec4(view.camera.position, 1.0f)};
     const bool art_on = levels || art.dither || colors;
     m.target.begin(cmd, {{0.0f, 0.0f, 0.0f, 1.0f}});
     std::uint32_t first = 0;
@@ -357,12 +355,12 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
         const auto count = std::uint32_t(m.faces[d].size());
         if (count) {
             cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on));
-            // Descriptors and push constants once: every pipeline here has the same layout, so
+            // Descriptors once: every pipeline here has the same layout, so
             // they stay bound across the binds. (Each push cost lavapipe about 1 ms with the
             // GI texel buffers in it, 10 ms a frame for the 10 groups.)
             if (!pushed) {
                 cmd.push_descriptors(writes);
-                cmd.push_constants(push);
+                cmd.push_constants(std::int32_t{0}); // WorldSlot: frames[0]
                 pushed = true;
             }
             cmd.draw(6 * count, 1, 6 * first, 0);

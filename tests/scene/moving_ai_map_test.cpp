@@ -46,7 +46,24 @@ TEST(MovingAiMap, FloorWallAndTreesAsWalls) {
     EXPECT_EQ(map.walls.height, 2);
     EXPECT_EQ(map.walls.origin, glm::ivec2(0, 0));
     EXPECT_EQ(map.walls.cells, (Cells{0, 0, 0, 0, 1, 1, 1, 1}));
-    EXPECT_EQ(map.trees, (Trees{{1, 1}, {3, 1}}));
+    EXPECT_TRUE(map.trees.empty()); // walls: nothing kept per tree
+}
+
+// Trees as proxies cost memory each (a proxy, and a prop entity in the game): past the
+// limit the map is refused at the first tree too many, whatever the file's size.
+TEST(MovingAiMap, TreesAsProxiesAreBounded) {
+    constexpr int width = 2048;
+    const int height = int(max_map_tree_proxies / width) + 1;
+    std::string rows;
+    rows.reserve(std::size_t(width + 1) * std::size_t(height));
+    for (int r = 0; r < height; ++r) rows.append(std::size_t(width), 'T').push_back('\n');
+    const std::string text = map_text(width, height, rows);
+    EXPECT_EQ(parse_error(text, {.trees = TreeMode::proxy, .extra_floor_chars = ""}),
+              "m.map:" + std::to_string(4 + height) +
+                  ":1: more than 1048576 trees ('T' cells), the limit for trees as shadow proxies (each "
+                  "costs memory; docs/scenes.md, \"Size limits\")");
+    // As walls, the same map is fine.
+    EXPECT_EQ(parse_ok(text).walls.cells.size(), std::size_t(width) * std::size_t(height));
 }
 
 TEST(MovingAiMap, TreesAsProxiesAreFloor) {

@@ -53,4 +53,12 @@ std::string describe_machine() {
     return buffer;
 }
 
+std::uint64_t resident_set_bytes() {
+    std::ifstream statm("/proc/self/statm");
+    std::uint64_t size_pages = 0, resident_pages = 0;
+    if (!(statm >> size_pages >> resident_pages)) return 0;
+    const long page = sysconf(_SC_PAGESIZE);
+    return resident_pages * std::uint64_t(page > 0 ? page : 4096);
+}
+
 } // namespace lantern

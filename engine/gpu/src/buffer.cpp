@@ -113,6 +113,7 @@ Buffer Device::create_buffer(const BufferDesc& desc) {
     alloc.allocationSize = requirements.size;
     alloc.memoryTypeIndex = type;
     VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &b.memory_object_));
+    count_memory(b.memory_object_, alloc.allocationSize);
     VK_CHECK(vkBindBufferMemory(device_, b.buffer_, b.memory_object_, 0));
     if (desc.memory != MemoryKind::device_local) {
         void* mapped = nullptr;

@@ -61,15 +61,17 @@ Device::~Device() {
     if (device_) {
         VK_CHECK(vkDeviceWaitIdle(device_));
         recycle_completed();
+        std::vector<Deletions::Entry> entries;
         {
             std::lock_guard lock(deletions_->mutex);
             LANTERN_ASSERT(deletions_->live_objects == 0,
                            "gpu::Device destroyed while resources created by it are alive");
             LANTERN_ASSERT(deletions_->open_lists.empty(),
                            "gpu::Device destroyed while a CommandList is being recorded");
-            for (const auto& entry : deletions_->entries) destroy_retired(entry.objects);
+            entries = std::move(deletions_->entries);
             deletions_->entries.clear();
         }
+        for (const auto& entry : entries) destroy_retired(entry.objects); // takes the lock
         for (const auto& context : contexts_) {
             vkDestroyFence(device_, context->fence, nullptr);
             vkDestroyCommandPool(device_, context->pool, nullptr);
@@ -103,6 +105,17 @@ void Device::set_object_name(VkObjectType type, std::uint64_t handle, const char
 void Device::count_live_object() {
     std::lock_guard lock(deletions_->mutex);
     ++deletions_->live_objects;
+}
+
+void Device::count_memory(VkDeviceMemory memory, VkDeviceSize bytes) {
+    std::lock_guard lock(deletions_->mutex);
+    deletions_->memory_sizes.emplace(memory, bytes);
+    deletions_->memory_bytes += bytes;
+}
+
+std::uint64_t Device::memory_allocated() const {
+    std::lock_guard lock(deletions_->mutex);
+    return deletions_->memory_bytes;
 }
 
 void Device::retire(const Retired& objects) {
@@ -176,7 +189,15 @@ void Device::destroy_retired(const Retired& o) {
     vkDestroyImageView(device_, o.image_view, nullptr);
     vkDestroyBuffer(device_, o.buffer, nullptr);
     vkDestroyImage(device_, o.image, nullptr);
-    vkFreeMemory(device_, o.memory, nullptr);
+    if (o.memory) {
+        vkFreeMemory(device_, o.memory, nullptr);
+        std::lock_guard lock(deletions_->mutex);
+        const auto it = deletions_->memory_sizes.find(o.memory);
+        if (it != deletions_->memory_sizes.end()) {
+            deletions_->memory_bytes -= it->second;
+            deletions_->memory_sizes.erase(it);
+        }
+    }
     vkDestroySampler(device_, o.sampler, nullptr);
     vkDestroyPipeline(device_, o.pipeline, nullptr);
     vkDestroyPipelineLayout(device_, o.layout, nullptr);

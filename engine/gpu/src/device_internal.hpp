@@ -10,6 +10,7 @@
 #include <set>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace lantern::gpu {
@@ -85,6 +86,8 @@ struct Device::Deletions {
     std::set<std::uint64_t> open_lists; // ids of CommandLists being recorded
     std::uint64_t last_submitted = 0;   // mirror of Device::last_submitted_ for retire()
     std::size_t live_objects = 0;       // created and not yet destroyed
+    std::unordered_map<VkDeviceMemory, VkDeviceSize> memory_sizes; // allocated and not yet freed
+    std::uint64_t memory_bytes = 0;                                 // their sum
 };
 
 // One submission's command pool, command buffer and fence. Recycled when the fence signals.

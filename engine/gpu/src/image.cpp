@@ -136,6 +136,7 @@ Image Device::create_image(const ImageDesc& desc) {
     alloc.allocationSize = requirements.size;
     alloc.memoryTypeIndex = type;
     VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &img.memory_));
+    count_memory(img.memory_, alloc.allocationSize);
     VK_CHECK(vkBindImageMemory(device_, img.image_, img.memory_, 0));
     img.view_ = create_view(device_, img.image_, desc.format);
 

@@ -1,35 +1,15 @@
 // Text report and Chrome trace-event export, built on the public history API.
 #include "lantern/core/file.hpp"
+#include "lantern/core/json_writer.hpp"
 #include "lantern/profile/profiler.hpp"
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace lantern::profile {
 namespace {
-
-void append_escaped(std::string& out, const char* s) {
-    for (; s && *s; ++s) {
-        char c = *s;
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-            out += buf;
-        } else {
-            out += c;
-        }
-    }
-}
-
-void append_fmt(std::string& out, const char* fmt, double a, double b) {
-    char buf[96];
-    std::snprintf(buf, sizeof(buf), fmt, a, b);
-    out += buf;
-}
 
 std::vector<const Frame*> last_frames(std::uint32_t max_frames) {
     auto frames = history();
@@ -74,41 +54,33 @@ std::string chrome_trace_json(std::uint32_t max_frames) {
     for (const Frame* f : frames)
         for (const Event& e : f->events) origin = std::min(origin, e.start_ns);
 
-    // pid 1: CPU lanes (tid = lane + 1, tid 0 = frame markers); pid 2: GPU lanes.
-    std::string out = "{\"displayTimeUnit\":\"ms\",\"traceEvents\":[\n";
-    out += "{\"ph\":\"M\",\"pid\":1,\"name\":\"process_name\",\"args\":{\"name\":\"Lantern CPU\"}},\n";
-    out += "{\"ph\":\"M\",\"pid\":2,\"name\":\"process_name\",\"args\":{\"name\":\"Lantern GPU\"}},\n";
-    out += "{\"ph\":\"M\",\"pid\":1,\"tid\":0,\"name\":\"thread_name\",\"args\":{\"name\":\"frames\"}},\n";
-    for (std::size_t i = 0; i < all_lanes.size(); ++i) {
-        int pid = all_lanes[i].kind == LaneKind::gpu ? 2 : 1;
-        out += "{\"ph\":\"M\",\"pid\":" + std::to_string(pid) + ",\"tid\":" + std::to_string(i + 1) +
-               ",\"name\":\"thread_name\",\"args\":{\"name\":\"";
-        append_escaped(out, all_lanes[i].name.c_str());
-        out += "\"}},\n";
-    }
-    auto append_span = [&](const char* name, const char* cat, int pid, std::uint64_t tid, std::int64_t start,
-                           std::int64_t end) {
-        out += "{\"ph\":\"X\",\"name\":\"";
-        append_escaped(out, name);
-        out += "\",\"cat\":\"";
-        out += cat;
-        out += "\",\"pid\":" + std::to_string(pid) + ",\"tid\":" + std::to_string(tid);
-        append_fmt(out, ",\"ts\":%.3f,\"dur\":%.3f},\n", double(start - origin) * 1e-3,
-                   double(std::max<std::int64_t>(end - start, 0)) * 1e-3);
+    // pid 1: CPU lanes (tid = lane + 1, tid 0 = frame markers); pid 2: GPU lanes. One event a line.
+    json::Writer w;
+    w.begin_object().field("displayTimeUnit", "ms").key("traceEvents").begin_array();
+    auto metadata = [&](const char* what, int pid, std::optional<std::size_t> tid, std::string_view name) {
+        w.begin_object(json::Layout::one_line).field("ph", "M").field("pid", pid);
+        if (tid) w.field("tid", *tid);
+        w.field("name", what).key("args").begin_object().field("name", name).end().end();
+    };
+    metadata("process_name", 1, std::nullopt, "Lantern CPU");
+    metadata("process_name", 2, std::nullopt, "Lantern GPU");
+    metadata("thread_name", 1, 0, "frames");
+    for (std::size_t i = 0; i < all_lanes.size(); ++i)
+        metadata("thread_name", all_lanes[i].kind == LaneKind::gpu ? 2 : 1, i + 1, all_lanes[i].name);
+    auto span = [&](std::string_view name, const char* cat, int pid, std::uint64_t tid, std::int64_t start,
+                    std::int64_t end) {
+        w.begin_object(json::Layout::one_line).field("ph", "X").field("name", name).field("cat", cat);
+        w.field("pid", pid).field("tid", tid).field("ts", double(start - origin) * 1e-3, 3);
+        w.field("dur", double(std::max<std::int64_t>(end - start, 0)) * 1e-3, 3).end();
     };
     for (const Frame* f : frames) {
-        std::string name = "frame " + std::to_string(f->index);
-        append_span(name.c_str(), "frame", 1, 0, f->start_ns, f->end_ns);
+        span("frame " + std::to_string(f->index), "frame", 1, 0, f->start_ns, f->end_ns);
         for (const Event& e : f->events) {
             const char* cat = e.kind == EventKind::job ? "job" : e.kind == EventKind::gpu ? "gpu" : "scope";
-            int pid = e.kind == EventKind::gpu ? 2 : 1;
-            append_span(e.name, cat, pid, e.lane + 1, e.start_ns, e.end_ns);
+            span(e.name, cat, e.kind == EventKind::gpu ? 2 : 1, e.lane + 1, e.start_ns, e.end_ns);
         }
     }
-    // Close the array without a trailing comma.
-    if (out.size() >= 2 && out[out.size() - 2] == ',') out.erase(out.size() - 2, 1);
-    out += "]}\n";
-    return out;
+    return w.end().end().take();
 }
 
 Result<void> write_chrome_trace(const std::string& path, std::uint32_t max_frames) {

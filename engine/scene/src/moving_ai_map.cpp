@@ -138,7 +138,14 @@ Result<void> read_row(std::string_view line, int line_number, int row,
                              std::to_string(width) + " (the header's width)");
     for (std::size_t col = 0; col < width; ++col) {
         const Cell cell = cell_of(line[col]);
-        if (cell == Cell::tree) map.trees.emplace_back(int(col), row);
+        if (cell == Cell::tree && options.trees == TreeMode::proxy) {
+            if (std::int64_t(map.trees.size()) == max_map_tree_proxies)
+                return map_error(file, line_number, col + 1,
+                                 "more than " + std::to_string(max_map_tree_proxies) +
+                                     " trees ('T' cells), the limit for trees as shadow proxies "
+                                     "(each costs memory; docs/scenes.md, \"Size limits\")");
+            map.trees.emplace_back(int(col), row);
+        }
         const bool wall =
             cell == Cell::wall || (cell == Cell::tree && options.trees == TreeMode::wall);
         map.walls.cells.push_back(wall ? 1 : 0);

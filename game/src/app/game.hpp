@@ -39,6 +39,17 @@ namespace lantern::game::app {
 
 inline constexpr const char* item_names[] = {"wall", "torch", "crystal", "lamp post", "tree"};
 inline constexpr int warm_up_frames = 30; // left out of the headless percentiles (pipelines, first loads)
+// Memory is compared from this frame on (or from half the run, if shorter): by then the demo has
+// walked through its first chunks and every pipeline and GI texture exists.
+inline constexpr int memory_warm_up_frames = 300;
+
+// The headless demo's memory at one frame: the process's resident set and the device memory
+// Lantern holds (gpu::Device::memory_allocated).
+struct MemorySample {
+    int frame = 0;
+    std::uint64_t resident_bytes = 0;
+    std::uint64_t device_bytes = 0;
+};
 
 // The draw list as a world resource (written by draw_list, read by render).
 struct DrawListResource {
@@ -60,15 +71,6 @@ inline jobs::JobSystem::Config job_config(const GameOptions& o) {
     return c;
 }
 
-inline std::string json_escape(const std::string& s) {
-    std::string out;
-    for (char ch : s) {
-        if (ch == '"' || ch == '\\') out += '\\';
-        if (static_cast<unsigned char>(ch) < 0x20) continue;
-        out += ch;
-    }
-    return out;
-}
 
 
 class Game {
@@ -105,7 +107,8 @@ class Game {
     int run_window();
     int run_headless();
     Result<void> write_headless_report(const std::vector<double>& frame_ms, const std::vector<bool>& walking,
-                                       const std::vector<std::string>& screenshots, double seconds);
+                                       const std::vector<std::string>& screenshots,
+                                       const std::vector<MemorySample>& memory, double seconds);
 
     GameOptions options_;
     jobs::JobSystem jobs_;

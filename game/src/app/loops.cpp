@@ -1,6 +1,8 @@
 // The window loop, the headless demo and its report (timings.json, profile.txt, trace).
 #include "app/game.hpp"
 
+#include "lantern/core/json_writer.hpp"
+
 namespace lantern::game::app {
 namespace {
 
@@ -54,6 +56,9 @@ int Game::run_headless() {
     std::vector<double> frame_ms;
     std::vector<bool> walking;
     std::vector<std::string> screenshots;
+    std::vector<MemorySample> memory;
+    const int memory_warm_up = std::min(memory_warm_up_frames, frames / 2);
+    const int memory_every = std::max(1, frames / 100);
     const std::int64_t start = now_ns();
     std::fprintf(stderr, "lantern: headless demo, %d frames at %dx%d, %s -> %s/\n", frames, options_.internal.x,
                  options_.internal.y, session_->info.description.c_str(), options_.out_dir.c_str());
@@ -65,6 +70,9 @@ int Game::run_headless() {
         profile::end_frame();
         frame_ms.push_back(double(t1 - t0) * 1e-6);
         walking.push_back(session_->demo->is_walking(headless_frame_));
+        if (headless_frame_ == memory_warm_up || headless_frame_ + 1 == frames ||
+            (headless_frame_ > memory_warm_up && (headless_frame_ - memory_warm_up) % memory_every == 0))
+            memory.push_back({headless_frame_, resident_set_bytes(), device_->memory_allocated()});
         if (std::find(shots.begin(), shots.end(), headless_frame_) != shots.end()) {
             char name[64];
             std::snprintf(name, sizeof(name), "frame_%05d.png", headless_frame_);
@@ -88,7 +96,7 @@ int Game::run_headless() {
     device_->wait_idle();
     collect_raster_timings();
     const double seconds = double(now_ns() - start) * 1e-9;
-    if (auto ok = write_headless_report(frame_ms, walking, screenshots, seconds); !ok) {
+    if (auto ok = write_headless_report(frame_ms, walking, screenshots, memory, seconds); !ok) {
         std::fprintf(stderr, "lantern: %s\n", ok.error().message.c_str());
         return 1;
     }
@@ -96,7 +104,8 @@ int Game::run_headless() {
 }
 
 Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, const std::vector<bool>& walking,
-                                         const std::vector<std::string>& screenshots, double seconds) {
+                                         const std::vector<std::string>& screenshots,
+                                         const std::vector<MemorySample>& memory, double seconds) {
     std::vector<double> all, walk;
     for (std::size_t i = std::size_t(warm_up_frames); i < frame_ms.size(); ++i) {
         if (frame_ms[i] < 0 || (i > 0 && frame_ms[i - 1] < 0)) continue;
@@ -107,38 +116,53 @@ Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, co
     const auto stats = profile::stats();
     const scene::GiSettings& gi = session_->world.resource<systems::GiConfig>().settings;
 
-    std::ostringstream json;
-    auto pct = [](const profile::Percentiles& p) {
-        char buf[200];
-        std::snprintf(buf, sizeof(buf), "{\"frames\": %u, \"mean\": %.3f, \"p50\": %.3f, \"p95\": %.3f, \"p99\": %.3f, \"max\": %.3f}",
-                      p.count, p.mean, p.p50, p.p95, p.p99, p.max);
-        return std::string(buf);
-    };
-    json << "{\n  \"machine\": \"" << json_escape(describe_machine()) << "\",\n";
-    json << "  \"device\": \"" << json_escape(device_->name()) << "\",\n";
-    json << "  \"world\": \"" << json_escape(session_->info.description) << "\",\n";
-    json << "  \"frames\": " << frame_ms.size() << ", \"warm_up_frames\": " << warm_up_frames
-         << ", \"seconds\": " << seconds << ",\n";
-    json << "  \"internal_resolution\": [" << options_.internal.x << ", " << options_.internal.y << "],\n";
-    json << "  \"gi\": {\"resolution\": " << gi.resolution << ", \"heat_rounds\": " << gi.heat_rounds
-         << ", \"heat_scale\": " << int(gi.heat_scale) << ", \"padding\": " << gi.padding
-         << ", \"max_lights\": " << gi.max_lights << "},\n";
-    json << "  \"frame_ms\": " << pct(pa) << ",\n  \"frame_ms_walking\": " << pct(pw) << ",\n";
-    json << "  \"scopes\": [";
-    bool first = true;
-    for (const auto& s : stats) {
-        char buf[320];
-        std::snprintf(buf, sizeof(buf),
-                      "%s\n    {\"name\": \"%s\", \"lane\": \"%s\", \"frames\": %u, \"p50\": %.3f, \"p95\": %.3f, \"p99\": %.3f, \"max\": %.3f}",
-                      first ? "" : ",", json_escape(s.name).c_str(), s.kind == profile::LaneKind::gpu ? "gpu" : "cpu",
-                      s.frames_seen, s.p50_ms, s.p95_ms, s.p99_ms, s.max_ms);
-        json << buf;
-        first = false;
+    // Memory from the warm-up sample to the end (a leak shows as growth; docs/performance.md, "Soak").
+    constexpr double mib = 1024.0 * 1024.0;
+    const MemorySample from = memory.empty() ? MemorySample{} : memory.front();
+    const MemorySample to = memory.empty() ? MemorySample{} : memory.back();
+    std::uint64_t peak_resident = 0, peak_device = 0;
+    for (const MemorySample& m : memory) {
+        peak_resident = std::max(peak_resident, m.resident_bytes);
+        peak_device = std::max(peak_device, m.device_bytes);
     }
-    json << "\n  ],\n  \"screenshots\": [";
-    for (std::size_t i = 0; i < screenshots.size(); ++i) json << (i ? ", " : "") << "\"" << screenshots[i] << "\"";
-    json << "]\n}\n";
-    if (auto ok = write_file_atomic(options_.out_dir + "/timings.json", json.str()); !ok) return ok;
+    const double resident_growth = (double(to.resident_bytes) - double(from.resident_bytes)) / mib;
+    const double device_growth = (double(to.device_bytes) - double(from.device_bytes)) / mib;
+
+    json::Writer w;
+    auto pct = [&](const char* name, const profile::Percentiles& p) {
+        w.key(name).begin_object(json::Layout::one_line).field("frames", p.count).field("mean", p.mean, 3);
+        w.field("p50", p.p50, 3).field("p95", p.p95, 3).field("p99", p.p99, 3).field("max", p.max, 3).end();
+    };
+    w.begin_object();
+    w.field("machine", describe_machine()).field("device", device_->name()).field("world", session_->info.description);
+    w.field("frames", frame_ms.size()).field("warm_up_frames", warm_up_frames).field("seconds", seconds, 3);
+    w.key("internal_resolution").begin_array(json::Layout::one_line).value(options_.internal.x).value(options_.internal.y).end();
+    w.key("gi").begin_object(json::Layout::one_line).field("resolution", gi.resolution).field("heat_rounds", gi.heat_rounds);
+    w.field("heat_scale", int(gi.heat_scale)).field("padding", gi.padding).field("max_lights", gi.max_lights).end();
+    pct("frame_ms", pa);
+    pct("frame_ms_walking", pw);
+    w.key("memory").begin_object().field("from_frame", from.frame).field("to_frame", to.frame);
+    w.key("resident_mib").begin_object(json::Layout::one_line).field("from", double(from.resident_bytes) / mib, 3);
+    w.field("to", double(to.resident_bytes) / mib, 3).field("max", double(peak_resident) / mib, 3);
+    w.field("growth", resident_growth, 3).end();
+    w.key("device_mib").begin_object(json::Layout::one_line).field("from", double(from.device_bytes) / mib, 3);
+    w.field("to", double(to.device_bytes) / mib, 3).field("max", double(peak_device) / mib, 3);
+    w.field("growth", device_growth, 3).end();
+    w.key("samples").begin_array(json::Layout::one_line); // [frame, resident MiB, device MiB]
+    for (const MemorySample& m : memory)
+        w.begin_array().value(m.frame).value(double(m.resident_bytes) / mib, 3).value(double(m.device_bytes) / mib, 3).end();
+    w.end().end();
+    w.key("scopes").begin_array();
+    for (const auto& st : stats) {
+        w.begin_object(json::Layout::one_line).field("name", st.name);
+        w.field("lane", st.kind == profile::LaneKind::gpu ? "gpu" : "cpu").field("frames", st.frames_seen);
+        w.field("p50", st.p50_ms, 3).field("p95", st.p95_ms, 3).field("p99", st.p99_ms, 3).field("max", st.max_ms, 3).end();
+    }
+    w.end();
+    w.key("screenshots").begin_array(json::Layout::one_line);
+    for (const std::string& name : screenshots) w.value(name);
+    w.end().end();
+    if (auto ok = write_file_atomic(options_.out_dir + "/timings.json", w.take()); !ok) return ok;
     if (auto ok = write_file_atomic(options_.out_dir + "/profile.txt", profile::text_report()); !ok) return ok;
     if (auto ok = profile::write_chrome_trace(options_.out_dir + "/trace.json", 300); !ok) return ok;
 
@@ -151,6 +175,9 @@ Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, co
                 warm_up_frames, pa.p50, pa.p95, pa.p99, pa.max, pa.count);
     std::printf("frame ms while walking:               p50 %6.2f  p95 %6.2f  p99 %6.2f  max %6.2f  (%u frames) -> %.1f fps at p95\n",
                 pw.p50, pw.p95, pw.p99, pw.max, pw.count, pw.p95 > 0 ? 1000.0 / pw.p95 : 0.0);
+    std::printf("memory from frame %d to %d: resident %.1f -> %.1f MiB (%+.2f), device %.1f -> %.1f MiB (%+.2f)\n",
+                from.frame, to.frame, double(from.resident_bytes) / mib, double(to.resident_bytes) / mib,
+                resident_growth, double(from.device_bytes) / mib, double(to.device_bytes) / mib, device_growth);
     if (options_.bench) {
         std::printf("\n%-28s %5s %8s %8s %8s %8s\n", "scope / system / GPU pass", "lane", "p50", "p95", "p99", "max");
         for (const auto& s : stats)

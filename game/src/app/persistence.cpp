@@ -2,6 +2,8 @@
 // Chrome trace.
 #include "app/game.hpp"
 
+#include "lantern/core/json_writer.hpp"
+
 namespace lantern::game::app {
 
 void Game::save(Session& s) {
@@ -24,14 +26,14 @@ void Game::write_status(Session& s) {
     glm::vec2 player(0.0f);
     s.world.view<Player, Transform>().each([&](const Player&, const Transform& t) { player = {t.position.x, t.position.z}; });
     const platform::InputState& in = window_->input();
-    char line[320];
-    std::snprintf(line, sizeof line,
-                  "{\"frame\": %llu, \"player\": [%.4f, %.4f], \"mouse\": [%.1f, %.1f], \"buttons\": [%d, %d], "
-                  "\"item\": %d, \"saves\": %d}\n",
-                  static_cast<unsigned long long>(window_frames_), double(player.x), double(player.y),
-                  double(in.mouse_position().x), double(in.mouse_position().y), int(in.down(platform::MouseButton::left)),
-                  int(in.down(platform::MouseButton::right)), selected_item_ + 1, saves_done_);
-    if (auto ok = write_file_atomic(options_.status_file, std::string(line)); !ok && !status_failed_) {
+    json::Writer w;
+    w.begin_object(json::Layout::one_line).field("frame", window_frames_);
+    w.key("player").begin_array().value(double(player.x), 4).value(double(player.y), 4).end();
+    w.key("mouse").begin_array().value(double(in.mouse_position().x), 1).value(double(in.mouse_position().y), 1).end();
+    w.key("buttons").begin_array().value(int(in.down(platform::MouseButton::left)));
+    w.value(int(in.down(platform::MouseButton::right))).end();
+    w.field("item", selected_item_ + 1).field("saves", saves_done_).end();
+    if (auto ok = write_file_atomic(options_.status_file, w.take()); !ok && !status_failed_) {
         status_failed_ = true;
         LANTERN_LOG_ERROR("status file: %s", ok.error().message.c_str());
     }

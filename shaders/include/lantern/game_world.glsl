@@ -21,7 +21,18 @@ layout(constant_id = 2) const bool HAS_ART = false;
 // compile time to the branch it would take for every visible pixel.
 layout(constant_id = 3) const int WALL_LOOKUP = 0;
 
-layout(std140, set = 0, binding = 0) uniform WorldFrame {
+// The frame constants (WorldFrame in game/src/world_renderer.cpp), read as frames[slot] with
+// `slot` a push constant that is always 0. Why the indirection: lavapipe specialises a shader
+// for the values of the uniform words its branches read when it can see their offsets
+// ("uniform inlining", lvp_inline_uniforms.c) and keeps every variant until the pipeline is
+// destroyed. The window origin, grid phase and camera change as the player walks, so a plain
+// block compiled two shader variants a frame and grew the game by ~0.6 MB a frame. An offset
+// that depends on a loaded value is out of inlining's reach, yet still uniform, so llvmpipe
+// keeps its one-scalar-load path (a storage buffer costs a per-lane loop: the ground pass
+// measured 3x slower). docs/performance.md, "Soak".
+struct WorldFrame {
+    mat4 view_projection; // WorldRenderer::view_projection (Vulkan clip space)
+    vec4 camera;       // xyz camera position
     vec4 window;       // gi_shading.window: min x, min z (world), width, height (texels)
     vec4 config;       // gi_shading.config: resolution, tone map, white point, angle scale
     ivec4 grid;        // wall grid width, height, origin x, origin z
@@ -32,7 +43,14 @@ layout(std140, set = 0, binding = 0) uniform WorldFrame {
     vec4 art_params;   // x: dither amplitude (encoded units)
     vec4 palette[16];  // sRGB-encoded palette colours
     GpuDirectionalLight suns[8];
-} pc;
+};
+layout(std140, set = 0, binding = 0) uniform WorldFrames {
+    WorldFrame frames[2]; // two, so that no compiler may fold the index to 0
+} u_frames;
+layout(push_constant) uniform WorldSlot {
+    int slot; // always 0
+} u_slot;
+#define pc (u_frames.frames[u_slot.slot])
 
 layout(set = 0, binding = 1) uniform usamplerBuffer u_walls;
 layout(set = 0, binding = 2) uniform samplerBuffer u_direct;

@@ -2,6 +2,7 @@
 // CPU model, logical cores, memory, OS kernel and compiler. Benchmarks print it first.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace lantern {
@@ -17,5 +18,9 @@ struct MachineInfo {
 
 MachineInfo machine_info();
 std::string describe_machine();
+
+// This process's resident set in bytes (Linux /proc/self/statm), 0 where it cannot be read.
+// Soaks sample it to show that a long run does not grow.
+std::uint64_t resident_set_bytes();
 
 } // namespace lantern

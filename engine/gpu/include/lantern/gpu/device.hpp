@@ -188,6 +188,10 @@ class Device {
     // Destroyed handles whose objects are not freed yet (a TimestampQueries counts twice:
     // its query pool and its results buffer).
     std::size_t pending_deletions() const;
+    // Bytes of device memory this Device has allocated and not yet freed (buffers and images;
+    // memory of destroyed objects counts until deferred destruction frees it). What a soak
+    // samples to show that the GPU side does not grow.
+    std::uint64_t memory_allocated() const;
     std::size_t submissions_in_flight() const { return in_flight_.size(); }
 
     // --- Transfers (convenience; see docs/gpu.md for the per-frame pattern) ----------------
@@ -256,6 +260,8 @@ class Device {
     // The same for objects the Device never counted as live (foreign objects).
     void queue_deletion(const Retired& objects);
     void count_live_object();
+    // Records a vkAllocateMemory of `bytes` (destroy_retired subtracts it when freed).
+    void count_memory(VkDeviceMemory memory, VkDeviceSize bytes);
     void discard(CommandList& list);
     void record_timestamp_copies(CommandList& list);
     void close_list(std::uint64_t list_id);

@@ -38,6 +38,10 @@ namespace lantern::scene {
 // Limits that keep hostile or mistaken inputs from exhausting memory.
 inline constexpr int max_grid_side = 65536;                           // cells per grid side
 inline constexpr std::int64_t max_grid_cells = std::int64_t(1) << 28; // 256 MiB of cells
+// Trees a map may turn into shadow proxies ("trees": "proxy"; the game's --map does): each
+// becomes a proxy in the scene, and in the game an entity with a prop, about 130 bytes of
+// memory together, so this bounds them near 130 MiB whatever the map's size.
+inline constexpr std::int64_t max_map_tree_proxies = std::int64_t(1) << 20;
 inline constexpr double max_gi_texels_per_side = 65536.0;             // padded window * resolution
 
 // Reads the scene file at `path` and parses it with parse_scene, with its folder as the
@@ -88,8 +92,8 @@ struct MapImportOptions {
 
 struct ImportedMap {
     WallGrid walls;                // origin (0, 0): the caller places the grid
-    std::vector<glm::ivec2> trees; // (col, row) of every 'T' cell in row-major order, in
-                                   // either TreeMode
+    std::vector<glm::ivec2> trees; // TreeMode::proxy: (col, row) of every 'T' cell in row-major
+                                   // order, at most max_map_tree_proxies; TreeMode::wall: empty
 };
 
 // Reads a Moving AI grid map: four header lines ("type octile", "height H", "width W",
