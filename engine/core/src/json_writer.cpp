@@ -133,33 +133,20 @@ Writer& Writer::integer(long long v) {
     return *this;
 }
 
-namespace {
-
 template <typename F>
-void append_shortest(std::string& out, F v) {
+Writer& Writer::shortest(F v) {
+    if (!std::isfinite(v)) return null();
+    before_value();
     char buf[64];
     const auto [end, ec] = std::to_chars(buf, buf + sizeof(buf), v);
     LANTERN_ASSERT(ec == std::errc(), "json::Writer: number formatting failed");
-    out.append(buf, end);
-}
-
-} // namespace
-
-Writer& Writer::value(double v) {
-    if (!std::isfinite(v)) return null();
-    before_value();
-    append_shortest(out_, v);
+    out_.append(buf, end);
     if (levels_.empty()) done_ = true;
     return *this;
 }
 
-Writer& Writer::value(float v) {
-    if (!std::isfinite(v)) return null();
-    before_value();
-    append_shortest(out_, v);
-    if (levels_.empty()) done_ = true;
-    return *this;
-}
+Writer& Writer::value(double v) { return shortest(v); }
+Writer& Writer::value(float v) { return shortest(v); }
 
 Writer& Writer::value(double v, int decimals) {
     LANTERN_ASSERT(decimals >= 0 && decimals <= 17, "json::Writer: decimals outside 0..17");

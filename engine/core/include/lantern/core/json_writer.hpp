@@ -73,6 +73,8 @@ class Writer {
         bool empty = true;
     };
     Writer& integer(long long v);
+    template <typename F>
+    Writer& shortest(F v); // float or double, shortest text that reads back exactly
     Writer& begin(char open, bool object, Layout layout);
     void before_value(); // separator and indentation; checks a key was given in an object
     void newline_indent(std::size_t depth);
