@@ -7,6 +7,7 @@
 // A cave around the player: procedural caves, walls as boxes with exposed faces, a few
 // torches, the player; GI at resolution 4 computed once (only the world pass is timed),
 // 480x270. Numbers go in docs/game.md ("Performance"); compare ratios from one run.
+#include "lantern/core/cli.hpp"
 #include "lantern/core/machine.hpp"
 #include "lantern/game/gameplay.hpp"
 #include "lantern/game/world_renderer.hpp"
@@ -54,16 +55,12 @@ int fail(const std::string& message) {
 
 int main(int argc, char** argv) {
     int frames = 15;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--frames" && i + 1 < argc) {
-            frames = std::atoi(argv[++i]);
-            if (frames < 2 || frames > 10000) return fail("--frames must be 2..10000");
-        } else {
-            std::fprintf(stderr, "usage: lantern-bench-world [--frames N]\n");
-            return 2;
-        }
-    }
+    cli::Parser args("lantern-bench-world", "[--frames N]",
+                  "GPU time of the game's world pass on a typical cave view, and what each part of it\n"
+                  "costs (docs/game.md, \"Performance\").");
+    args.integer("--frames", "N", "frames per variant; the minimum and median are reported (default 15)", frames, 2,
+                 10000);
+    if (auto exit = args.parse(argc, argv)) return *exit;
     std::printf("machine: %s\n", describe_machine().c_str());
     auto device = gpu::Device::create({.application_name = "lantern-bench-world", .graphics = true});
     if (!device) return fail(device.error().message);

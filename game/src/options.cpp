@@ -1,15 +1,16 @@
 #include "lantern/game/options.hpp"
 
+#include "lantern/core/cli.hpp"
 #include "lantern/core/file.hpp"
+#include "lantern/core/text.hpp"
 #include "lantern/scene/loader.hpp"
 
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 
 namespace lantern::game {
 namespace {
-
-Error bad(const std::string& what) { return Error{"lantern: " + what + " (see --help)", 2}; }
 
 bool parse_int(std::string_view s, int& out, int min, int max) {
     int v = 0;
@@ -19,13 +20,18 @@ bool parse_int(std::string_view s, int& out, int min, int max) {
     return true;
 }
 
-bool parse_size(std::string_view s, glm::ivec2& out, int min, int max) {
-    const auto x = s.find('x');
-    if (x == std::string_view::npos) return false;
-    glm::ivec2 v;
-    if (!parse_int(s.substr(0, x), v.x, min, max) || !parse_int(s.substr(x + 1), v.y, min, max)) return false;
-    out = v;
-    return true;
+// A WxH size, each side in [min, max].
+cli::Parser::Check size_option(glm::ivec2& out, int min, int max) {
+    return [&out, min, max](std::string_view s) -> std::optional<std::string> {
+        const auto x = s.find('x');
+        glm::ivec2 v;
+        if (x == std::string_view::npos || !parse_int(s.substr(0, x), v.x, min, max) ||
+            !parse_int(s.substr(x + 1), v.y, min, max))
+            return "must be WxH, each in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" +
+                   printable(s) + "'";
+        out = v;
+        return std::nullopt;
+    };
 }
 
 } // namespace
@@ -45,170 +51,97 @@ scene::GiSettings default_game_gi() {
     return gi;
 }
 
-std::string usage() {
-    return R"(lantern: the Lantern sandbox game (docs/game.md)
-
-usage: lantern [world] [options]
-
-world (default: --caves 1)
-  --caves [SEED]        seeded procedural caves
-  --map FILE.map        a Moving AI map; 'T' cells become trees with proxy shadows
-  --scene FILE.json     a Lantern scene file (its lights, proxies and GI settings)
-  --load SAVE.json      continue a saved game (its world, edits, lights, player)
-  --save-file PATH      where F5 saves and F9 loads (default lantern-save.json)
-
-mode (default: a window when a display can open, else the headless demo)
-  --window              a window or an error
-  --headless            the scripted demo without a window: PNG screenshots, profiler report
-  --frames N            headless frames (default 900)
-  --out DIR             headless output folder (default lantern-demo)
-  --screenshots N       screenshots over the run (default 6, 0 for none)
-  --bench               print per-system and per-pass percentiles (headless benchmark)
-  --status-file PATH    after each windowed frame, write the frame number, player position,
-                        mouse, buttons and saves as one JSON line (for scripts and tests)
-
-presentation
-  --size WxH            window size (default 1280x720)
-  --internal WxH        pixel-art resolution (default 480x270)
-  --vsync on|off        (default on)
-  --no-hud              start with the timer HUD hidden (F1 toggles)
-  --posterize N         posterize to N levels per channel (2..64)
-  --dither              ordered 4x4 dithering
-  --palette NAME        palette swap (names in docs/game.md)
-
-simulation
-  --set gi.KEY=VALUE    a GI setting, as in scene files (repeatable), e.g. --set gi.resolution=8
-  --no-player-light     the player carries no light
-  --workers N           job-system worker threads (default: cores - 1)
-  --fixed-step          advance 1/60 s per frame whatever the frame took
-  --validation          enable the Vulkan validation layers
-
-controls: WASD/arrows walk, left mouse mines, right mouse places the selected item
-(1 wall, 2 torch, 3 crystal, 4 lamp post, 5 tree), N day/night cycle, F1 HUD,
-F2 export a Chrome trace, F5 save, F9 load, Esc quit.
-)";
-}
-
-Result<GameOptions> parse_options(int argc, const char* const* argv, bool* help) {
-    GameOptions o;
+std::optional<int> parse_options(int argc, const char* const* argv, GameOptions& o) {
+    o = GameOptions{};
     o.gi = default_game_gi();
     scene::Scene overrides;
     overrides.gi = o.gi;
     bool world_given = false;
     bool out_given = false;
-    if (help) *help = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string_view a = argv[i];
-        auto value = [&](const char* what) -> std::optional<std::string_view> {
-            if (i + 1 >= argc) return std::nullopt;
-            (void)what;
-            return std::string_view(argv[++i]);
-        };
-        auto need = [&](const char* flag) { return bad(std::string(flag) + " needs a value"); };
-        auto set_world = [&](WorldKind kind, std::string path) -> std::optional<Error> {
-            if (world_given) return bad("give one world (--caves, --map or --scene)");
+    std::string vsync = "on";
+    auto world = [&](WorldKind kind) {
+        return [&, kind](std::string_view value) -> std::optional<std::string> {
+            if (world_given) return "give one world (--caves, --map or --scene)";
             world_given = true;
             o.world.kind = kind;
-            o.world.path = std::move(path);
-            return std::nullopt;
-        };
-        if (a == "--help" || a == "-h") {
-            if (help) *help = true;
-            return o;
-        } else if (a == "--caves") {
-            if (auto e = set_world(WorldKind::caves, "")) return *e;
-            if (i + 1 < argc && argv[i + 1][0] != '-') {
+            if (kind != WorldKind::caves) {
+                if (value.empty()) return "must not be empty";
+                o.world.path = std::string(value);
+            } else if (!value.empty()) {
                 int seed = 0;
-                if (!parse_int(argv[++i], seed, 0, 0x7FFFFFFF)) return bad("--caves SEED must be an integer >= 0");
+                if (!parse_int(value, seed, 0, 0x7FFFFFFF))
+                    return "must be a seed in [0, 2147483647], got '" + printable(value) + "'";
                 o.world.seed = std::uint32_t(seed);
             }
-        } else if (a == "--map" || a == "--scene") {
-            auto v = value(argv[i]);
-            if (!v) return need(argv[i]);
-            if (auto e = set_world(a == "--map" ? WorldKind::map : WorldKind::scene, std::string(*v))) return *e;
-        } else if (a == "--load") {
-            auto v = value("--load");
-            if (!v) return need("--load");
-            o.load = *v;
-        } else if (a == "--save-file") {
-            auto v = value("--save-file");
-            if (!v || v->empty()) return need("--save-file");
-            o.save_file = *v;
-        } else if (a == "--status-file") {
-            auto v = value("--status-file");
-            if (!v || v->empty()) return need("--status-file");
-            o.status_file = *v;
-        } else if (a == "--window") {
-            o.mode = RunMode::window;
-        } else if (a == "--headless") {
-            o.mode = RunMode::headless;
-        } else if (a == "--frames") {
-            auto v = value("--frames");
-            if (!v) return need("--frames");
-            if (!parse_int(*v, o.frames, 1, 10000000)) return bad("--frames must be an integer >= 1");
-        } else if (a == "--out") {
-            auto v = value("--out");
-            if (!v || v->empty()) return need("--out");
-            o.out_dir = *v;
-            out_given = true;
-        } else if (a == "--screenshots") {
-            auto v = value("--screenshots");
-            if (!v) return need("--screenshots");
-            if (!parse_int(*v, o.screenshots, 0, 1000)) return bad("--screenshots must be in [0, 1000]");
-        } else if (a == "--bench") {
-            o.bench = true;
-        } else if (a == "--size") {
-            auto v = value("--size");
-            if (!v) return need("--size");
-            if (!parse_size(*v, o.window_size, 64, 16384)) return bad("--size must be WxH, each in [64, 16384]");
-        } else if (a == "--internal") {
-            auto v = value("--internal");
-            if (!v) return need("--internal");
-            if (!parse_size(*v, o.internal, 32, 4096)) return bad("--internal must be WxH, each in [32, 4096]");
-        } else if (a == "--vsync") {
-            auto v = value("--vsync");
-            if (!v) return need("--vsync");
-            if (*v != "on" && *v != "off") return bad("--vsync must be on or off");
-            o.vsync = *v == "on";
-        } else if (a == "--no-hud") {
-            o.hud = false;
-        } else if (a == "--posterize") {
-            auto v = value("--posterize");
-            if (!v) return need("--posterize");
-            if (!parse_int(*v, o.posterize, 2, 64)) return bad("--posterize must be in [2, 64]");
-        } else if (a == "--dither") {
-            o.dither = true;
-        } else if (a == "--palette") {
-            auto v = value("--palette");
-            if (!v || v->empty()) return need("--palette");
-            o.palette = *v;
-        } else if (a == "--set") {
-            auto v = value("--set");
-            if (!v) return need("--set");
-            if (auto ok = scene::apply_override(overrides, *v); !ok) return Error{"lantern: " + ok.error().message, 2};
-            o.gi_overrides.emplace_back(*v);
-        } else if (a == "--no-player-light") {
-            o.player_light = false;
-        } else if (a == "--workers") {
-            auto v = value("--workers");
-            if (!v) return need("--workers");
-            if (!parse_int(*v, o.workers, 0, 256)) return bad("--workers must be in [0, 256]");
-        } else if (a == "--fixed-step") {
-            o.fixed_step = true;
-        } else if (a == "--validation") {
-            o.validation = true;
-        } else {
-            return bad("unknown argument '" + std::string(a.substr(0, 60)) + "'");
-        }
-    }
+            return std::nullopt;
+        };
+    };
+
+    cli::Parser p("lantern", "[world] [options]", "The Lantern sandbox game (docs/game.md).");
+    p.section("world (default: --caves 1)");
+    p.custom("--caves", "SEED", "seeded procedural caves", world(WorldKind::caves), false, true);
+    p.custom("--map", "FILE.map", "a Moving AI map; 'T' cells become trees with proxy shadows", world(WorldKind::map));
+    p.custom("--scene", "FILE.json", "a Lantern scene file (its lights, proxies and GI settings)",
+             world(WorldKind::scene));
+    p.text("--load", "SAVE.json", "continue a saved game (its world, edits, lights, player)", o.load);
+    p.text("--save-file", "PATH", "where F5 saves and F9 loads (default lantern-save.json)", o.save_file);
+    p.section("mode (default: a window when a display can open, else the headless demo)");
+    p.flag("--window", "a window or an error", [&] { o.mode = RunMode::window; });
+    p.flag("--headless", "the scripted demo without a window: PNG screenshots, profiler report",
+           [&] { o.mode = RunMode::headless; });
+    p.integer("--frames", "N", "headless frames (default 900)", o.frames, 1, 10000000);
+    p.custom("--out", "DIR", "headless output folder (default lantern-demo)",
+             [&](std::string_view v) -> std::optional<std::string> {
+                 if (v.empty()) return "must not be empty";
+                 o.out_dir = std::string(v);
+                 out_given = true;
+                 return std::nullopt;
+             });
+    p.integer("--screenshots", "N", "screenshots over the run (default 6, 0 for none)", o.screenshots, 0, 1000);
+    p.flag("--bench", "print per-system and per-pass percentiles (headless benchmark)", o.bench);
+    p.text("--status-file", "PATH",
+           "after each windowed frame, write the frame number, player position,\n"
+           "mouse, buttons and saves as one JSON line (for scripts and tests)",
+           o.status_file);
+    p.section("presentation");
+    p.custom("--size", "WxH", "window size (default 1280x720)", size_option(o.window_size, 64, 16384));
+    p.custom("--internal", "WxH", "pixel-art resolution (default 480x270)", size_option(o.internal, 32, 4096));
+    p.choice("--vsync", "(default on)", vsync, {"on", "off"});
+    p.flag("--no-hud", "start with the timer HUD hidden (F1 toggles)", [&] { o.hud = false; });
+    p.integer("--posterize", "N", "posterize to N levels per channel", o.posterize, 2, 64);
+    p.flag("--dither", "ordered 4x4 dithering", o.dither);
+    p.text("--palette", "NAME", "palette swap (names in docs/game.md)", o.palette);
+    p.section("simulation");
+    p.custom(
+        "--set", "gi.KEY=VALUE", "a GI setting, as in scene files, e.g. --set gi.resolution=8",
+        [&](std::string_view v) -> std::optional<std::string> {
+            if (auto ok = scene::apply_override(overrides, v); !ok) return ok.error().message;
+            o.gi_overrides.emplace_back(v);
+            return std::nullopt;
+        },
+        true);
+    p.flag("--no-player-light", "the player carries no light", [&] { o.player_light = false; });
+    p.integer("--workers", "N", "job-system worker threads (default: cores - 1)", o.workers, 0, 256);
+    p.flag("--fixed-step", "advance 1/60 s per frame whatever the frame took", o.fixed_step);
+    p.flag("--validation", "enable the Vulkan validation layers", o.validation);
+    p.epilog("controls: WASD/arrows walk, left mouse mines, right mouse places the selected item\n"
+             "(1 wall, 2 torch, 3 crystal, 4 lamp post, 5 tree), N day/night cycle, F1 HUD,\n"
+             "F2 export a Chrome trace, F5 save, F9 load, Esc quit.\n"
+             "exit status: 0 ok, 1 runtime failure (e.g. no Vulkan device), 2 bad input.");
+    if (auto exit = p.parse(argc, argv)) return exit;
+    o.vsync = vsync == "on";
     o.gi = overrides.gi;
     // Outputs are checked before the game starts (a folder, FIFO or device named as a file,
     // a file named as the output folder): one line, exit 2, nothing written.
+    auto refuse = [](const std::string& what) {
+        std::fprintf(stderr, "lantern: %s\n", what.c_str());
+        return 2;
+    };
     if (out_given)
-        if (auto ok = check_output_folder(o.out_dir); !ok) return Error{"lantern: --out " + ok.error().message, 2};
+        if (auto ok = check_output_folder(o.out_dir); !ok) return refuse("--out " + ok.error().message);
     if (!o.status_file.empty())
-        if (auto ok = check_output_file(o.status_file); !ok) return Error{"lantern: --status-file " + ok.error().message, 2};
-    return o;
+        if (auto ok = check_output_file(o.status_file); !ok) return refuse("--status-file " + ok.error().message);
+    return std::nullopt;
 }
 
 } // namespace lantern::game

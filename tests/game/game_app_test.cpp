@@ -421,10 +421,10 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--map", dir.file("bad.map")}, "bad.map:5:2: unknown map character 'x'"},
         {{"--scene", dir.file("nope.json")}, "nope.json"},
         {{"--load", dir.file("bad_save.json")}, "bad_save.json:2:11: world: expected an object"},
-        {{"--frames", "0"}, "--frames must be an integer >= 1"},
+        {{"--frames", "0"}, "--frames: must be an integer in [1, 10000000], got '0'"},
         {{"--set", "gi.resolution=99"}, "gi.resolution"},
         {{"--palette", "neon"}, "unknown palette 'neon'"},
-        {{"--bogus"}, "unknown argument '--bogus'"},
+        {{"--bogus"}, "unknown option '--bogus'"},
         // Paths that are not regular files: refused before they are read or block.
         {{"--map", dir.path().string()}, "is a folder, not a regular file"},
         {{"--map", dir.file("pipe")}, "is a FIFO, not a regular file"},

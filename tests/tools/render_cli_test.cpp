@@ -18,14 +18,14 @@ using lantern::test::TempDir;
 
 namespace {
 
-struct Run {
+struct RunResult {
     int status = -1;
     std::string output; // stdout + stderr
 };
 
-Run run(const std::string& args) {
-    Run r;
-    const std::string cmd = std::string(LANTERN_RENDER_EXE) + " " + args + " 2>&1";
+RunResult run_exe(const std::string& exe, const std::string& args) {
+    RunResult r;
+    const std::string cmd = exe + " " + args + " 2>&1";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
     char buf[4096];
@@ -35,6 +35,8 @@ Run run(const std::string& args) {
     r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
 }
+
+RunResult run(const std::string& args) { return run_exe(LANTERN_RENDER_EXE, args); }
 
 void write(const fs::path& path, const std::string& text) {
     std::ofstream(path) << text;
@@ -64,6 +66,52 @@ TEST(RenderCli, HelpAndUsageErrors) {
     EXPECT_EQ(run("a.json --backend metal").status, 2);
     EXPECT_EQ(run("a.json --bogus").status, 2);
     EXPECT_EQ(run("a.json --out").status, 2);
+}
+
+// Every executable parses its command line with core's cli::Parser: --help and --version
+// answer with exit 0, bad options with one line and exit 2.
+TEST(EveryExecutable, HelpVersionAndBadOptions) {
+    const std::vector<std::pair<std::string, std::string>> programs = {
+        {LANTERN_RENDER_EXE, "lantern-render"},
+        {LANTERN_BENCH_EXE, "lantern-bench"},
+        {std::string(LANTERN_BENCH_EXE) + " accuracy", "lantern-bench accuracy"},
+        {std::string(LANTERN_BENCH_EXE) + " seed-table", "lantern-bench seed-table"},
+        {LANTERN_DEMO_EXE, "lantern-demo"},
+        {LANTERN_GAME_EXE, "lantern"},
+    };
+    for (const auto& [exe, name] : programs) {
+        const RunResult help = run_exe(exe, "--help");
+        EXPECT_EQ(help.status, 0) << name << ": " << help.output;
+        EXPECT_EQ(help.output.rfind("usage: " + name + " ", 0), 0u) << name << ": " << help.output;
+        EXPECT_NE(help.output.find("--version"), std::string::npos) << name;
+        const RunResult version = run_exe(exe, "--version");
+        EXPECT_EQ(version.status, 0) << name << ": " << version.output;
+        EXPECT_EQ(version.output.rfind(name + " (Lantern ", 0), 0u) << name << ": " << version.output;
+        const RunResult bad = run_exe(exe, "--bogus");
+        EXPECT_EQ(bad.status, 2) << name << ": " << bad.output;
+        EXPECT_EQ(bad.output, name + ": unknown option '--bogus' (see --help)\n");
+    }
+    // Values: in range, of the right kind, present; one line each.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"a.json --frames 0", "lantern-render: --frames: must be an integer in [1, 100000], got '0' (see --help)\n"},
+        {"a.json --frames=x", "lantern-render: --frames: must be an integer in [1, 100000], got 'x' (see --help)\n"},
+        {"a.json --backend metal", "lantern-render: --backend: must be vulkan or cpu, got 'metal' (see --help)\n"},
+        {"a.json --out", "lantern-render: --out needs a value (IMAGE.png) (see --help)\n"},
+        {"a.json b.json", "lantern-render: more than one scene file given ('a.json' and 'b.json') (see --help)\n"},
+        {"", "lantern-render: no scene file given (see --help)\n"},
+        {"--quiet=yes a.json", "lantern-render: --quiet takes no value (see --help)\n"},
+    };
+    for (const auto& [args, expect] : cases) {
+        const RunResult r = run(args);
+        EXPECT_EQ(r.status, 2) << args;
+        EXPECT_EQ(r.output, expect) << args;
+    }
+    const RunResult unknown = run_exe(LANTERN_BENCH_EXE, "plot");
+    EXPECT_EQ(unknown.status, 2);
+    EXPECT_EQ(unknown.output, "lantern-bench: unknown command 'plot' (see --help)\n");
+    const RunResult none = run_exe(LANTERN_BENCH_EXE, "");
+    EXPECT_EQ(none.status, 2);
+    EXPECT_EQ(none.output, "lantern-bench: no command given (see --help)\n");
 }
 
 TEST(RenderCli, BadScenesExitTwoAndWriteNothing) {

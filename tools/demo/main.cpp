@@ -2,6 +2,7 @@
 // a few hundred frames; prints the profiler's per-system report and writes a Chrome trace.
 //
 //   lantern-demo [--frames N] [--agents N] [--workers N] [--trace FILE] [--quiet]
+#include "lantern/core/cli.hpp"
 #include "lantern/core/clock.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/machine.hpp"
@@ -168,39 +169,19 @@ struct Options {
     bool quiet = false;
 };
 
-bool parse_int(const char* text, int& out) {
-    char* end = nullptr;
-    long v = std::strtol(text, &end, 10);
-    if (!end || *end != '\0' || v < 0 || v > 100000000) return false;
-    out = int(v);
-    return true;
-}
-
-int usage(const char* error) {
-    if (error) std::fprintf(stderr, "lantern-demo: %s\n", error);
-    std::fprintf(stderr,
-                 "usage: lantern-demo [--frames N] [--agents N] [--workers N] [--trace FILE] [--quiet]\n"
-                 "  Simulates N agents with ECS systems on the job graph, prints the profiler report\n"
-                 "  and writes a Chrome trace (default out/demo_trace.json; open in ui.perfetto.dev).\n");
-    return error ? 2 : 0;
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
     Options opt;
-    for (int i = 1; i < argc; ++i) {
-        std::string a = argv[i];
-        auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-        const char* v = nullptr;
-        if (a == "--help" || a == "-h") return usage(nullptr);
-        if (a == "--quiet") opt.quiet = true;
-        else if (a == "--frames") { if (!(v = next()) || !parse_int(v, opt.frames) || opt.frames == 0) return usage("--frames needs a positive integer"); }
-        else if (a == "--agents") { if (!(v = next()) || !parse_int(v, opt.agents)) return usage("--agents needs an integer"); }
-        else if (a == "--workers") { if (!(v = next()) || !parse_int(v, opt.workers)) return usage("--workers needs an integer"); }
-        else if (a == "--trace") { if (!(v = next())) return usage("--trace needs a file name"); opt.trace = v; }
-        else return usage(("unknown argument '" + a + "'").c_str());
-    }
+    cli::Parser p("lantern-demo", "[options]",
+                  "Simulates N agents with ECS systems on the job graph, prints the profiler report and\n"
+                  "writes a Chrome trace (open it in ui.perfetto.dev).");
+    p.integer("--frames", "N", "frames to simulate (default 300)", opt.frames, 1, 100000000);
+    p.integer("--agents", "N", "agents (default 100000)", opt.agents, 0, 100000000);
+    p.integer("--workers", "N", "job-system worker threads (default: cores - 1)", opt.workers, 0, 256);
+    p.text("--trace", "FILE", "the Chrome trace (default out/demo_trace.json)", opt.trace);
+    p.flag("--quiet", "no progress output on stderr", opt.quiet);
+    if (auto exit = p.parse(argc, argv)) return *exit;
 
     jobs::JobSystem::Config config;
     config.worker_threads = opt.workers;

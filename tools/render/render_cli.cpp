@@ -1,14 +1,15 @@
 #include "render_cli.hpp"
 
+#include "lantern/core/cli.hpp"
 #include "lantern/core/file.hpp"
+#include "lantern/core/json_writer.hpp"
+#include "lantern/core/text.hpp"
 #include "lantern/core/png.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/jobs/job_system.hpp"
 #include "lantern/profile/profiler.hpp"
 #include "lantern/scene/loader.hpp"
 #include "lantern/systems/scene_world.hpp"
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -20,28 +21,6 @@
 
 namespace lantern::tools {
 namespace {
-
-constexpr const char* usage_text =
-    "usage: lantern-render SCENE.json [--out IMAGE.png] [--backend vulkan|cpu] [--dump DIR]\n"
-    "                      [--timings FILE.json] [--set gi.KEY=VALUE ...] [--frames N] [--quiet]\n"
-    "\n"
-    "Renders the GI frame of a scene file (docs/scenes.md) through the whole pipeline: direct\n"
-    "light (point, emissive, directional), heat-diffusion indirect light, blur, wall indirect.\n"
-    "  --out IMAGE.png      the lit image of the GI window seen from above: ground, wall faces\n"
-    "                       and wall tops, tone-mapped, sRGB, one pixel per GI texel\n"
-    "  --backend vulkan|cpu Vulkan (default; LANTERN_VK_DEVICE picks a device) or the C++ reference\n"
-    "  --dump DIR           every GI texture the frame produced, as little-endian float PFM\n"
-    "  --timings FILE.json  per-pass times, texture size, GI window, device, passes left out\n"
-    "  --set gi.KEY=VALUE   override a gi setting (e.g. --set gi.resolution=16)\n"
-    "  --frames N           run N frames through the ECS frame (default 1), with a scripted change\n"
-    "                       before frame k >= 1, by k mod 4: 1 moves the first light 0.5 along x,\n"
-    "                       2 changes nothing (every pass a cache hit), 3 toggles the wall at the\n"
-    "                       window's centre, 0 moves the camera one tile along x. --timings then\n"
-    "                       lists, per frame, which passes ran and why the others did not; the\n"
-    "                       outputs are the last frame's\n"
-    "  --quiet              no progress output on stderr\n"
-    "Exit status: 0 ok, 1 runtime failure (e.g. no Vulkan device), 2 bad input. Nothing is\n"
-    "written unless the frame succeeded; every file is written atomically.\n";
 
 struct Options {
     std::string scene;
@@ -57,45 +36,48 @@ int fail(const std::string& message, int code) {
     return code;
 }
 
-// Returns the exit code on error, nullopt when parsing succeeded.
+// Returns the exit code when the program should stop (--help, --version, bad input), nullopt
+// when parsing succeeded.
 std::optional<int> parse_args(int argc, char** argv, Options& o) {
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&](const char* flag) -> const char* {
-            if (i + 1 >= argc) return nullptr;
-            (void)flag;
-            return argv[++i];
-        };
-        const char* v = nullptr;
-        if (a == "--help" || a == "-h") {
-            std::fputs(usage_text, stdout);
-            return 0;
-        } else if (a == "--quiet") {
-            o.quiet = true;
-        } else if (a == "--frames") {
-            if (!(v = value(a.c_str()))) return fail("--frames needs a value (see --help)", 2);
-            char* end = nullptr;
-            const long n = std::strtol(v, &end, 10);
-            if (*end || n < 1 || n > 100000) return fail("--frames needs an integer from 1 to 100000", 2);
-            o.frames = int(n);
-        } else if (a == "--out" || a == "--dump" || a == "--timings" || a == "--backend" || a == "--set") {
-            if (!(v = value(a.c_str()))) return fail(a + " needs a value (see --help)", 2);
-            if (a == "--out") o.out = v;
-            else if (a == "--dump") o.dump = v;
-            else if (a == "--timings") o.timings = v;
-            else if (a == "--backend") o.backend = v;
-            else o.sets.push_back(v);
-        } else if (!a.empty() && a[0] == '-') {
-            return fail("unknown option '" + a + "' (see --help)", 2);
-        } else if (o.scene.empty()) {
-            o.scene = a;
-        } else {
-            return fail("more than one scene file given ('" + o.scene + "' and '" + a + "')", 2);
-        }
+    cli::Parser p("lantern-render", "SCENE.json [options]",
+                  "Renders the GI frame of a scene file (docs/scenes.md) through the whole pipeline: direct\n"
+                  "light (point, emissive, directional), heat-diffusion indirect light, blur, wall indirect.");
+    p.positionals("SCENE.json", "the scene file", [&](std::string_view a) -> std::optional<std::string> {
+        if (!o.scene.empty()) return "more than one scene file given ('" + o.scene + "' and '" + printable(a) + "')";
+        o.scene = std::string(a);
+        return std::nullopt;
+    });
+    p.text("--out", "IMAGE.png",
+           "the lit image of the GI window seen from above: ground, wall faces\n"
+           "and wall tops, tone-mapped, sRGB, one pixel per GI texel",
+           o.out);
+    p.choice("--backend", "Vulkan (default; LANTERN_VK_DEVICE picks a device) or the C++ reference", o.backend,
+             {"vulkan", "cpu"});
+    p.text("--dump", "DIR", "every GI texture the frame produced, as little-endian float PFM", o.dump);
+    p.text("--timings", "FILE.json", "per-pass times, texture size, GI window, device, passes left out", o.timings);
+    p.custom(
+        "--set", "gi.KEY=VALUE", "override a gi setting (e.g. --set gi.resolution=16)",
+        [&](std::string_view v) -> std::optional<std::string> {
+            o.sets.emplace_back(v);
+            return std::nullopt;
+        },
+        true);
+    p.integer("--frames", "N",
+              "run N frames through the ECS frame (default 1), with a scripted change\n"
+              "before frame k >= 1, by k mod 4: 1 moves the first light 0.5 along x,\n"
+              "2 changes nothing (every pass a cache hit), 3 toggles the wall at the\n"
+              "window's centre, 0 moves the camera one tile along x. --timings then\n"
+              "lists, per frame, which passes ran and why the others did not; the\n"
+              "outputs are the last frame's",
+              o.frames, 1, 100000);
+    p.flag("--quiet", "no progress output on stderr", o.quiet);
+    p.epilog("Exit status: 0 ok, 1 runtime failure (e.g. no Vulkan device), 2 bad input. Nothing is\n"
+             "written unless the frame succeeded; every file is written atomically.");
+    if (auto exit = p.parse(argc, argv)) return exit;
+    if (o.scene.empty()) {
+        std::fprintf(stderr, "%s\n", p.message("no scene file given").c_str());
+        return 2;
     }
-    if (o.scene.empty()) return fail("no scene file given (see --help)", 2);
-    if (o.backend != "vulkan" && o.backend != "cpu")
-        return fail("--backend must be vulkan or cpu, not '" + o.backend + "'", 2);
     // Outputs are checked before any work, so a bad one costs nothing and writes nothing.
     for (const std::string* path : {&o.out, &o.timings})
         if (!path->empty())
@@ -113,50 +95,47 @@ struct FrameRecord {
     std::array<double, gi::pass_count> ms{};
 };
 
-nlohmann::json passes_json(const FrameRecord& f, double& total) {
-    nlohmann::json passes = nlohmann::json::array();
+// Every registered pass of frame `f`: ran or why not, GPU ms; returns their sum.
+double write_passes(json::Writer& w, const FrameRecord& f) {
+    double total = 0.0;
+    w.key("passes").begin_array();
     for (int p = 0; p < gi::registered_pass_count(); ++p) {
         const bool ran = f.ran.has(gi::Pass(p));
-        nlohmann::json e{{"name", gi::pass_name(gi::Pass(p))}, {"ran", ran}, {"gpu_ms", f.ms[std::size_t(p)]}};
-        if (!ran) e["reason"] = f.reason[std::size_t(p)];
+        w.begin_object(json::Layout::one_line).field("name", gi::pass_name(gi::Pass(p))).field("ran", ran);
+        w.field("gpu_ms", f.ms[std::size_t(p)]);
+        if (!ran) w.field("reason", f.reason[std::size_t(p)]);
+        w.end();
         total += f.ms[std::size_t(p)];
-        passes.push_back(e);
     }
-    return passes;
+    w.end();
+    return total;
 }
 
-nlohmann::json timings_json(const Options& o, const std::string& device, const gi::GiWindow& w,
-                            const systems::GatheredLights& lights, std::size_t proxies,
-                            const std::vector<FrameRecord>& frames) {
-    nlohmann::json j;
-    j["scene"] = o.scene;
-    j["backend"] = o.backend;
-    j["device"] = device;
-    j["timing_source"] = o.backend == "vulkan" ? "GPU timestamps" : "CPU wall clock of the C++ reference";
-    j["texture_size"] = {w.width, w.height};
-    j["camera_view"] = {w.view.min_x, w.view.min_z, w.view.width, w.view.height};
-    j["resolution"] = w.resolution;
-    j["lights"] = {{"point", lights.points.size()},
-                   {"emissive", lights.emissives.size()},
-                   {"directional", lights.suns.size()},
-                   {"shadow_proxies", proxies}};
+std::string timings_json(const Options& o, const std::string& device, const gi::GiWindow& win,
+                         const systems::GatheredLights& lights, std::size_t proxies,
+                         const std::vector<FrameRecord>& frames) {
+    json::Writer w;
+    w.begin_object().field("scene", o.scene).field("backend", o.backend).field("device", device);
+    w.field("timing_source", o.backend == "vulkan" ? "GPU timestamps" : "CPU wall clock of the C++ reference");
+    w.key("texture_size").begin_array(json::Layout::one_line).value(win.width).value(win.height).end();
+    w.key("camera_view").begin_array(json::Layout::one_line).value(win.view.min_x).value(win.view.min_z);
+    w.value(win.view.width).value(win.view.height).end();
+    w.field("resolution", win.resolution);
+    w.key("lights").begin_object(json::Layout::one_line).field("point", lights.points.size());
+    w.field("emissive", lights.emissives.size()).field("directional", lights.suns.size());
+    w.field("shadow_proxies", proxies).end();
     // The top level describes the last frame (the one whose outputs were written).
-    double total = 0.0;
-    j["passes"] = passes_json(frames.back(), total);
-    j["total_gpu_ms"] = total;
-    nlohmann::json per_frame = nlohmann::json::array();
+    w.field("total_gpu_ms", write_passes(w, frames.back()));
+    w.key("frames").begin_array();
     for (const FrameRecord& f : frames) {
-        double t = 0.0;
-        nlohmann::json e{{"frame", f.frame}};
-        e["passes"] = passes_json(f, t);
-        e["total_gpu_ms"] = t;
-        per_frame.push_back(e);
+        w.begin_object().field("frame", f.frame);
+        w.field("total_gpu_ms", write_passes(w, f)).end();
     }
-    j["frames"] = per_frame;
-    return j;
+    w.end().end();
+    return w.take();
 }
 
-Result<void> write_outputs(const Options& o, gi::Backend& backend, const nlohmann::json& timings) {
+Result<void> write_outputs(const Options& o, gi::Backend& backend, const std::string& timings) {
     if (!o.dump.empty()) {
         // Every texture goes into a staging folder first; only a complete set is moved into
         // place (core/file.hpp: StagedFolder), so a failure leaves no partial dump.
@@ -182,7 +161,7 @@ Result<void> write_outputs(const Options& o, gi::Backend& backend, const nlohman
         if (auto ok = write_png(o.out, img.width, img.height, 3, flipped); !ok) return ok;
     }
     if (!o.timings.empty())
-        if (auto ok = write_file_atomic(o.timings, timings.dump(2) + "\n"); !ok) return ok;
+        if (auto ok = write_file_atomic(o.timings, timings); !ok) return ok;
     return {};
 }
 
@@ -301,7 +280,7 @@ int render_main(int argc, char** argv) {
         std::fprintf(stderr, "lantern-render: %s, %d x %d texels, %s, %d frame(s)\n", o.backend.c_str(),
                      view.window->width, view.window->height, device_name.c_str(), o.frames);
     for (const FrameRecord& r : records) print_frame(o, r);
-    const nlohmann::json timings = timings_json(o, device_name, *view.window, world.resource<systems::GatheredLights>(),
+    const std::string timings = timings_json(o, device_name, *view.window, world.resource<systems::GatheredLights>(),
                                                 world.resource<systems::GatheredProxies>().proxies.size(), records);
     if (auto ok = write_outputs(o, frame.backend(), timings); !ok) return fail(ok.error().message, 1);
     return 0;

@@ -1,5 +1,5 @@
 // The game's command line (docs/game.md): which world, windowed or headless, GI and art
-// settings. parse_options() never exits; bad arguments come back as one message.
+// settings, parsed by core's cli::Parser like every Lantern executable.
 #pragma once
 
 #include "lantern/core/result.hpp"
@@ -51,9 +51,9 @@ struct GameOptions {
 // 2-core machine with lavapipe (docs/game.md, "Performance").
 scene::GiSettings default_game_gi();
 
-// Parses argv[1..]. The help text is returned through `help` when --help is given (the
-// result then holds the defaults).
-Result<GameOptions> parse_options(int argc, const char* const* argv, bool* help = nullptr);
-std::string usage();
+// Parses argv[1..] into `out` (which starts from the defaults). Returns nullopt to go on, or
+// the exit status when the game should stop: 0 after --help or --version (printed on
+// stdout), 2 after bad input (one line on stderr; outputs are checked too, nothing written).
+std::optional<int> parse_options(int argc, const char* const* argv, GameOptions& out);
 
 } // namespace lantern::game
