@@ -6,7 +6,8 @@
 #extension GL_GOOGLE_include_directive : require
 struct DirectParams {
     float light_softness; // falloff exponent (gi.light_softness)
-    int pad0, pad1, pad2, pad3, pad4, pad5, pad6;
+    float face_exponent;  // gi.wall_face_exponent
+    int pad0, pad1, pad2, pad3, pad4, pad5;
 };
 #define GI_PASS_PARAMS DirectParams
 #include "lantern/gi_common.glsl"
@@ -41,7 +42,7 @@ float light_distance(vec2 p, vec2 pos) {
 vec4 face_weights(vec4 mask, vec2 p, vec2 light_pos) {
     precise vec2 to_light = light_pos - p;
     precise float inv_len = 1.0 / sqrt(max(to_light.x * to_light.x + to_light.y * to_light.y, 1e-6));
-    return mask * wall_facing(to_light * inv_len);
+    return mask * wall_facing(to_light * inv_len, pc.pass.face_exponent);
 }
 
 // The lights this workgroup's bin lists, in ascending order: point lights first.

@@ -6,7 +6,8 @@
 struct DirectionalParams {
     float wall_height;
     float angle_scale; // gi.directional_angle_scale
-    int pad0, pad1, pad2, pad3, pad4, pad5;
+    float face_exponent; // gi.wall_face_exponent
+    int pad0, pad1, pad2, pad3, pad4;
 };
 #define GI_PASS_PARAMS DirectionalParams
 #include "lantern/gi_common.glsl"
@@ -61,7 +62,7 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
         vec2 to_sun = vec2(-sun.direction_base.x, -sun.direction_base.z);
         precise float len = sqrt(to_sun.x * to_sun.x + to_sun.y * to_sun.y);
         if (len < 1e-4) continue;
-        vec4 weight = mask * wall_facing(to_sun / len);
+        vec4 weight = mask * wall_facing(to_sun / len, pc.pass.face_exponent);
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0)) continue;
             t.face[f] += color * (weight[f] * sun_visibility(sun, face_position(f, cell, p)));

@@ -4,6 +4,7 @@
 #include "lantern/core/json.hpp"
 #include "lantern/core/json_writer.hpp"
 #include "lantern/core/text.hpp"
+#include "lantern/scene/json_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -79,206 +80,116 @@ void write_entity(json::Writer& w, const SavedEntity& e) {
 }
 
 // ---------------------------------------------------------------- reading
+//
+// Through the scene loader's typed reader (lantern/scene/json_reader.hpp): the same types,
+// ranges and messages as scene files, and the lights and proxies read by the scene file's
+// own functions, so a save holds no value a scene file could not.
 
-// Typed reads with the first problem kept as "<file>:<line>:<col>: <path>: <what>".
-class Reader {
-  public:
-    explicit Reader(std::string file) : file_(std::move(file)) {}
-    bool ok() const { return !error_; }
-    Error error() const { return Error{*error_, 2}; }
+using scene::reading::at_least;
+using scene::reading::between;
+using scene::reading::EnumName;
+using scene::reading::Fields;
+using scene::reading::greater_than;
+using scene::reading::IntRange;
+using scene::reading::Range;
+using scene::reading::Reader;
+using scene::reading::world_coordinate;
 
-    bool fail(const json::Value& at, const std::string& path, const std::string& what) {
-        return fail(at.position(), path, what);
-    }
-    bool fail(json::Position at, const std::string& path, const std::string& what) {
-        if (!error_)
-            error_ = file_ + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " + path + ": " + what;
-        return false;
-    }
-
-    // Checks that `v` is an object with only `known` keys and every key of `required`.
-    bool object(const json::Value& v, const std::string& path, std::initializer_list<std::string_view> known,
-                std::initializer_list<std::string_view> required) {
-        if (!v.is_object()) return fail(v, path, std::string("expected an object, got ") + json::describe(v.type()));
-        for (const json::Member& m : v.as_object())
-            if (std::find(known.begin(), known.end(), m.key) == known.end())
-                return fail(m.key_position, path, "unknown key '" + m.key + "'");
-        for (std::string_view key : required)
-            if (!v.find(key)) return fail(v, path, "missing key '" + std::string(key) + "'");
-        return true;
-    }
-
-    bool read(const json::Value& v, const std::string& path, float& out) {
-        if (!v.is_number()) return fail(v, path, std::string("expected a number, got ") + json::describe(v.type()));
-        const double d = v.as_number();
-        if (!std::isfinite(float(d))) return fail(v, path, "number out of range");
-        out = float(d);
-        return true;
-    }
-    bool read(const json::Value& v, const std::string& path, int& out, int min, int max) {
-        if (!v.is_number() || !v.is_integer_literal())
-            return fail(v, path, std::string("expected an integer, got ") + json::describe(v.type()));
-        const double d = v.as_number();
-        if (d < min || d > max)
-            return fail(v, path, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
-        out = int(d);
-        return true;
-    }
-    bool read(const json::Value& v, const std::string& path, bool& out) {
-        if (!v.is_bool()) return fail(v, path, std::string("expected true or false, got ") + json::describe(v.type()));
-        out = v.as_bool();
-        return true;
-    }
-    bool read(const json::Value& v, const std::string& path, std::string& out) {
-        if (!v.is_string()) return fail(v, path, std::string("expected a string, got ") + json::describe(v.type()));
-        out = v.as_string();
-        return true;
-    }
-    template <int N>
-    bool read(const json::Value& v, const std::string& path, glm::vec<N, float>& out) {
-        if (!v.is_array() || v.as_array().size() != std::size_t(N))
-            return fail(v, path, "expected an array of " + std::to_string(N) + " numbers");
-        for (int i = 0; i < N; ++i)
-            if (!read(v.as_array()[std::size_t(i)], path + "[" + std::to_string(i) + "]", out[i])) return false;
-        return true;
-    }
-    template <typename E, std::size_t K>
-    bool read(const json::Value& v, const std::string& path, E& out, const char* const (&names)[K]) {
-        std::string s;
-        if (!read(v, path, s)) return false;
-        for (std::size_t i = 0; i < K; ++i)
-            if (s == names[i]) {
-                out = E(i);
-                return true;
-            }
-        std::string list;
-        for (std::size_t i = 0; i < K; ++i) list += std::string(i ? ", " : "") + "\"" + names[i] + "\"";
-        return fail(v, path, "expected one of " + list + ", got \"" + s.substr(0, 40) + "\"");
-    }
-    // Reads member `key` of object `v` when present (absent keys keep their defaults).
-    template <typename T, typename... Extra>
-    bool field(const json::Value& v, const std::string& path, std::string_view key, T& out, Extra&&... extra) {
-        const json::Value* m = v.find(key);
-        if (!m) return true;
-        return read(*m, path + "." + std::string(key), out, std::forward<Extra>(extra)...);
-    }
-
-  private:
-    std::string file_;
-    std::optional<std::string> error_;
-};
-
-bool read_positive(Reader& r, const json::Value& v, const std::string& path, const char* key, float& out) {
-    if (!r.field(v, path, key, out)) return false;
-    if (const json::Value* m = v.find(key); m && !(out > 0.0f)) return r.fail(*m, path + "." + key, "must be > 0");
-    return true;
+template <typename E, std::size_t K>
+constexpr std::array<EnumName<E>, K> enum_names(const char* const (&names)[K]) {
+    std::array<EnumName<E>, K> out{};
+    for (std::size_t i = 0; i < K; ++i) out[i] = {names[i], E(i)};
+    return out;
 }
+constexpr auto prop_kinds = enum_names<PropKind>(prop_names);
+constexpr auto world_kinds = enum_names<WorldKind>(kind_names);
 
-bool read_entity(Reader& r, const json::Value& v, const std::string& path, SavedEntity& e) {
-    if (!r.object(v, path, {"point_light", "emissive_light", "directional_light", "shadow_proxy", "torch", "prop", "sun"},
-                  {}))
-        return false;
-    if (const json::Value* m = v.find("point_light")) {
-        const std::string p = path + ".point_light";
-        PointLight l;
-        if (!r.object(*m, p, {"position", "height", "color", "intensity", "radius"}, {"position"}) ||
-            !r.field(*m, p, "position", l.position) || !r.field(*m, p, "height", l.height) ||
-            !r.field(*m, p, "color", l.color) || !r.field(*m, p, "intensity", l.intensity) ||
-            !read_positive(r, *m, p, "radius", l.radius))
-            return false;
-        e.point_light = l;
+void read_entity(Reader& r, const json::Value& v, const std::string& path, SavedEntity& e) {
+    Fields f(r, v, path, {"point_light", "emissive_light", "directional_light", "shadow_proxy", "torch", "prop", "sun"});
+    if (const json::Value* m = f.find("point_light")) {
+        scene::PointLight l;
+        scene::reading::read_point_light(r, *m, f.path_of("point_light"), l);
+        e.point_light = PointLight{l.position, l.height, l.color, l.intensity, l.radius};
     }
-    if (const json::Value* m = v.find("emissive_light")) {
-        const std::string p = path + ".emissive_light";
-        EmissiveLight l;
-        if (!r.object(*m, p, {"position", "color", "intensity", "radius"}, {"position"}) ||
-            !r.field(*m, p, "position", l.position) || !r.field(*m, p, "color", l.color) ||
-            !r.field(*m, p, "intensity", l.intensity) || !read_positive(r, *m, p, "radius", l.radius))
-            return false;
-        e.emissive_light = l;
+    if (const json::Value* m = f.find("emissive_light")) {
+        scene::EmissiveLight l;
+        scene::reading::read_emissive_light(r, *m, f.path_of("emissive_light"), l);
+        e.emissive_light = EmissiveLight{l.position, l.color, l.intensity, l.radius};
     }
-    if (const json::Value* m = v.find("directional_light")) {
-        const std::string p = path + ".directional_light";
-        DirectionalLight l;
-        if (!r.object(*m, p, {"direction", "color", "intensity", "base_shadow_distance", "bounce_intensity"},
-                      {"direction"}) ||
-            !r.field(*m, p, "direction", l.direction) || !r.field(*m, p, "color", l.color) ||
-            !r.field(*m, p, "intensity", l.intensity) ||
-            !r.field(*m, p, "base_shadow_distance", l.base_shadow_distance) ||
-            !r.field(*m, p, "bounce_intensity", l.bounce_intensity))
-            return false;
-        e.directional_light = l;
+    if (const json::Value* m = f.find("directional_light")) {
+        scene::DirectionalLight l;
+        scene::reading::read_directional_light(r, *m, f.path_of("directional_light"), l);
+        e.directional_light =
+            DirectionalLight{l.direction, l.color, l.intensity, l.base_shadow_distance, l.bounce_intensity};
     }
-    if (const json::Value* m = v.find("shadow_proxy")) {
-        const std::string p = path + ".shadow_proxy";
-        scene::ShadowProxy s;
-        if (!r.object(*m, p,
-                      {"position", "shape", "size", "max_length", "end_cap_blend", "penumbra_width", "penumbra_length",
-                       "penumbra_power", "width_mode", "penumbra_mode"},
-                      {"position"}) ||
-            !r.field(*m, p, "position", s.position) || !r.field(*m, p, "shape", s.shape, shape_names) ||
-            !r.field(*m, p, "size", s.size) || !read_positive(r, *m, p, "max_length", s.max_length) ||
-            !r.field(*m, p, "end_cap_blend", s.end_cap_blend) || !r.field(*m, p, "penumbra_width", s.penumbra_width) ||
-            !r.field(*m, p, "penumbra_length", s.penumbra_length) ||
-            !r.field(*m, p, "penumbra_power", s.penumbra_power) ||
-            !r.field(*m, p, "width_mode", s.width_mode, width_names) ||
-            !r.field(*m, p, "penumbra_mode", s.penumbra_mode, penumbra_names))
-            return false;
-        e.shadow_proxy = ShadowProxy{s};
+    if (const json::Value* m = f.find("shadow_proxy")) {
+        scene::ShadowProxy proxy;
+        scene::reading::read_shadow_proxy(r, *m, f.path_of("shadow_proxy"), proxy);
+        e.shadow_proxy = ShadowProxy{proxy};
     }
-    if (const json::Value* m = v.find("torch")) {
-        const std::string p = path + ".torch";
+    if (const json::Value* m = f.find("torch")) {
         Torch t;
-        if (!r.object(*m, p, {"base_intensity", "phase"}, {}) || !r.field(*m, p, "base_intensity", t.base_intensity) ||
-            !r.field(*m, p, "phase", t.phase))
-            return false;
-        if (!e.point_light) return r.fail(*m, p, "a torch needs a point_light on the same entity");
+        Fields(r, *m, f.path_of("torch"), {"base_intensity", "phase"})
+            .optional("base_intensity", t.base_intensity, at_least(0.0))
+            .optional("phase", t.phase, scene::reading::any_number);
+        if (!e.point_light && r.ok()) f.fail("torch", "a torch needs a point_light on the same entity");
         e.torch = t;
     }
-    if (const json::Value* m = v.find("prop")) {
-        const std::string p = path + ".prop";
+    if (f.find("prop")) {
         Prop prop;
-        if (!r.object(*m, p, {"kind", "position"}, {"kind", "position"}) ||
-            !r.field(*m, p, "kind", prop.kind, prop_names) || !r.field(*m, p, "position", prop.position))
-            return false;
+        Fields(r, *f.find("prop"), f.path_of("prop"), {"kind", "position"})
+            .required("kind", prop.kind, prop_kinds)
+            .required("position", prop.position, world_coordinate);
         e.prop = prop;
     }
-    if (const json::Value* m = v.find("sun")) {
-        if (!r.read(*m, path + ".sun", e.sun)) return false;
-        if (e.sun && !e.directional_light) return r.fail(*m, path + ".sun", "a sun needs a directional_light");
-    }
-    return true;
+    f.optional("sun", e.sun);
+    if (e.sun && !e.directional_light && r.ok()) f.fail("sun", "a sun needs a directional_light");
 }
 
-bool read_edit(Reader& r, const json::Value& v, const std::string& path, systems::Streaming::EditedChunk& out) {
-    if (!r.object(v, path, {"chunk", "rows"}, {"chunk", "rows"})) return false;
-    const json::Value& c = *v.find("chunk");
-    if (!c.is_array() || c.as_array().size() != 2) return r.fail(c, path + ".chunk", "expected an array of 2 integers");
+void read_edit(Reader& r, const json::Value& v, const std::string& path, systems::Streaming::EditedChunk& out) {
     constexpr int limit = 1 << 24;
-    if (!r.read(c.as_array()[0], path + ".chunk[0]", out.coord.x, -limit, limit) ||
-        !r.read(c.as_array()[1], path + ".chunk[1]", out.coord.y, -limit, limit))
-        return false;
-    const json::Value& rows = *v.find("rows");
+    Fields f(r, v, path, {"chunk", "rows"});
+    f.required("chunk", out.coord, IntRange{-limit, limit});
+    const json::Value* rows = f.find_required("rows");
+    if (!rows) return;
     constexpr int n = systems::chunk_size;
-    if (!rows.is_array() || rows.as_array().size() != std::size_t(n))
-        return r.fail(rows, path + ".rows", "expected an array of " + std::to_string(n) + " strings");
+    if (!rows->is_array() || rows->as_array().size() != std::size_t(n)) {
+        f.fail("rows", "expected an array of " + std::to_string(n) + " strings");
+        return;
+    }
     out.cells.assign(std::size_t(n * n), 0);
     for (int row = 0; row < n; ++row) {
-        const json::Value& line = rows.as_array()[std::size_t(row)];
-        const std::string p = path + ".rows[" + std::to_string(row) + "]";
+        const json::Value& line = rows->as_array()[std::size_t(row)];
+        const std::string p = scene::reading::index_path(f.path_of("rows"), std::size_t(row));
         std::string s;
-        if (!r.read(line, p, s)) return false;
-        if (s.size() != std::size_t(n))
-            return r.fail(line, p, "expected " + std::to_string(n) + " characters, got " + std::to_string(s.size()));
+        if (!r.read(line, p, s)) return;
+        if (s.size() != std::size_t(n)) {
+            r.fail(line.position(), p,
+                   "expected " + std::to_string(n) + " characters, got " + std::to_string(s.size()));
+            return;
+        }
         for (int col = 0; col < n; ++col) {
             const char ch = s[std::size_t(col)];
-            if (ch != '#' && ch != '.')
-                return r.fail(json::Position{line.position().line, line.position().column + 1 + col}, p,
-                              "expected '#' (wall) or '.' (floor)");
+            if (ch != '#' && ch != '.') {
+                r.fail(json::Position{line.position().line, line.position().column + 1 + col}, p,
+                       "expected '#' (wall) or '.' (floor)");
+                return;
+            }
             out.cells[std::size_t(row * n + col)] = ch == '#' ? 1 : 0;
         }
     }
-    return true;
+}
+
+// Every item of the optional array `key` of `top`, read by `read_item` (stops at a problem).
+template <typename T, typename ReadItem>
+void read_list(Reader& r, Fields& top, std::string_view key, std::vector<T>& out, ReadItem read_item) {
+    const json::Value* list = top.find(key);
+    if (!list || !r.expect(*list, std::string(key), json::Type::array)) return;
+    for (std::size_t i = 0; i < list->as_array().size() && r.ok(); ++i) {
+        T item;
+        read_item(list->as_array()[i], scene::reading::index_path(std::string(key), i), item);
+        if (r.ok()) out.push_back(std::move(item));
+    }
 }
 
 } // namespace
@@ -363,72 +274,43 @@ std::string format_save(const SaveState& s) {
 Result<SaveState> parse_save(std::string_view text, const std::string& file_name) {
     auto doc = json::parse(text, file_name);
     if (!doc) return doc.error();
-    Reader r(file_name);
-    const json::Value& root = *doc;
+    Reader r("the save");
     SaveState s;
-    if (!r.object(root, "save", {"lantern_save", "world", "player", "day", "entities", "edits"},
-                  {"lantern_save", "world", "player"}))
-        return r.error();
+    Fields top(r, *doc, "", {"lantern_save", "world", "player", "day", "entities", "edits"});
     int version = 0;
-    if (!r.read(*root.find("lantern_save"), "lantern_save", version, 1, 1 << 20)) return r.error();
-    if (version != save_format_version) {
-        r.fail(*root.find("lantern_save"), "lantern_save",
-               "save format " + std::to_string(version) + " is not supported (this build reads " +
-                   std::to_string(save_format_version) + ")");
-        return r.error();
+    top.required("lantern_save", version, IntRange{1, 1 << 20});
+    if (r.ok() && version != save_format_version)
+        top.fail("lantern_save", "save format " + std::to_string(version) + " is not supported (this build reads " +
+                                     std::to_string(save_format_version) + ")");
+    if (const json::Value* w = top.find_required("world")) {
+        int seed = int(s.world.seed);
+        Fields world(r, *w, "world", {"kind", "path", "seed", "cave_threshold"});
+        world.required("kind", s.world.kind, world_kinds)
+            .optional("path", s.world.path)
+            .optional("seed", seed, IntRange{0, 0x7FFFFFFF})
+            .optional("cave_threshold", s.world.cave_threshold, between(0.0, 1.0));
+        s.world.seed = std::uint32_t(seed);
+        if (r.ok() && s.world.kind != WorldKind::caves && s.world.path.empty())
+            r.fail(w->position(), "world.path", std::string("a ") + kind_names[int(s.world.kind)] + " world needs its file");
     }
-    const json::Value& w = *root.find("world");
-    int seed = int(s.world.seed);
-    if (!r.object(w, "world", {"kind", "path", "seed", "cave_threshold"}, {"kind"}) ||
-        !r.field(w, "world", "cave_threshold", s.world.cave_threshold) ||
-        !r.field(w, "world", "kind", s.world.kind, kind_names) || !r.field(w, "world", "path", s.world.path) ||
-        !r.field(w, "world", "seed", seed, 0, 0x7FFFFFFF))
-        return r.error();
-    s.world.seed = std::uint32_t(seed);
-    if (s.world.kind != WorldKind::caves && s.world.path.empty()) {
-        r.fail(w, "world.path", std::string("a ") + kind_names[int(s.world.kind)] + " world needs its file");
-        return r.error();
+    top.required("player", s.player, world_coordinate);
+    if (const json::Value* d = top.find("day")) {
+        constexpr Range day_fraction{.min = 0.0, .max = 1.0, .max_open = true};
+        Fields(r, *d, "day", {"time_of_day", "running", "day_length", "drives_sun"})
+            .optional("time_of_day", s.day.time_of_day, day_fraction)
+            .optional("running", s.day.running)
+            .optional("day_length", s.day.day_length, greater_than(0.0))
+            .optional("drives_sun", s.day.drives_sun);
     }
-    if (!r.read(*root.find("player"), "player", s.player)) return r.error();
-    if (const json::Value* d = root.find("day")) {
-        if (!r.object(*d, "day", {"time_of_day", "running", "day_length", "drives_sun"}, {}) ||
-            !r.field(*d, "day", "time_of_day", s.day.time_of_day) || !r.field(*d, "day", "running", s.day.running) ||
-            !r.field(*d, "day", "drives_sun", s.day.drives_sun) ||
-            !read_positive(r, *d, "day", "day_length", s.day.day_length))
-            return r.error();
-        if (s.day.time_of_day < 0.0f || s.day.time_of_day >= 1.0f) {
-            r.fail(*d->find("time_of_day"), "day.time_of_day", "must be in [0, 1)");
-            return r.error();
-        }
-    }
-    if (const json::Value* list = root.find("entities")) {
-        if (!list->is_array()) {
-            r.fail(*list, "entities", "expected an array");
-            return r.error();
-        }
-        for (std::size_t i = 0; i < list->as_array().size(); ++i) {
-            SavedEntity e;
-            if (!read_entity(r, list->as_array()[i], "entities[" + std::to_string(i) + "]", e)) return r.error();
-            s.entities.push_back(std::move(e));
-        }
-    }
-    if (const json::Value* list = root.find("edits")) {
-        if (!list->is_array()) {
-            r.fail(*list, "edits", "expected an array");
-            return r.error();
-        }
-        for (std::size_t i = 0; i < list->as_array().size(); ++i) {
-            systems::Streaming::EditedChunk c;
-            const std::string p = "edits[" + std::to_string(i) + "]";
-            if (!read_edit(r, list->as_array()[i], p, c)) return r.error();
-            for (const auto& earlier : s.edits)
-                if (earlier.coord == c.coord) {
-                    r.fail(list->as_array()[i], p, "chunk listed twice");
-                    return r.error();
-                }
-            s.edits.push_back(std::move(c));
-        }
-    }
+    read_list(r, top, "entities", s.entities,
+              [&](const json::Value& v, const std::string& path, SavedEntity& e) { read_entity(r, v, path, e); });
+    read_list(r, top, "edits", s.edits,
+              [&](const json::Value& v, const std::string& path, systems::Streaming::EditedChunk& c) {
+                  read_edit(r, v, path, c);
+                  for (const auto& earlier : s.edits)
+                      if (r.ok() && earlier.coord == c.coord) r.fail(v.position(), path, "chunk listed twice");
+              });
+    if (!r.ok()) return scene::reading::issue_error(file_name, r.issue());
     return s;
 }
 

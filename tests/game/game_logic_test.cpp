@@ -262,7 +262,7 @@ TEST(Saves, MalformedSavesAreRejectedWithPositions) {
         {"{\"lantern_save\": 2, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2]}", "t.json:1:18: lantern_save: save format 2 is not supported"},
         {"{\"lantern_save\": 1, \"world\": {\"kind\": \"moon\"}, \"player\": [1, 2]}", "world.kind: expected one of \"caves\", \"map\", \"scene\""},
         {"{\"lantern_save\": 1, \"world\": {\"kind\": \"map\"}, \"player\": [1, 2]}", "world.path: a map world needs its file"},
-        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"bogus\": 1}", "t.json:1:67: save: unknown key 'bogus'"},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"bogus\": 1}", "t.json:1:67: bogus: unknown key 'bogus' in the save"},
         {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2],\n \"entities\": [{\"torch\": {}}]}",
          "t.json:2:25: entities[0].torch: a torch needs a point_light"},
         {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2],\n \"entities\": [{\"point_light\": {\"position\": [0, 0], \"radius\": -1}}]}",

@@ -56,6 +56,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"range_boost", {0.5, "0.5"}},
         {"intensity_multiplier", {1.3, "1.3"}},
         {"light_softness", {2.0, "2.0"}},
+        {"wall_face_exponent", {2.0, "2.0"}},
         {"ao.radius", {2.5, "2.5"}},
         {"ao.power", {2.5, "2.5"}},
         {"ao.strength", {0.4, "0.4"}},
@@ -69,7 +70,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"resolution", "5"}, {"padding", "1.5"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
         {"diffusion_rate", "0.5"}, {"diffusion_distance", "2.0"}, {"emission_strength", "0.8"},
         {"range_boost", "0.8"}, {"intensity_multiplier", "1.6"}, {"light_softness", "3.0"},
-        {"ao.radius", "3.0"}, {"ao.power", "3.5"}, {"ao.strength", "0.7"}, {"tone_map", "aces"},
+        {"wall_face_exponent", "3.0"}, {"ao.radius", "3.0"}, {"ao.power", "3.5"}, {"ao.strength", "0.7"}, {"tone_map", "aces"},
         {"white_point", "3.0"}, {"directional_angle_scale", "0.8"}, {"max_lights", "2"},
         {"max_shadow_proxies", "1"},
     };

@@ -122,6 +122,38 @@ TEST(ReferenceDirect, WallsCastShadowsAndLightFacingFaces) {
     EXPECT_EQ(rgb(d.wall_direct[face_neg_x], 9 * 4, 8 * 4), glm::vec3(0.0f));
 }
 
+// gi.wall_face_exponent k: each face's weight saturate(dot(n, to_light)) becomes its k-th
+// power, so with one light a face texel's light at k = 3 is its light at k = 1 times w^2.
+TEST(ReferenceDirect, WallFaceExponentRaisesEachFacesWeight) {
+    auto rows = open_rows();
+    rows[8][10] = '#';
+    Scene s = room(rows);
+    s.point_lights.push_back({{7.3f, 5.9f}, 1.0f, {1.0f, 1.0f, 1.0f}, 1.0f, 9.0f}); // off both axes
+    const DirectTextures linear = reference_direct(inputs(s));
+    s.gi.wall_face_exponent = 3.0f;
+    const DirectTextures cubed = reference_direct(inputs(s));
+    const glm::vec2 normals[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    int checked = 0;
+    for (int z = 8 * 4; z < 9 * 4; ++z)
+        for (int x = 10 * 4; x < 11 * 4; ++x)
+            for (int f = 0; f < 4; ++f) {
+                const float one = rgb(linear.wall_direct[std::size_t(f)], x, z).r;
+                const float three = rgb(cubed.wall_direct[std::size_t(f)], x, z).r;
+                if (one == 0.0f) {
+                    EXPECT_EQ(three, 0.0f);
+                    continue;
+                }
+                const glm::vec2 p((float(x) + 0.5f) / 4.0f, (float(z) + 0.5f) / 4.0f);
+                const float w = std::max(glm::dot(normals[f], glm::normalize(glm::vec2(7.3f, 5.9f) - p)), 0.0f);
+                // The face textures hold half floats (11 significant bits): 2e-3 covers two roundings.
+                EXPECT_NEAR(three, one * w * w, 2e-3f * one) << "face " << f << " texel " << x << ", " << z;
+                ++checked;
+            }
+    EXPECT_GE(checked, 16); // the -x and -z faces of the tile's texels are lit
+    // Ground light does not depend on it.
+    EXPECT_EQ(rgb(linear.direct, 20, 20), rgb(cubed.direct, 20, 20));
+}
+
 TEST(ReferenceDirect, EmissivesIgnoreWallsAndTheCap) {
     auto rows = open_rows();
     rows[8][10] = '#';

@@ -149,6 +149,7 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.walls = cave(32, 24, 23);
         s.gi.ao.dither = true;
         s.gi.light_softness = 2.0f;
+        s.gi.wall_face_exponent = 3.0f;
         std::mt19937 rng(9);
         for (int i = 0; i < 12; ++i)
             s.point_lights.push_back(point({float(rng() % 32) + 0.5f, float(rng() % 24) + 0.5f},
@@ -163,6 +164,7 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.walls = cave(16, 16, 3, 0.3f);
         s.gi.ao.enabled = false;
         s.gi.directional_angle_scale = 0.5f;
+        s.gi.wall_face_exponent = 0.5f;
         s.directional_lights.push_back({glm::normalize(glm::vec3(-0.3f, -0.8f, -0.5f)), {0.9f, 0.9f, 1.0f}, 1.0f, 6.0f, 0.5f});
         s.directional_lights.push_back({glm::normalize(glm::vec3(0.3f, 0.2f, 0.5f)), {1.0f, 0.5f, 0.2f}, 1.0f, 6.0f, 0.5f});
         out.push_back({"two_suns", s});

@@ -1,5 +1,7 @@
 #include "lantern/scene/loader.hpp"
 
+#include "lantern/scene/color.hpp"
+
 #include "common/test_support.hpp"
 #include "scene_test_support.hpp"
 
@@ -138,6 +140,23 @@ TEST(SceneLoader, CameraSceneReadsThePerspectiveCamera) {
     ASSERT_TRUE(std::holds_alternative<PerspectiveCamera>(scene.view));
     const PerspectiveCamera expected{{32.0f, 20.0f, 30.0f}, {32.0f, 0.0f, 40.0f}, 60.0f, 2.0f};
     EXPECT_EQ(std::get<PerspectiveCamera>(scene.view), expected);
+}
+
+// "temperature" multiplies a light's colour by the black body's at that temperature, at the
+// same luminance; without a "color", white is multiplied.
+TEST(SceneLoader, LightTemperatureTintsTheColour) {
+    const Scene scene = parse_scene_ok(scene_with(
+        R"("point_lights": [{"position": [0, 0], "temperature": 2856}, {"position": [0, 0], "color": [0.5, 0.5, 0.5], "temperature": 2856}],)"
+        R"( "emissive_lights": [{"position": [0, 0], "temperature": 9000}],)"
+        R"( "directional_lights": [{"direction": [0, -1, 0], "temperature": 5800}])"));
+    const glm::vec3 tungsten = lantern::scene::blackbody_rgb(2856.0f);
+    EXPECT_EQ(scene.point_lights[0].color, tungsten);
+    EXPECT_EQ(scene.point_lights[1].color, 0.5f * tungsten);
+    EXPECT_GT(tungsten.r, tungsten.g);
+    EXPECT_GT(tungsten.g, tungsten.b);
+    const glm::vec3 blue = scene.emissive_lights[0].color;
+    EXPECT_GT(blue.b, blue.r);
+    EXPECT_EQ(scene.directional_lights[0].color, lantern::scene::blackbody_rgb(5800.0f));
 }
 
 TEST(SceneLoader, EmptyListsMeanNoLights) {
@@ -298,6 +317,9 @@ INSTANTIATE_TEST_SUITE_P(
                        "t.json:2:18: point_lights[0]: expected an object, got a number"},
         SceneErrorCase{scene_with(R"("point_lights": [{"position": [0, 0]}, {"radius": 2}])"),
                        "t.json:2:40: point_lights[1].position: required key is missing"},
+        SceneErrorCase{scene_with(R"("point_lights": [{"position": [0, 0], "temperature": 1000}])"),
+                       "t.json:2:54: point_lights[0].temperature: must be in [1667, 25000], got 1000 (the "
+                       "range of the black-body colour approximation)"},
         SceneErrorCase{
             scene_with(R"("point_lights": [{"position": [0, 0, 0]}])"),
             "t.json:2:31: point_lights[0].position: expected an array of 2 numbers, got 3"},

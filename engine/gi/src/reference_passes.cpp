@@ -56,7 +56,7 @@ void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight&
     auto face_weights = [&](glm::vec2 light_pos) {
         glm::vec2 to_light = light_pos - p;
         const float inv_len = 1.0f / std::sqrt(std::max(glm::dot(to_light, to_light), 1e-6f));
-        return mask * wall_facing(to_light * inv_len);
+        return mask * wall_facing(to_light * inv_len, in.settings.wall_face_exponent);
     };
     for (const GpuPointLight& l : in.point_lights) {
         const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
@@ -131,7 +131,7 @@ void directional_texel(const FrameInputs& in, bool wall, glm::ivec2 cell, glm::v
         const glm::vec2 to_sun(-sun.direction_base.x, -sun.direction_base.z);
         const float len = std::sqrt(to_sun.x * to_sun.x + to_sun.y * to_sun.y);
         if (len < 1e-4f) continue; // overhead sun: no face faces it
-        const glm::vec4 weight = mask * wall_facing(to_sun / len);
+        const glm::vec4 weight = mask * wall_facing(to_sun / len, in.settings.wall_face_exponent);
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0f)) continue;
             out.face[f] += color * (weight[f] * sun_visibility(in, sun, face_position(f, cell, p)));

@@ -206,8 +206,11 @@ glm::vec4 wall_face_mask(const WallView& walls, glm::ivec2 c) {
                      walls.is_wall(c.x, c.y + 1) ? 0.0f : 1.0f, walls.is_wall(c.x, c.y - 1) ? 0.0f : 1.0f);
 }
 
-glm::vec4 wall_facing(glm::vec2 d) {
-    return glm::vec4(saturate(d.x), saturate(-d.x), saturate(d.y), saturate(-d.y));
+glm::vec4 wall_facing(glm::vec2 d, float exponent) {
+    const glm::vec4 w(saturate(d.x), saturate(-d.x), saturate(d.y), saturate(-d.y));
+    if (exponent == 1.0f) return w; // today's images, bit for bit
+    return glm::vec4(std::pow(w.x, exponent), std::pow(w.y, exponent), std::pow(w.z, exponent),
+                     std::pow(w.w, exponent));
 }
 
 float bayer4(int x, int y) {

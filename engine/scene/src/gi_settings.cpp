@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace lantern::scene {
-namespace detail {
+namespace reading {
 namespace {
 
 template <typename... F>
@@ -43,6 +43,7 @@ constexpr Range diffusion_rate_range{
 };
 constexpr Range diffusion_distance_range{.min = 0.0, .max = 16.0, .min_open = true};
 constexpr Range ao_radius_range{.min = 0.0, .max = 8.0, .min_open = true};
+constexpr Range wall_face_exponent_range{.min = 0.0, .max = 16.0, .min_open = true};
 
 struct FloatField {
     float* target;
@@ -70,7 +71,7 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 24> gi_fields(GiSettings& gi) {
+std::array<GiField, 25> gi_fields(GiSettings& gi) {
     return {{
         {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
@@ -85,6 +86,7 @@ std::array<GiField, 24> gi_fields(GiSettings& gi) {
         {"per_channel", BoolField{&gi.per_channel}},
         {"segment_check", BoolField{&gi.segment_check}},
         {"light_softness", FloatField{&gi.light_softness, greater_than(0.0)}},
+        {"wall_face_exponent", FloatField{&gi.wall_face_exponent, wall_face_exponent_range}},
         {"ao.enabled", BoolField{&gi.ao.enabled}},
         {"ao.radius", FloatField{&gi.ao.radius, ao_radius_range}},
         {"ao.power", FloatField{&gi.ao.power, greater_than(0.0)}},
@@ -208,21 +210,21 @@ bool read_gi_key(Reader& reader, std::string_view key, const json::Value& value,
     return reader.fail_unknown_key(key, value.position(), "gi", all_keys);
 }
 
-} // namespace detail
+} // namespace reading
 
 std::vector<std::string> gi_setting_keys() {
     GiSettings gi;
     std::vector<std::string> keys;
-    for (const detail::GiField& field : detail::gi_fields(gi)) keys.emplace_back(field.key);
+    for (const reading::GiField& field : reading::gi_fields(gi)) keys.emplace_back(field.key);
     return keys;
 }
 
 namespace {
-double number_of(const detail::GiField& field) {
-    return std::visit(detail::Overloaded{
-                          [](const detail::FloatField& f) { return double(*f.target); },
-                          [](const detail::IntField& f) { return double(*f.target); },
-                          [](const detail::BoolField& f) { return *f.target ? 1.0 : 0.0; },
+double number_of(const reading::GiField& field) {
+    return std::visit(reading::Overloaded{
+                          [](const reading::FloatField& f) { return double(*f.target); },
+                          [](const reading::IntField& f) { return double(*f.target); },
+                          [](const reading::BoolField& f) { return *f.target ? 1.0 : 0.0; },
                           [](const auto& f) { return double(int(*f.target)); },
                       },
                       field.target);
@@ -231,8 +233,8 @@ double number_of(const detail::GiField& field) {
 
 std::optional<double> gi_setting_value(const GiSettings& gi, std::string_view key) {
     GiSettings copy = gi; // the table binds mutable fields
-    const auto fields = detail::gi_fields(copy);
-    const detail::GiField* field = detail::find_field(fields, key);
+    const auto fields = reading::gi_fields(copy);
+    const reading::GiField* field = reading::find_field(fields, key);
     if (!field) return std::nullopt;
     return number_of(*field);
 }
@@ -240,17 +242,17 @@ std::optional<double> gi_setting_value(const GiSettings& gi, std::string_view ke
 std::vector<double> gi_setting_values(const GiSettings& gi) {
     GiSettings copy = gi;
     std::vector<double> values;
-    for (const detail::GiField& field : detail::gi_fields(copy)) values.push_back(number_of(field));
+    for (const reading::GiField& field : reading::gi_fields(copy)) values.push_back(number_of(field));
     return values;
 }
 
 Result<void> validate_gi_settings(const GiSettings& gi) {
     GiSettings checked = gi; // the table binds mutable fields; reading back writes the same values
-    detail::Reader reader;
-    for (const detail::GiField& field : detail::gi_fields(checked)) {
-        if (!detail::read_field(reader, field, detail::current_value(field),
+    reading::Reader reader;
+    for (const reading::GiField& field : reading::gi_fields(checked)) {
+        if (!reading::read_field(reader, field, reading::current_value(field),
                                 "gi." + std::string(field.key))) {
-            const detail::Issue& issue = reader.issue();
+            const reading::Issue& issue = reader.issue();
             return make_error(issue.path + ": " + issue.what);
         }
     }

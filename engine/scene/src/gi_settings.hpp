@@ -3,12 +3,12 @@
 // and validate_gi_settings cannot disagree.
 #pragma once
 
-#include "json_reader.hpp"
+#include "lantern/scene/json_reader.hpp"
 #include "lantern/scene/scene.hpp"
 
 #include <string_view>
 
-namespace lantern::scene::detail {
+namespace lantern::scene::reading {
 
 // Reads the members of the "gi" object at JSON path "gi" into `gi`; absent keys keep
 // their values. Returns reader.ok().
@@ -18,4 +18,4 @@ bool read_gi_settings(Reader& reader, const json::Value& object, GiSettings& gi)
 // problems under the path "gi.<key>". Returns reader.ok().
 bool read_gi_key(Reader& reader, std::string_view key, const json::Value& value, GiSettings& gi);
 
-} // namespace lantern::scene::detail
+} // namespace lantern::scene::reading

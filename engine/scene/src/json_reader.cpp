@@ -1,4 +1,4 @@
-#include "json_reader.hpp"
+#include "lantern/scene/json_reader.hpp"
 
 #include "lantern/core/text.hpp"
 
@@ -10,7 +10,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-namespace lantern::scene::detail {
+namespace lantern::scene::reading {
 namespace {
 
 // Levenshtein distance, for "did you mean" suggestions on short keys.
@@ -212,7 +212,7 @@ bool Reader::expect_known_keys(const json::Value& object, const std::string& pat
 
 bool Reader::fail_unknown_key(std::string_view key, json::Position where, const std::string& path,
                               std::span<const std::string_view> known) {
-    const std::string owner = path.empty() ? "the scene" : path;
+    const std::string owner = path.empty() ? document_ : path;
     const std::string short_key = shorten(key);
     const std::string key_path = path.empty() ? short_key : path + "." + short_key;
     return fail(where, key_path,
@@ -266,4 +266,10 @@ std::string Fields::path_of(std::string_view key) const {
     return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
 }
 
-} // namespace lantern::scene::detail
+Error issue_error(const std::string& file, const Issue& issue) {
+    const std::string path = issue.path.empty() ? "" : issue.path + ": ";
+    return make_error(file + ":" + std::to_string(issue.where.line) + ":" + std::to_string(issue.where.column) +
+                      ": " + path + issue.what);
+}
+
+} // namespace lantern::scene::reading

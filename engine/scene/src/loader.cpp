@@ -1,7 +1,8 @@
 #include "lantern/scene/loader.hpp"
 
 #include "gi_settings.hpp"
-#include "json_reader.hpp"
+#include "lantern/scene/color.hpp"
+#include "lantern/scene/json_reader.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/json.hpp"
 #include "moving_ai_map.hpp"
@@ -18,15 +19,19 @@
 namespace lantern::scene {
 namespace {
 
-using detail::any_number;
-using detail::world_coordinate;
-using detail::at_least;
-using detail::between;
-using detail::EnumName;
-using detail::Fields;
-using detail::greater_than;
-using detail::IntRange;
-using detail::Reader;
+using reading::any_number;
+using reading::world_coordinate;
+using reading::at_least;
+using reading::between;
+using reading::EnumName;
+using reading::Fields;
+using reading::greater_than;
+using reading::IntRange;
+using reading::Reader;
+using reading::read_directional_light;
+using reading::read_emissive_light;
+using reading::read_point_light;
+using reading::read_shadow_proxy;
 
 constexpr int supported_version = 1;
 // World positions are floats, which hold whole tiles exactly only up to 2^24.
@@ -59,10 +64,8 @@ struct MapSpec {
     MapImportOptions options;
 };
 
-Error file_error(const std::string& file, const detail::Issue& issue) {
-    const std::string path = issue.path.empty() ? "" : issue.path + ": ";
-    return make_error(file + ":" + std::to_string(issue.where.line) + ":" +
-                      std::to_string(issue.where.column) + ": " + path + issue.what);
+Error file_error(const std::string& file, const reading::Issue& issue) {
+    return reading::issue_error(file, issue);
 }
 
 std::string grid_size_text(std::size_t width, std::size_t height) {
@@ -100,7 +103,7 @@ bool read_row(Reader& reader, const json::Value& row, const std::string& path, s
         if (text[col] != '#' && text[col] != '.') {
             const json::Position at{row.position().line, row.position().column + 1 + int(col)};
             return reader.fail(at, path,
-                               "unknown cell character " + detail::quote_char(text[col]) +
+                               "unknown cell character " + reading::quote_char(text[col]) +
                                    " (rows use '#' for wall and '.' for floor)");
         }
         cells.push_back(text[col] == '#' ? 1 : 0);
@@ -123,7 +126,7 @@ void read_rows(Reader& reader, const json::Value& rows, WallGrid& grid) {
     // follow the input's size, not what it claims.
     std::vector<std::uint8_t> cells;
     for (std::size_t row = 0; row < items.size(); ++row)
-        if (!read_row(reader, items[row], detail::index_path("world.rows", row), width, cells))
+        if (!read_row(reader, items[row], reading::index_path("world.rows", row), width, cells))
             return;
     grid.width = int(width);
     grid.height = int(items.size());
@@ -137,7 +140,7 @@ void read_map_spec(Reader& reader, Fields& world, MapSpec& map) {
     if (!reader.ok()) return;
     map.position = world.find("map")->position();
     if (map.path.empty()) world.fail("map", "must name a map file");
-    if (auto problem = detail::extra_floor_chars_problem(map.options.extra_floor_chars))
+    if (auto problem = reading::extra_floor_chars_problem(map.options.extra_floor_chars))
         world.fail("extra_floor_chars", *problem);
 }
 
@@ -157,7 +160,7 @@ void read_world(Reader& reader, const json::Value& value, Scene& scene, MapSpec&
 }
 
 void read_camera(Reader& reader, const json::Value& value, PerspectiveCamera& camera) {
-    constexpr detail::Range fov_range{.min = 0.0, .max = 180.0, .min_open = true, .max_open = true};
+    constexpr reading::Range fov_range{.min = 0.0, .max = 180.0, .min_open = true, .max_open = true};
     Fields fields(reader, value, "camera", {"position", "target", "fov_deg", "aspect"});
     fields.required("position", camera.position, world_coordinate)
         .required("target", camera.target, world_coordinate)
@@ -203,11 +206,11 @@ std::optional<std::string> gi_window_problem(const ViewSpec& view, const GiSetti
     const double width = double(size.x) * texels_per_unit;
     const double height = double(size.y) * texels_per_unit;
     if (width <= max_gi_texels_per_side && height <= max_gi_texels_per_side) return std::nullopt;
-    return "the GI texture would be " + detail::format_number(std::ceil(width)) + " x " +
-           detail::format_number(std::ceil(height)) +
+    return "the GI texture would be " + reading::format_number(std::ceil(width)) + " x " +
+           reading::format_number(std::ceil(height)) +
            " texels (" + (ortho_view ? "view.size" : "the ground the camera sees") +
            " x gi.padding x gi.resolution), above the limit of " +
-           detail::format_number(max_gi_texels_per_side) + " per side";
+           reading::format_number(max_gi_texels_per_side) + " per side";
 }
 
 void check_gi_window(Reader& reader, const Fields& top, const Scene& scene) {
@@ -220,61 +223,6 @@ void check_gi_window(Reader& reader, const Fields& top, const Scene& scene) {
         reader.fail(size->position(), "view.size", *problem);
     else
         reader.fail(view.position(), ortho ? "view" : "camera", *problem);
-}
-
-void read_point_light(Reader& reader, const json::Value& value, const std::string& path,
-                      PointLight& light) {
-    Fields(reader, value, path, {"position", "height", "color", "intensity", "radius"})
-        .required("position", light.position, world_coordinate)
-        .optional("height", light.height, at_least(0.0))
-        .optional("color", light.color, at_least(0.0))
-        .optional("intensity", light.intensity, at_least(0.0))
-        .optional("radius", light.radius, greater_than(0.0));
-}
-
-void read_emissive_light(Reader& reader, const json::Value& value, const std::string& path,
-                         EmissiveLight& light) {
-    Fields(reader, value, path, {"position", "color", "intensity", "radius"})
-        .required("position", light.position, world_coordinate)
-        .optional("color", light.color, at_least(0.0))
-        .optional("intensity", light.intensity, at_least(0.0))
-        .optional("radius", light.radius, greater_than(0.0));
-}
-
-void read_directional_light(Reader& reader, const json::Value& value, const std::string& path,
-                            DirectionalLight& light) {
-    Fields fields(reader, value, path,
-                  {"direction", "color", "intensity", "base_shadow_distance", "bounce_intensity"});
-    fields.required("direction", light.direction, any_number)
-        .optional("color", light.color, at_least(0.0))
-        .optional("intensity", light.intensity, at_least(0.0))
-        .optional("base_shadow_distance", light.base_shadow_distance, at_least(0.0))
-        .optional("bounce_intensity", light.bounce_intensity, at_least(0.0));
-    if (!fields.ok()) return;
-    // In double: the squares of tiny float components would underflow to 0 in float.
-    const glm::dvec3 direction(light.direction);
-    const double length = glm::length(direction);
-    if (length == 0.0)
-        fields.fail("direction", "must not be zero");
-    else
-        light.direction = glm::vec3(direction / length);
-}
-
-void read_shadow_proxy(Reader& reader, const json::Value& value, const std::string& path,
-                       ShadowProxy& proxy) {
-    Fields(reader, value, path,
-           {"position", "shape", "size", "max_length", "end_cap_blend", "penumbra_width",
-            "penumbra_length", "penumbra_power", "width_mode", "penumbra_mode"})
-        .required("position", proxy.position, world_coordinate)
-        .optional("shape", proxy.shape, proxy_shapes)
-        .optional("size", proxy.size, greater_than(0.0))
-        .optional("max_length", proxy.max_length, at_least(0.0))
-        .optional("end_cap_blend", proxy.end_cap_blend, between(0.0, 1.0))
-        .optional("penumbra_width", proxy.penumbra_width, at_least(0.0))
-        .optional("penumbra_length", proxy.penumbra_length, at_least(0.0))
-        .optional("penumbra_power", proxy.penumbra_power, greater_than(0.0))
-        .optional("width_mode", proxy.width_mode, width_modes)
-        .optional("penumbra_mode", proxy.penumbra_mode, penumbra_modes);
 }
 
 template <typename T>
@@ -291,7 +239,7 @@ void read_list(Reader& reader, const Fields& top, std::string_view key, ReadItem
     out.reserve(items.size());
     for (std::size_t i = 0; i < items.size(); ++i) {
         T item;
-        read_item(reader, items[i], detail::index_path(path, i), item);
+        read_item(reader, items[i], reading::index_path(path, i), item);
         if (!reader.ok()) return;
         out.push_back(item);
     }
@@ -315,7 +263,7 @@ void read_scene(Reader& reader, const json::Value& root, Scene& scene, MapSpec& 
     if (const json::Value* world = top.find_required("world"))
         read_world(reader, *world, scene, map);
     read_view(reader, top, scene.view);
-    if (const json::Value* gi = top.find("gi")) detail::read_gi_settings(reader, *gi, scene.gi);
+    if (const json::Value* gi = top.find("gi")) reading::read_gi_settings(reader, *gi, scene.gi);
     check_gi_window(reader, top, scene);
     read_list<PointLight>(reader, top, "point_lights", read_point_light, scene.point_lights);
     read_list<EmissiveLight>(reader, top, "emissive_lights", read_emissive_light,
@@ -373,6 +321,83 @@ std::optional<json::Value> parse_override_value(std::string_view text) {
 
 } // namespace
 
+namespace reading {
+
+namespace {
+
+// A light's optional "temperature" (kelvin): its colour (white unless given) times the
+// black-body colour at that temperature, at the same luminance (lantern/scene/color.hpp).
+void apply_temperature(Fields& fields, glm::vec3& color) {
+    constexpr Range kelvin_range{.min = min_color_temperature,
+                                 .max = max_color_temperature,
+                                 .note = "the range of the black-body colour approximation"};
+    float kelvin = 0.0f;
+    fields.optional("temperature", kelvin, kelvin_range);
+    if (fields.ok() && fields.find("temperature")) color *= blackbody_rgb(kelvin);
+}
+
+} // namespace
+
+void read_point_light(Reader& reader, const json::Value& value, const std::string& path,
+                      PointLight& light) {
+    Fields fields(reader, value, path, {"position", "height", "color", "temperature", "intensity", "radius"});
+    fields.required("position", light.position, world_coordinate)
+        .optional("height", light.height, at_least(0.0))
+        .optional("color", light.color, at_least(0.0))
+        .optional("intensity", light.intensity, at_least(0.0))
+        .optional("radius", light.radius, greater_than(0.0));
+    apply_temperature(fields, light.color);
+}
+
+void read_emissive_light(Reader& reader, const json::Value& value, const std::string& path,
+                         EmissiveLight& light) {
+    Fields fields(reader, value, path, {"position", "color", "temperature", "intensity", "radius"});
+    fields.required("position", light.position, world_coordinate)
+        .optional("color", light.color, at_least(0.0))
+        .optional("intensity", light.intensity, at_least(0.0))
+        .optional("radius", light.radius, greater_than(0.0));
+    apply_temperature(fields, light.color);
+}
+
+void read_directional_light(Reader& reader, const json::Value& value, const std::string& path,
+                            DirectionalLight& light) {
+    Fields fields(reader, value, path,
+                  {"direction", "color", "temperature", "intensity", "base_shadow_distance", "bounce_intensity"});
+    fields.required("direction", light.direction, any_number)
+        .optional("color", light.color, at_least(0.0))
+        .optional("intensity", light.intensity, at_least(0.0))
+        .optional("base_shadow_distance", light.base_shadow_distance, at_least(0.0))
+        .optional("bounce_intensity", light.bounce_intensity, at_least(0.0));
+    apply_temperature(fields, light.color);
+    if (!fields.ok()) return;
+    // In double: the squares of tiny float components would underflow to 0 in float.
+    const glm::dvec3 direction(light.direction);
+    const double length = glm::length(direction);
+    if (length == 0.0)
+        fields.fail("direction", "must not be zero");
+    else if (std::abs(length - 1.0) > 1e-6) // a unit direction stays as written, bit for bit
+        light.direction = glm::vec3(direction / length);
+}
+
+void read_shadow_proxy(Reader& reader, const json::Value& value, const std::string& path,
+                       ShadowProxy& proxy) {
+    Fields(reader, value, path,
+           {"position", "shape", "size", "max_length", "end_cap_blend", "penumbra_width",
+            "penumbra_length", "penumbra_power", "width_mode", "penumbra_mode"})
+        .required("position", proxy.position, world_coordinate)
+        .optional("shape", proxy.shape, proxy_shapes)
+        .optional("size", proxy.size, greater_than(0.0))
+        .optional("max_length", proxy.max_length, at_least(0.0))
+        .optional("end_cap_blend", proxy.end_cap_blend, between(0.0, 1.0))
+        .optional("penumbra_width", proxy.penumbra_width, at_least(0.0))
+        .optional("penumbra_length", proxy.penumbra_length, at_least(0.0))
+        .optional("penumbra_power", proxy.penumbra_power, greater_than(0.0))
+        .optional("width_mode", proxy.width_mode, width_modes)
+        .optional("penumbra_mode", proxy.penumbra_mode, penumbra_modes);
+}
+
+} // namespace reading
+
 Result<Scene> parse_scene(std::string_view json_text, const std::string& file_name_for_messages,
                           const std::string& base_dir) {
     const std::string& file = file_name_for_messages;
@@ -406,11 +431,11 @@ Result<void> apply_override(Scene& scene, std::string_view assignment) {
     const std::string_view text = assignment.substr(equals + 1);
     const std::optional<json::Value> value = parse_override_value(text);
     if (!value)
-        return make_error(prefix + "'" + detail::shorten(text) +
+        return make_error(prefix + "'" + reading::shorten(text) +
                           "' is neither a JSON value nor a bare word (such as aces)");
     GiSettings gi = scene.gi;
     Reader reader;
-    if (!detail::read_gi_key(reader, std::string_view(name).substr(3), *value, gi))
+    if (!reading::read_gi_key(reader, std::string_view(name).substr(3), *value, gi))
         return make_error(prefix + reader.issue().what);
     if (auto problem = gi_window_problem(scene.view, gi)) return make_error(prefix + *problem);
     scene.gi = gi;

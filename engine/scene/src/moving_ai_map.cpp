@@ -1,6 +1,6 @@
 #include "moving_ai_map.hpp"
 
-#include "json_reader.hpp"
+#include "lantern/scene/json_reader.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/text.hpp"
 #include "lantern/scene/loader.hpp"
@@ -76,7 +76,7 @@ Result<int> read_header_number(LineReader& lines, std::string_view keyword,
                        end == digits.data() + digits.size() && value >= 1 && value <= max_grid_side;
     if (!valid)
         return map_error(file, lines.line_number(), 1,
-                         expected + ", got '" + detail::shorten(line) + "'");
+                         expected + ", got '" + reading::shorten(line) + "'");
     return value;
 }
 
@@ -88,7 +88,7 @@ Result<void> expect_header_line(LineReader& lines, std::string_view expected,
     return map_error(
         file, lines.line_number(), 1,
         "expected '" + std::string(expected) + "' (Moving AI map header), " +
-            (found ? "got '" + detail::shorten(line) + "'" : "found the end of the file"));
+            (found ? "got '" + reading::shorten(line) + "'" : "found the end of the file"));
 }
 
 // "type octile", "height H", "width W", "map": the grid size (W, H).
@@ -116,7 +116,7 @@ Error unknown_char_error(const std::string& file, int line, std::string_view row
         ++column;
     }
     return map_error(file, line, column,
-                     "unknown map character " + detail::quote_char_at(row, at) +
+                     "unknown map character " + reading::quote_char_at(row, at) +
                          " (the Moving AI format has . G S W @ O T; list it in the scene's "
                          "world.extra_floor_chars to read it as floor)");
 }
@@ -175,7 +175,7 @@ Result<void> read_rows(LineReader& lines, const MapImportOptions& options, const
 
 } // namespace
 
-namespace detail {
+namespace reading {
 
 std::optional<std::string> extra_floor_chars_problem(std::string_view chars) {
     for (char c : chars) {
@@ -186,11 +186,11 @@ std::optional<std::string> extra_floor_chars_problem(std::string_view chars) {
     return std::nullopt;
 }
 
-} // namespace detail
+} // namespace reading
 
 Result<ImportedMap> parse_moving_ai_map(std::string_view text, const std::string& file_name,
                                         const MapImportOptions& options) {
-    if (auto problem = detail::extra_floor_chars_problem(options.extra_floor_chars))
+    if (auto problem = reading::extra_floor_chars_problem(options.extra_floor_chars))
         return make_error("extra_floor_chars: " + *problem);
     if (text.size() >= max_map_bytes)
         return make_error(file_name + ": larger than " + std::to_string(max_map_bytes) + " bytes");

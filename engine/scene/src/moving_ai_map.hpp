@@ -6,10 +6,10 @@
 #include <string>
 #include <string_view>
 
-namespace lantern::scene::detail {
+namespace lantern::scene::reading {
 
 // What is wrong with `chars` as extra floor characters, or nothing when they are usable:
 // printable ASCII, none of the Moving AI characters ".GSW@OT".
 std::optional<std::string> extra_floor_chars_problem(std::string_view chars);
 
-} // namespace lantern::scene::detail
+} // namespace lantern::scene::reading

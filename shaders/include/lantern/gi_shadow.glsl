@@ -122,7 +122,12 @@ vec4 wall_face_mask(ivec2 c) {
     return vec4(is_wall(c.x + 1, c.y) ? 0.0 : 1.0, is_wall(c.x - 1, c.y) ? 0.0 : 1.0,
                 is_wall(c.x, c.y + 1) ? 0.0 : 1.0, is_wall(c.x, c.y - 1) ? 0.0 : 1.0);
 }
-vec4 wall_facing(vec2 d) { return vec4(saturate(d.x), saturate(-d.x), saturate(d.y), saturate(-d.y)); }
+// Each face's weight (+x, -x, +z, -z) for light from unit direction d, raised to `exponent`
+// (gi.wall_face_exponent; 1 leaves it as it is, bit for bit).
+vec4 wall_facing(vec2 d, float exponent) {
+    vec4 w = vec4(saturate(d.x), saturate(-d.x), saturate(d.y), saturate(-d.y));
+    return exponent == 1.0 ? w : pow(w, vec4(exponent));
+}
 
 // Where a wall face's shadow ray ends (or starts, for the sun): just outside the face.
 vec2 face_position(int face, ivec2 cell, vec2 p) {

@@ -49,12 +49,12 @@ struct LightBinParams {
     std::int32_t bins_x = 0, bins_y = 0, words = 0, bin_w = 0, bin_h = 0, pad0 = 0, pad1 = 0, pad2 = 0;
 };
 struct DirectParams {
-    float light_softness = 0;
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0, pad6 = 0;
+    float light_softness = 0, face_exponent = 1;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0;
 };
 struct DirectionalParams {
-    float wall_height = 0, angle_scale = 0;
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0;
+    float wall_height = 0, angle_scale = 0, face_exponent = 1;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0;
 };
 
 // ---- conduction
@@ -173,6 +173,7 @@ void record_direct(PassRecorder& r) {
                                .storage_buffer(9, s.bins));
     auto p = r.params<DirectParams>(w.width, w.height);
     p.pass.light_softness = in.settings.light_softness;
+    p.pass.face_exponent = in.settings.wall_face_exponent;
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -200,7 +201,9 @@ void record_directional(PassRecorder& r) {
     for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(direct_set[i]));
     r.cmd.push_descriptors(writes);
     auto p = r.params<DirectionalParams>(w.width, w.height);
-    p.pass = {.wall_height = in.wall_height, .angle_scale = in.settings.directional_angle_scale};
+    p.pass = {.wall_height = in.wall_height,
+              .angle_scale = in.settings.directional_angle_scale,
+              .face_exponent = in.settings.wall_face_exponent};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -221,8 +224,8 @@ const char* directional_not_needed(const FrameInputs& in, bool, bool) {
 constexpr Tex conduction_writes[] = {Tex::conduction};
 constexpr Tex ao_writes[] = {Tex::ao};
 constexpr std::string_view ao_settings[] = {"ao.enabled", "ao.radius", "ao.power", "ao.strength", "ao.dither"};
-constexpr std::string_view direct_settings[] = {"light_softness"};
-constexpr std::string_view directional_settings[] = {"directional_angle_scale"};
+constexpr std::string_view direct_settings[] = {"light_softness", "wall_face_exponent"};
+constexpr std::string_view directional_settings[] = {"directional_angle_scale", "wall_face_exponent"};
 
 } // namespace
 

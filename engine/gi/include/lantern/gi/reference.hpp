@@ -55,7 +55,9 @@ float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 ligh
 float directional_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 pixel, glm::vec3 light_dir);
 float light_falloff(float distance, float radius, float softness);
 glm::vec4 wall_face_mask(const WallView& walls, glm::ivec2 cell);
-glm::vec4 wall_facing(glm::vec2 dir_to_light);
+// The weight of each wall face (+x, -x, +z, -z) for light from unit direction `dir_to_light`:
+// saturate(dot(n, d)) raised to `exponent` (gi.wall_face_exponent; 1 leaves it as it is).
+glm::vec4 wall_facing(glm::vec2 dir_to_light, float exponent);
 float bayer4(int x, int y); // (M[y%4][x%4] + 0.5) / 16
 
 // AO weights. A texel's weight for the tile (dx, dy) tiles away from its own depends only on

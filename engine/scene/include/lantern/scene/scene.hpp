@@ -50,6 +50,7 @@ struct GiSettings {
     bool per_channel = true;
     bool segment_check = true;
     float light_softness = 1.0f; // falloff exponent
+    float wall_face_exponent = 1.0f; // k in a wall face's weight saturate(dot(n, to_light))^k (seed 000)
     AoSettings ao;
     bool blur = true;
     ToneMap tone_map = ToneMap::aces;

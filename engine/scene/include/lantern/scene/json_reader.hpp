@@ -1,9 +1,13 @@
-// Internal: typed, range-checked reading of JSON values into scene fields, keeping the
-// first problem found together with its position and JSON path. The callers turn that
-// problem into a file message ("scene.json:3:7: gi.padding: ...") or a --set message.
+// Typed, range-checked reading of JSON values into fields, keeping the first problem found
+// together with its position and JSON path; the callers turn that problem into a file
+// message ("scene.json:3:7: gi.padding: ...", issue_error) or a --set message. The one reader
+// of Lantern's JSON formats: scene files, --set, and the game's saves, which read their lights
+// and proxies with the scene file's own functions at the end of this header.
 #pragma once
 
 #include "lantern/core/json.hpp"
+#include "lantern/core/result.hpp"
+#include "lantern/scene/scene.hpp"
 
 #include <initializer_list>
 #include <limits>
@@ -16,7 +20,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-namespace lantern::scene::detail {
+namespace lantern::scene::reading {
 
 struct Issue {
     json::Position where;
@@ -85,6 +89,11 @@ std::string index_path(const std::string& path, std::size_t index);
 // on a problem; only the first problem is kept, so later reads may run but cannot hide it.
 class Reader {
   public:
+    // `document` names the whole file in messages about its top level ("unknown key 'x' in
+    // the scene").
+    Reader() = default;
+    explicit Reader(std::string document) : document_(std::move(document)) {}
+
     bool ok() const { return !issue_.has_value(); }
     const Issue& issue() const { return *issue_; }
 
@@ -151,6 +160,7 @@ class Reader {
         return text;
     }
 
+    std::string document_ = "the scene";
     std::optional<Issue> issue_;
 };
 
@@ -199,4 +209,16 @@ class Fields {
     std::string path_;
 };
 
-} // namespace lantern::scene::detail
+// "<file>:<line>:<col>: <path>: <what>", exit status 2.
+Error issue_error(const std::string& file, const Issue& issue);
+
+// The objects of a scene file's lists ("point_lights", ...; docs/scenes.md), with their keys,
+// defaults and ranges, for any format that embeds them. Directions come back normalised.
+void read_point_light(Reader& reader, const json::Value& value, const std::string& path, PointLight& light);
+void read_emissive_light(Reader& reader, const json::Value& value, const std::string& path,
+                         EmissiveLight& light);
+void read_directional_light(Reader& reader, const json::Value& value, const std::string& path,
+                            DirectionalLight& light);
+void read_shadow_proxy(Reader& reader, const json::Value& value, const std::string& path, ShadowProxy& proxy);
+
+} // namespace lantern::scene::reading
