@@ -60,8 +60,9 @@ TEST(MovingAiMap, TreesAsProxiesAreBounded) {
     const std::string text = map_text(width, height, rows);
     EXPECT_EQ(parse_error(text, {.trees = TreeMode::proxy, .extra_floor_chars = ""}),
               "m.map:" + std::to_string(4 + height) +
-                  ":1: more than 1048576 trees ('T' cells), the limit for trees as shadow proxies (each "
-                  "costs memory; docs/scenes.md, \"Size limits\")");
+                  ":1: more than " + std::to_string(max_map_tree_proxies) +
+                  " trees ('T' cells), the limit for trees as shadow proxies (each costs memory; docs/scenes.md, "
+                  "\"Size limits\")");
     // As walls, the same map is fine.
     EXPECT_EQ(parse_ok(text).walls.cells.size(), std::size_t(width) * std::size_t(height));
 }

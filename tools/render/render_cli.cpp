@@ -87,6 +87,28 @@ std::optional<int> parse_args(int argc, char** argv, Options& o) {
     return std::nullopt;
 }
 
+namespace fs = std::filesystem;
+
+// --dump writes every GI texture as float PFM: at most 12 bytes per texel each (a camera's
+// window keeps its size from frame to frame), so its size is known before any work: refused
+// (exit 1) when the file system DIR goes to has less free space than that. (The GI texture
+// budget bounds it too: at most about 3 GiB; docs/gi.md, "Memory budget".)
+Result<void> check_dump_size(const std::string& dump, const gi::GiWindow& w) {
+    const std::uint64_t bytes = std::uint64_t(gi::registered_texture_count()) *
+                                (std::uint64_t(w.width) * std::uint64_t(w.height) * 12 + 64);
+    std::error_code ec;
+    const fs::path parent = fs::absolute(fs::path(dump), ec).parent_path();
+    const fs::space_info space = fs::space(parent, ec);
+    if (!ec && space.available < bytes) {
+        constexpr double mib = 1024.0 * 1024.0;
+        char text[512];
+        std::snprintf(text, sizeof(text), "--dump %s: needs about %.1f MiB, and its file system has %.1f MiB free",
+                      printable(dump, 200).c_str(), double(bytes) / mib, double(space.available) / mib);
+        return make_error(text, 1);
+    }
+    return {};
+}
+
 // One frame's record for --timings and the summary.
 struct FrameRecord {
     std::uint64_t frame = 0;
@@ -243,8 +265,10 @@ int render_main(int argc, char** argv) {
     for (const std::string& s : o.sets)
         if (auto ok = scene::apply_override(*scene, s); !ok) return fail(ok.error().message, ok.error().exit_code);
     std::string why;
-    if (!gi::compute_window(scene->view, scene->gi.padding, scene->gi.resolution, &why))
-        return fail(o.scene + ": no GI for this view: " + why, 1);
+    const auto window = gi::compute_window(scene->view, scene->gi.padding, scene->gi.resolution, &why);
+    if (!window) return fail(o.scene + ": no GI for this view: " + why, 1);
+    if (!o.dump.empty())
+        if (auto ok = check_dump_size(o.dump, *window); !ok) return fail(ok.error().message, ok.error().exit_code);
 
     jobs::JobSystem jobs;
     auto backend = make_backend(o, jobs);

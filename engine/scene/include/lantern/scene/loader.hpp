@@ -40,8 +40,8 @@ inline constexpr int max_grid_side = 65536;                           // cells p
 inline constexpr std::int64_t max_grid_cells = std::int64_t(1) << 28; // 256 MiB of cells
 // Trees a map may turn into shadow proxies ("trees": "proxy"; the game's --map does): each
 // becomes a proxy in the scene, and in the game an entity with a prop, about 130 bytes of
-// memory together, so this bounds them near 130 MiB whatever the map's size.
-inline constexpr std::int64_t max_map_tree_proxies = std::int64_t(1) << 20;
+// memory together, so this bounds them near 520 MiB whatever the map's size.
+inline constexpr std::int64_t max_map_tree_proxies = std::int64_t(1) << 22;
 inline constexpr double max_gi_texels_per_side = 65536.0;             // padded window * resolution
 
 // Reads the scene file at `path` and parses it with parse_scene, with its folder as the
