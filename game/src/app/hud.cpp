@@ -169,6 +169,8 @@ HudActions Hud::draw(const HudInputs& in) {
         int tone = int(g.tone_map);
         if (ImGui::Combo("tone map", &tone, tone_maps, 4)) g.tone_map = scene::ToneMap(tone);
         ImGui::SliderFloat("emission", &g.emission_strength, 0.0f, 4.0f);
+        // gi.wall_face_exponent: above 1, softer turns of light round wall corners.
+        ImGui::SliderFloat("wall face k", &g.wall_face_exponent, 0.25f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
         ImGui::SliderInt("max lights", &g.max_lights, 1, 256);
         ImGui::SliderInt("max proxies", &g.max_shadow_proxies, 0, 256);
     }
