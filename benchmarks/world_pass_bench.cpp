@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
     }
     s.view = game::follow_camera({player.x, 0.0f, player.y}, game::CameraRig{});
     std::string why;
-    auto window = gi::compute_window(s.view, s.gi.padding, s.gi.resolution, &why);
+    auto window = gi::compute_window(s.view, s.gi, &why);
     if (!window) return fail(why);
     const gi::FrameInputs in = gi::gather_frame_inputs(s, *window);
     const gi::PassPlan plan = gi::plan_passes(in, false);

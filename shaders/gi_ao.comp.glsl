@@ -40,12 +40,17 @@ void load_walls(ivec2 tile, int range) {
             }
 }
 
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
 float ao_texel(int x, int y) {
     int res = pc.size.w, range = pc.pass.range;
     int taps = (2 * range + 1) * (2 * range + 1);
-    ivec2 tile = ivec2(int(floor(pc.camera_view.x)) + x / res, int(floor(pc.camera_view.y)) + y / res);
+    // The tile and the position in it from the global texel index (window_texel_origin):
+    // the origin is a whole texel, a whole tile only when gi.window_snap is "tile".
+    ivec2 g = ivec2(int(round(pc.camera_view.x * float(res))), int(round(pc.camera_view.y * float(res)))) + ivec2(x, y);
+    ivec2 tile = ivec2(floor_div(g.x, res), floor_div(g.y, res));
     load_walls(tile, range);
-    int sub = (y % res) * res + (x % res);
+    int sub = (g.y - tile.y * res) * res + (g.x - tile.x * res);
     float occluded = 0.0;
     int words = (taps + 31) >> 5;
     for (int w = 0; w < words; ++w) {

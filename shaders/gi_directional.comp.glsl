@@ -7,7 +7,8 @@ struct DirectionalParams {
     float wall_height;
     float angle_scale; // gi.directional_angle_scale
     float face_exponent; // gi.wall_face_exponent
-    int pad0, pad1, pad2, pad3, pad4;
+    uint faces;          // computed_faces: bit f = face f is computed and stored
+    int pad0, pad1, pad2, pad3;
 };
 #define GI_PASS_PARAMS DirectionalParams
 #include "lantern/gi_common.glsl"
@@ -49,7 +50,7 @@ float sun_visibility(GpuDirectionalLight sun, vec2 from) {
 }
 
 void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
-    vec4 mask = wall ? wall_face_mask(cell) : vec4(0.0);
+    vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(pc.pass.faces) : vec4(0.0);
     for (int i = 0; i < pc.counts.z; ++i) {
         GpuDirectionalLight sun = u_suns.suns[i];
         vec3 color = sun.color_multiplier.rgb * sun_angle(sun);
@@ -94,13 +95,16 @@ void main() {
             vec4 direct = texelFetch(u_direct_in, index);
             o_direct.texels[index] = pack_rgba16f(vec4(direct.rgb + t.color, direct.a));
             if (HAS_WALLS) {
-                vec4 px = texelFetch(u_face_px_in, index), nx = texelFetch(u_face_nx_in, index);
-                vec4 pz = texelFetch(u_face_pz_in, index), nz = texelFetch(u_face_nz_in, index);
                 float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
-                o_face_px.texels[index] = pack_rgba16f(vec4(px.rgb + t.face[0], has_faces));
-                o_face_nx.texels[index] = pack_rgba16f(vec4(nx.rgb + t.face[1], has_faces));
-                o_face_pz.texels[index] = pack_rgba16f(vec4(pz.rgb + t.face[2], has_faces));
-                o_face_nz.texels[index] = pack_rgba16f(vec4(nz.rgb + t.face[3], has_faces));
+                uint faces = pc.pass.faces;         // a face not computed has no texture
+                if (computes_face(faces, 0))
+                    o_face_px.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_px_in, index).rgb + t.face[0], has_faces));
+                if (computes_face(faces, 1))
+                    o_face_nx.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_nx_in, index).rgb + t.face[1], has_faces));
+                if (computes_face(faces, 2))
+                    o_face_pz.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_pz_in, index).rgb + t.face[2], has_faces));
+                if (computes_face(faces, 3))
+                    o_face_nz.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_nz_in, index).rgb + t.face[3], has_faces));
             }
             shadow[k] = vec2(texelFetch(u_shadow_in, index).r, wall ? 0.0 : t.shadow);
         }

@@ -9,7 +9,9 @@ struct LitParams {
     int tone_map;      // scene::ToneMap
     float white_point;
     float angle_scale; // gi.directional_angle_scale
-    int pad0, pad1, pad2;
+    uint faces;        // computed_faces: the faces that have light (others show the top)
+    float wall_lighting, ao_walls; // gi_shading.options x, y
+
 };
 #define GI_PASS_PARAMS LitParams
 #include "lantern/gi_common.glsl"
@@ -53,7 +55,7 @@ void lit_surface_at(int x, int y, out vec3 pos, out vec3 normal) {
     int res = pc.size.w;
     int lx = int(floor((p.x - float(cell.x)) * float(res))), lz = int(floor((p.y - float(cell.y)) * float(res)));
     int band = max(1, res / 4);
-    vec4 mask = wall_face_mask(cell);
+    vec4 mask = wall_face_mask(cell) * face_bits_mask(pc.pass.faces);
     int distance[4] = int[4](res - 1 - lx, lx, res - 1 - lz, lz);
     const vec3 normals[4] = vec3[4](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1));
     int best = -1;
@@ -70,6 +72,7 @@ uint srgb8(float v) { return uint(floor(linear_to_srgb(v) * 255.0 + 0.5)); }
 void main() {
     gi_shading.window = vec4(pc.camera_view.xy, float(pc.size.x), float(pc.size.y));
     gi_shading.config = vec4(float(pc.size.w), float(pc.pass.tone_map), pc.pass.white_point, pc.pass.angle_scale);
+    gi_shading.options = vec4(pc.pass.wall_lighting, pc.pass.ao_walls, 0.0, 0.0);
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
     for (uint r = 0; r < BLOCK_H; ++r) {

@@ -1,7 +1,13 @@
 // Wall indirect: each exposed face of a wall texel takes the indirect light of the texel
 // one world unit across that face (clamped to the window); ground texels stay zero.
+// Parameters: WallIndirectParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct WallIndirectParams {
+    uint faces; // computed_faces: bit f = face f is computed and stored
+    int pad0, pad1, pad2, pad3, pad4, pad5, pad6;
+};
+#define GI_PASS_PARAMS WallIndirectParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
@@ -39,14 +45,15 @@ void main() {
                 vec2 p = texel_center(x, y);
                 ivec2 cell = ivec2(floor(p));
                 if (is_wall(cell)) {
-                    vec4 mask = wall_face_mask(cell);
+                    vec4 mask = wall_face_mask(cell) * face_bits_mask(pc.pass.faces);
                     for (int f = 0; f < 4; ++f) v[f] = face_value(f, mask, p);
                 }
             }
-            o_face_px.texels[index] = pack_rgba16f(v[0]);
-            o_face_nx.texels[index] = pack_rgba16f(v[1]);
-            o_face_pz.texels[index] = pack_rgba16f(v[2]);
-            o_face_nz.texels[index] = pack_rgba16f(v[3]);
+            uint faces = pc.pass.faces; // a face not computed has no texture
+            if (computes_face(faces, 0)) o_face_px.texels[index] = pack_rgba16f(v[0]);
+            if (computes_face(faces, 1)) o_face_nx.texels[index] = pack_rgba16f(v[1]);
+            if (computes_face(faces, 2)) o_face_pz.texels[index] = pack_rgba16f(v[2]);
+            if (computes_face(faces, 3)) o_face_nz.texels[index] = pack_rgba16f(v[3]);
         }
     }
 }

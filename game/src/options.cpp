@@ -45,6 +45,9 @@ scene::GiSettings default_game_gi() {
     gi.padding = 1.25f;
     gi.max_lights = 32;
     gi.max_shadow_proxies = 32;
+    // The camera looks towards -z from behind the player (CameraRig): a -z face always faces
+    // away from it, so the GI neither traces nor stores those faces (docs/gi.md).
+    gi.wall_faces.nz = false;
     // docs/accuracy.md: about 0.25-0.5 matches an albedo-0.5 world in level; 1.0 (the seed's)
     // washes a torch-lit cave out.
     gi.emission_strength = 0.5f;

@@ -31,6 +31,7 @@ struct alignas(16) WorldFrame {
     glm::vec4 camera{0.0f};     // xyz camera position
     glm::vec4 window{0.0f};     // min x, min z, width, height (texels)
     glm::vec4 config{0.0f};     // resolution, tone map, white point, directional angle scale
+    glm::vec4 options{0.0f};    // wall lighting, AO on walls (1/0)
     glm::ivec4 grid{0};         // wall grid width, height, origin x, origin z
     glm::ivec4 grid_phase{0};   // phase x, z
     glm::ivec4 gi{0};           // pitch, presence bits, sun count, GI on
@@ -39,7 +40,7 @@ struct alignas(16) WorldFrame {
     std::array<glm::vec4, max_palette_colors> palette{};
     std::array<gi::GpuDirectionalLight, 8> suns{};
 };
-static_assert(sizeof(WorldFrame) == 64 + 8 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
+static_assert(sizeof(WorldFrame) == 64 + 9 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
 
 static_assert(offsetof(BoxInstance, half) == 16 && offsetof(BoxInstance, color) == 32,
               "BoxInstance must match game_world.vert.glsl's three texels per box");
@@ -297,6 +298,7 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     scene::GiSettings no_gi;
     const scene::GiSettings& settings = gi_on ? view.gi->settings : no_gi;
     f.config = glm::vec4(0.0f, float(int(settings.tone_map)), settings.white_point, settings.directional_angle_scale);
+    f.options = glm::vec4(settings.wall_lighting ? 1.0f : 0.0f, settings.ao.walls ? 1.0f : 0.0f, 0.0f, 0.0f);
     if (gi_on) {
         const gi::FrameInputs& in = *view.gi;
         const gi::GiWindow& w = in.window;

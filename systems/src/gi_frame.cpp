@@ -183,7 +183,7 @@ void GiFrame::add_systems() {
         ctx.world.view<Camera>().each([&](const Camera& cam) {
             if (found) return;
             found = true;
-            out.window = gi::compute_window(cam.view, config.settings.padding, config.settings.resolution, &out.bail_reason);
+            out.window = gi::compute_window(cam.view, config.settings, &out.bail_reason);
         });
         if (!found) out.bail_reason = "no camera";
     }).reads<Camera>().reads_resource<GiConfig>().writes_resource<GiView>();
@@ -294,7 +294,7 @@ void GiFrame::warm_up() {
     const ecs::Entity cam = camera();
     if (cam.is_null()) return;
     const GiConfig& config = world_.resource<GiConfig>();
-    auto window = gi::compute_window(world_.get<Camera>(cam).view, config.settings.padding, config.settings.resolution);
+    auto window = gi::compute_window(world_.get<Camera>(cam).view, config.settings);
     if (window) streaming().load_all(world_, jobs_, window->view);
 }
 

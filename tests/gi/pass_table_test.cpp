@@ -77,7 +77,8 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
     if (auto it = values.find(key); it != values.end())
         return it->second.first != v ? it->second.second : second.at(key);
     if (key == "method") return std::nullopt; // one method so far
-    for (const char* toggle : {"per_channel", "segment_check", "ao.enabled", "ao.dither", "blur"})
+    for (const char* toggle : {"per_channel", "segment_check", "ao.enabled", "ao.dither", "ao.walls", "blur",
+                               "wall_lighting", "wall_faces.px", "wall_faces.nx", "wall_faces.pz", "wall_faces.nz"})
         if (key == toggle) return v != 0.0 ? "false" : "true";
     return std::string(); // no perturbation known
 }

@@ -169,6 +169,31 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.directional_lights.push_back({glm::normalize(glm::vec3(0.3f, 0.2f, 0.5f)), {1.0f, 0.5f, 0.2f}, 1.0f, 6.0f, 0.5f});
         out.push_back({"two_suns", s});
     }
+    {   // 11. The game's fixed-camera culling and then some (-z and +x faces left out), AO on
+        // wall faces, a sun and a proxy.
+        Scene s = open_scene({8, 8}, {16, 16}, 4);
+        s.walls = cave(16, 16, 31, 0.35f);
+        s.gi.wall_faces.nz = false;
+        s.gi.wall_faces.px = false;
+        s.gi.ao.walls = true;
+        s.gi.ao.strength = 0.9f;
+        s.directional_lights.push_back({glm::normalize(glm::vec3(-0.5f, -0.6f, 0.4f)), {1.0f, 0.95f, 0.9f}, 0.8f, 5.0f, 0.3f});
+        lantern::scene::ShadowProxy post;
+        post.position = {6.5f, 9.5f};
+        s.shadow_proxies.push_back(post);
+        s.point_lights.push_back(point({8.5f, 8.5f}, {1, 0.6f, 0.3f}, 1.5f, 7.0f));
+        s.emissive_lights.push_back(emissive({4.5f, 11.5f}, {0.3f, 0.5f, 1.0f}, 0.8f, 3.0f));
+        out.push_back({"culled_faces_wall_ao", s});
+    }
+    {   // 12. Wall lighting off: no face passes or textures; walls shade as (dark) ground.
+        Scene s = open_scene({8, 8}, {16, 16}, 4);
+        s.walls = cave(16, 16, 37, 0.3f);
+        s.gi.wall_lighting = false;
+        s.directional_lights.push_back({glm::normalize(glm::vec3(0.4f, -0.7f, -0.3f)), {0.9f, 0.9f, 1.0f}, 0.7f, 5.0f, 0.4f});
+        s.point_lights.push_back(point({7.5f, 8.5f}, {1, 0.8f, 0.5f}, 1.5f, 8.0f));
+        s.emissive_lights.push_back(emissive({11.5f, 4.5f}, {1.0f, 0.3f, 0.2f}, 0.8f, 3.0f));
+        out.push_back({"no_wall_lighting", s});
+    }
     return out;
 }
 

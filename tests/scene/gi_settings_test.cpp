@@ -100,7 +100,7 @@ INSTANTIATE_TEST_SUITE_P(
         OverrideCase{
             "gi.ao=1",
             "--set gi.ao: is an object; set its keys one at a time: gi.ao.enabled gi.ao.radius "
-            "gi.ao.power gi.ao.strength gi.ao.dither"},
+            "gi.ao.power gi.ao.strength gi.ao.dither gi.ao.walls"},
         OverrideCase{"gi.resolution", "--set gi.resolution: expected gi.KEY=VALUE"},
         OverrideCase{"gi.padding=",
                      "--set gi.padding: '' is neither a JSON value nor a bare word (such as aces)"},

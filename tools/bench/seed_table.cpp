@@ -40,7 +40,7 @@ double median(std::vector<double> v) {
 Result<RowResult> run_row(gi::vk::Renderer& renderer, const SeedRow& row, const SeedTableOptions& o) {
     const scene::Scene s = seed_scene(row);
     std::string why;
-    auto window = gi::compute_window(s.view, s.gi.padding, s.gi.resolution, &why);
+    auto window = gi::compute_window(s.view, s.gi, &why);
     if (!window) return make_error("seed scene has no GI window: " + why, 1);
     const gi::FrameInputs in = gi::gather_frame_inputs(s, *window);
     const gi::PassPlan plan = gi::plan_passes(in, false);

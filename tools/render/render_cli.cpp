@@ -265,7 +265,7 @@ int render_main(int argc, char** argv) {
     for (const std::string& s : o.sets)
         if (auto ok = scene::apply_override(*scene, s); !ok) return fail(ok.error().message, ok.error().exit_code);
     std::string why;
-    const auto window = gi::compute_window(scene->view, scene->gi.padding, scene->gi.resolution, &why);
+    const auto window = gi::compute_window(scene->view, scene->gi, &why);
     if (!window) return fail(o.scene + ": no GI for this view: " + why, 1);
     if (!o.dump.empty())
         if (auto ok = check_dump_size(o.dump, *window); !ok) return fail(ok.error().message, ok.error().exit_code);

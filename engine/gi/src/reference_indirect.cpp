@@ -256,9 +256,11 @@ Texture reference_blur(const FrameInputs& in, const Texture& indirect, const Ref
 
 std::array<Texture, 4> reference_wall_indirect(const FrameInputs& in, const Texture& indirect, const RefOptions& options) {
     const GiWindow& w = in.window;
+    const std::uint32_t computed = computed_faces(in.settings);
     std::array<Texture, 4> faces;
     for (int f = 0; f < 4; ++f)
-        faces[f] = Texture(std::string("wall_indirect_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
+        if (computes_face(computed, f))
+            faces[f] = Texture(std::string("wall_indirect_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
     static constexpr glm::vec2 across[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     for_each_row(w.height, options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
@@ -267,6 +269,7 @@ std::array<Texture, 4> reference_wall_indirect(const FrameInputs& in, const Text
             if (!in.walls.is_wall(cell.x, cell.y)) continue; // ground texels stay zero
             const glm::vec4 mask = wall_face_mask(in.walls, cell);
             for (int f = 0; f < 4; ++f) {
+                if (!computes_face(computed, f)) continue;
                 glm::vec3 value(0.0f);
                 if (mask[f] > 0.0f) {
                     const glm::vec2 q = p + across[f];

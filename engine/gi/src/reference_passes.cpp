@@ -26,6 +26,8 @@ void for_each_row(const GiWindow& w, const RefOptions& options, F&& row) {
     }
 }
 
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
 glm::ivec2 tile_of(glm::vec2 p) { return {int(std::floor(p.x)), int(std::floor(p.y))}; }
 
 // Where a wall face's shadow ray ends (or starts, for the sun): just outside the face, at
@@ -51,7 +53,7 @@ struct TexelLight {
 // Point and emissive lights at one wall texel: per-face light, each face shadowed by its
 // own traversal to just outside it.
 void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
-    const glm::vec4 mask = wall_face_mask(in.walls, cell);
+    const glm::vec4 mask = wall_face_mask(in.walls, cell) * face_bits_mask(computed_faces(in.settings));
     const float softness = in.settings.light_softness;
     auto face_weights = [&](glm::vec2 light_pos) {
         glm::vec2 to_light = light_pos - p;
@@ -119,7 +121,8 @@ float sun_visibility(const FrameInputs& in, const GpuDirectionalLight& sun, glm:
 }
 
 void directional_texel(const FrameInputs& in, bool wall, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
-    const glm::vec4 mask = wall ? wall_face_mask(in.walls, cell) : glm::vec4(0.0f);
+    const glm::vec4 mask =
+        wall ? wall_face_mask(in.walls, cell) * face_bits_mask(computed_faces(in.settings)) : glm::vec4(0.0f);
     for (const GpuDirectionalLight& sun : in.directional_lights) {
         const glm::vec3 color = glm::vec3(sun.color_multiplier) * sun_angle(sun, in.settings.directional_angle_scale);
         if (!wall) {
@@ -193,11 +196,13 @@ Texture reference_ao(const FrameInputs& in, const RefOptions& options) {
     Texture t("ao", TexFormat::r8, w.width, w.height);
     const AoKernel k = ao_kernel(w.resolution, ao);
     const int res = w.resolution, span = 2 * k.range + 1;
+    const glm::ivec2 origin = window_texel_origin(w);
     for_each_row(w, options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
-            // The window origin is a whole tile, so the tile and the position in it are exact.
-            const glm::ivec2 base(int(std::floor(w.view.min_x)) + x / res, int(std::floor(w.view.min_z)) + y / res);
-            const int sub = (y % res) * res + (x % res);
+            // The tile and the position in it from the global texel index (exact integers).
+            const glm::ivec2 g = origin + glm::ivec2(x, y);
+            const glm::ivec2 base(floor_div(g.x, res), floor_div(g.y, res));
+            const int sub = (g.y - base.y * res) * res + (g.x - base.x * res);
             float occluded = 0.0f;
             for (int dy = -k.range; dy <= k.range; ++dy)
                 for (int dx = -k.range; dx <= k.range; ++dx)
@@ -218,23 +223,26 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
     DirectTextures out{Texture("direct", TexFormat::rgba16f, w.width, w.height),
                        Texture("shadow", TexFormat::rg8, w.width, w.height),
                        {}};
+    const std::uint32_t faces = computed_faces(in.settings);
     for (int f = 0; f < 4; ++f)
-        out.wall_direct[f] = Texture(std::string("wall_direct_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
+        if (computes_face(faces, f))
+            out.wall_direct[f] = Texture(std::string("wall_direct_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
     for_each_row(w, options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
             const glm::vec2 p = w.texel_center(x, y);
             const glm::ivec2 cell = tile_of(p);
             const bool wall = in.walls.is_wall(cell.x, cell.y);
             TexelLight light;
-            if (wall)
-                wall_texel(in, cell, p, light);
-            else
+            if (!wall)
                 ground_texel(in, p, light);
+            else if (faces != 0) // a wall texel's ground light is zero; its faces hold its light
+                wall_texel(in, cell, p, light);
             store_rgb(out.direct, x, y, light.color, 0.0f);
             const float shadow[2] = {wall ? 0.0f : light.shadow, 0.0f};
             out.shadow.store(x, y, shadow);
             // Face alpha flags texels that hold face light (wall texels).
-            for (int f = 0; f < 4; ++f) store_rgb(out.wall_direct[f], x, y, light.face[f], wall ? 1.0f : 0.0f);
+            for (int f = 0; f < 4; ++f)
+                if (computes_face(faces, f)) store_rgb(out.wall_direct[f], x, y, light.face[f], wall ? 1.0f : 0.0f);
         }
     });
     return out;
@@ -242,6 +250,7 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
 
 void reference_directional(const FrameInputs& in, DirectTextures& t, const RefOptions& options) {
     const GiWindow& w = in.window;
+    const std::uint32_t faces = computed_faces(in.settings);
     for_each_row(w, options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
             const glm::vec2 p = w.texel_center(x, y);
@@ -254,6 +263,7 @@ void reference_directional(const FrameInputs& in, DirectTextures& t, const RefOp
             const float shadow[2] = {t.shadow.at(x, y)[0], wall ? 0.0f : sun.shadow};
             t.shadow.store(x, y, shadow);
             for (int f = 0; f < 4; ++f) {
+                if (!computes_face(faces, f)) continue;
                 const float* face = t.wall_direct[f].at(x, y);
                 store_rgb(t.wall_direct[f], x, y, glm::vec3(face[0], face[1], face[2]) + sun.face[f], wall ? 1.0f : 0.0f);
             }

@@ -206,6 +206,17 @@ glm::vec4 wall_face_mask(const WallView& walls, glm::ivec2 c) {
                      walls.is_wall(c.x, c.y + 1) ? 0.0f : 1.0f, walls.is_wall(c.x, c.y - 1) ? 0.0f : 1.0f);
 }
 
+std::uint32_t computed_faces(const scene::GiSettings& gi) {
+    if (!gi.wall_lighting) return 0;
+    return (gi.wall_faces.px ? 1u : 0u) | (gi.wall_faces.nx ? 2u : 0u) | (gi.wall_faces.pz ? 4u : 0u) |
+           (gi.wall_faces.nz ? 8u : 0u);
+}
+
+glm::vec4 face_bits_mask(std::uint32_t faces) {
+    return glm::vec4(computes_face(faces, 0) ? 1.0f : 0.0f, computes_face(faces, 1) ? 1.0f : 0.0f,
+                     computes_face(faces, 2) ? 1.0f : 0.0f, computes_face(faces, 3) ? 1.0f : 0.0f);
+}
+
 glm::vec4 wall_facing(glm::vec2 d, float exponent) {
     const glm::vec4 w(saturate(d.x), saturate(-d.x), saturate(d.y), saturate(-d.y));
     if (exponent == 1.0f) return w; // today's images, bit for bit

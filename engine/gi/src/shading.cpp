@@ -32,6 +32,19 @@ glm::vec2 wall_sample_position(const GiWindow& w, glm::vec3 pos, glm::vec3 norma
     return glm::vec2(pos.x, pos.z) - glm::vec2(normal.x, normal.z) * (0.5f / float(w.resolution));
 }
 
+// AO on a wall face (gi.ao.walls): the ground texel just outside the face, at the same
+// place along it. `inside` is wall_sample_position, in the wall tile.
+glm::vec2 face_ao_position(const GiWindow& w, glm::vec2 inside, glm::vec2 p, int face) {
+    const glm::vec2 cell = glm::floor(inside);
+    const float h = 0.5f / float(w.resolution);
+    switch (face) {
+    case face_pos_x: return {cell.x + 1.0f + h, p.y};
+    case face_neg_x: return {cell.x - h, p.y};
+    case face_pos_z: return {p.x, cell.y + 1.0f + h};
+    default: return {p.x, cell.y - h};
+    }
+}
+
 const GpuDirectionalLight* main_sun(const FrameInputs& f) {
     return f.directional_lights.empty() ? nullptr : &f.directional_lights.front();
 }
@@ -74,7 +87,8 @@ int dominant_face(glm::vec3 n) {
     return n.z >= 0.0f ? face_pos_z : face_neg_z;
 }
 
-SurfaceKind classify_surface(const WallView& walls, const GiWindow& w, glm::vec3 pos, glm::vec3 n) {
+SurfaceKind classify_surface(const WallView& walls, const GiWindow& w, glm::vec3 pos, glm::vec3 n, bool wall_lighting) {
+    if (!wall_lighting) return surface_ground; // gi.wall_lighting off: walls shade as ground
     const float nxz = std::sqrt(n.x * n.x + n.z * n.z);
     if (nxz >= 0.5f) {
         if (wall_at(walls, wall_sample_position(w, pos, n)) || wall_at(walls, {pos.x, pos.z})) return surface_wall_face;
@@ -87,11 +101,18 @@ SurfaceKind classify_surface(const WallView& walls, const GiWindow& w, glm::vec3
 glm::vec3 surface_light(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
     const FrameInputs& f = *in.frame;
     const GiWindow& w = f.window;
-    switch (classify_surface(f.walls, w, pos, n)) {
+    switch (classify_surface(f.walls, w, pos, n, f.settings.wall_lighting)) {
     case surface_wall_face: {
-        const glm::ivec2 t = texel_at(w, wall_sample_position(w, pos, n));
+        const glm::vec2 inside = wall_sample_position(w, pos, n);
+        const glm::ivec2 t = texel_at(w, inside);
         const int face = dominant_face(n);
-        return fetch_rgb(in.wall_direct[face], t) + fetch_rgb(in.wall_indirect[face], t);
+        glm::vec3 light = fetch_rgb(in.wall_direct[face], t) + fetch_rgb(in.wall_indirect[face], t);
+        if (f.settings.ao.walls && in.ao)
+        {
+            const glm::ivec2 outside = texel_at(w, face_ao_position(w, inside, {pos.x, pos.z}, face));
+            light *= in.ao->at(outside.x, outside.y)[0];
+        }
+        return light;
     }
     case surface_wall_top: {
         glm::vec3 direct(0.0f);
@@ -130,7 +151,8 @@ void lit_surface_at(const FrameInputs& f, int x, int y, glm::vec3& pos, glm::vec
     const int res = w.resolution;
     const int lx = int(std::floor((p.x - float(cell.x)) * float(res))), lz = int(std::floor((p.y - float(cell.y)) * float(res)));
     const int band = std::max(1, res / 4);
-    const glm::vec4 mask = wall_face_mask(f.walls, cell);
+    // Only faces the GI computes (gi.wall_lighting, gi.wall_faces) show: the others have no light.
+    const glm::vec4 mask = wall_face_mask(f.walls, cell) * face_bits_mask(computed_faces(f.settings));
     const int distance[4] = {res - 1 - lx, lx, res - 1 - lz, lz};
     static constexpr glm::vec3 normals[4] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
     int best = -1;

@@ -46,7 +46,7 @@ std::optional<VisibleArea> visible_area(const scene::ViewSpec& view, std::string
 }
 
 std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float padding, int resolution,
-                                       std::string* reason, int max_texels) {
+                                       std::string* reason, int max_texels, int snap_texels) {
     auto area = visible_area(view, reason);
     if (!area) return std::nullopt;
     const int res = std::max(1, resolution);
@@ -55,9 +55,10 @@ std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float paddin
     const double size_x = double(area->size.x) * double(padding);
     const double size_z = double(area->size.y) * double(padding);
     const double min_x = center_x - size_x * 0.5, min_z = center_z - size_z * 0.5;
-    // Phase lock: the origin snaps down to a whole tile (res texels).
+    // Phase lock: the origin snaps down to a whole tile (res texels) or to `snap` texels.
+    const double snap = snap_texels > 0 ? double(snap_texels) : double(res);
     const double tex_x = std::floor(min_x * res), tex_z = std::floor(min_z * res);
-    const double snapped_x = std::floor(tex_x / res) * res, snapped_z = std::floor(tex_z / res) * res;
+    const double snapped_x = std::floor(tex_x / snap) * snap, snapped_z = std::floor(tex_z / snap) * snap;
     // Size: whole texels, then whole tiles, then the 64-texel minimum.
     double w = std::ceil(size_x * res), h = std::ceil(size_z * res);
     w = std::max(std::ceil(w / res) * res, double(min_texture_size));
@@ -76,6 +77,21 @@ std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float paddin
     win.height = int(h);
     win.view = CameraView{float(snapped_x / res), float(snapped_z / res), float(w / res), float(h / res)};
     return win;
+}
+
+int window_snap_texels(const scene::GiSettings& gi) {
+    const int res = std::max(1, gi.resolution);
+    if (gi.window_snap == scene::WindowSnap::tile) return res;
+    return std::min(res, int(gi.heat_scale)); // heat texels (1, 2 or 4 texels) stay whole
+}
+
+std::optional<GiWindow> compute_window(const scene::ViewSpec& view, const scene::GiSettings& gi, std::string* reason,
+                                       int max_texels) {
+    return compute_window(view, gi.padding, gi.resolution, reason, max_texels, window_snap_texels(gi));
+}
+
+glm::ivec2 window_texel_origin(const GiWindow& w) {
+    return {int(std::lround(double(w.view.min_x) * w.resolution)), int(std::lround(double(w.view.min_z) * w.resolution))};
 }
 
 std::uint64_t hash_window(const GiWindow& w) {

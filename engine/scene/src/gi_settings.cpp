@@ -32,6 +32,11 @@ constexpr std::array<EnumName<ToneMap>, 4> tone_map_names{{
     {"aces", ToneMap::aces},
 }};
 
+constexpr std::array<EnumName<WindowSnap>, 2> window_snap_names{{
+    {"tile", WindowSnap::tile},
+    {"texel", WindowSnap::texel},
+}};
+
 constexpr std::array<EnumName<GiMethod>, 1> method_names{{
     {"heat", GiMethod::heat},
 }};
@@ -61,8 +66,8 @@ struct EnumField {
     E* target;
     std::span<const EnumName<E>> names;
 };
-using FieldTarget =
-    std::variant<FloatField, IntField, BoolField, EnumField<HeatScale>, EnumField<ToneMap>, EnumField<GiMethod>>;
+using FieldTarget = std::variant<FloatField, IntField, BoolField, EnumField<HeatScale>, EnumField<ToneMap>,
+                                 EnumField<GiMethod>, EnumField<WindowSnap>>;
 
 struct GiField {
     std::string_view key; // below "gi"; keys of nested objects joined by dots ("ao.radius")
@@ -71,11 +76,12 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 25> gi_fields(GiSettings& gi) {
+std::array<GiField, 32> gi_fields(GiSettings& gi) {
     return {{
         {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
         {"padding", FloatField{&gi.padding, between(1.0, 8.0)}},
+        {"window_snap", EnumField<WindowSnap>{&gi.window_snap, window_snap_names}},
         {"heat_rounds", IntField{&gi.heat_rounds, {0, 100000}}},
         {"heat_scale", EnumField<HeatScale>{&gi.heat_scale, heat_scale_names}},
         {"diffusion_rate", FloatField{&gi.diffusion_rate, diffusion_rate_range}},
@@ -87,11 +93,17 @@ std::array<GiField, 25> gi_fields(GiSettings& gi) {
         {"segment_check", BoolField{&gi.segment_check}},
         {"light_softness", FloatField{&gi.light_softness, greater_than(0.0)}},
         {"wall_face_exponent", FloatField{&gi.wall_face_exponent, wall_face_exponent_range}},
+        {"wall_lighting", BoolField{&gi.wall_lighting}},
+        {"wall_faces.px", BoolField{&gi.wall_faces.px}},
+        {"wall_faces.nx", BoolField{&gi.wall_faces.nx}},
+        {"wall_faces.pz", BoolField{&gi.wall_faces.pz}},
+        {"wall_faces.nz", BoolField{&gi.wall_faces.nz}},
         {"ao.enabled", BoolField{&gi.ao.enabled}},
         {"ao.radius", FloatField{&gi.ao.radius, ao_radius_range}},
         {"ao.power", FloatField{&gi.ao.power, greater_than(0.0)}},
         {"ao.strength", FloatField{&gi.ao.strength, between(0.0, 1.0)}},
         {"ao.dither", BoolField{&gi.ao.dither}},
+        {"ao.walls", BoolField{&gi.ao.walls}},
         {"blur", BoolField{&gi.blur}},
         {"tone_map", EnumField<ToneMap>{&gi.tone_map, tone_map_names}},
         {"white_point", FloatField{&gi.white_point, greater_than(0.0)}},

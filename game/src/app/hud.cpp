@@ -165,7 +165,11 @@ HudActions Hud::draw(const HudInputs& in) {
         ImGui::SameLine();
         ImGui::Checkbox("AO", &g.ao.enabled);
         ImGui::SameLine();
+        ImGui::Checkbox("AO on walls", &g.ao.walls);
+        ImGui::SameLine();
         ImGui::Checkbox("per channel", &g.per_channel);
+        // gi.wall_lighting: off leaves out every wall-face pass and texture (walls go dark).
+        ImGui::Checkbox("wall lighting", &g.wall_lighting);
         int tone = int(g.tone_map);
         if (ImGui::Combo("tone map", &tone, tone_maps, 4)) g.tone_map = scene::ToneMap(tone);
         ImGui::SliderFloat("emission", &g.emission_strength, 0.0f, 4.0f);

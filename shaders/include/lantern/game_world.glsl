@@ -35,6 +35,7 @@ struct WorldFrame {
     vec4 camera;       // xyz camera position
     vec4 window;       // gi_shading.window: min x, min z (world), width, height (texels)
     vec4 config;       // gi_shading.config: resolution, tone map, white point, angle scale
+    vec4 options;      // gi_shading.options: wall lighting, AO on walls (1/0)
     ivec4 grid;        // wall grid width, height, origin x, origin z
     ivec4 grid_phase;  // toroidal phase (x, z), 0, 0
     ivec4 gi;          // x: texel pitch, y: presence bits (bit GI_*), z: sun count, w: 1 = GI (HAS_GI)
@@ -94,6 +95,7 @@ const bool WALL_TOP_PER_FACE = FACE == 4 && WALL_LOOKUP == 2;
 void set_gi_shading() {
     gi_shading.window = pc.window;
     gi_shading.config = pc.config;
+    gi_shading.options = pc.options;
 }
 
 #endif

@@ -122,6 +122,13 @@ vec4 wall_face_mask(ivec2 c) {
     return vec4(is_wall(c.x + 1, c.y) ? 0.0 : 1.0, is_wall(c.x - 1, c.y) ? 0.0 : 1.0,
                 is_wall(c.x, c.y + 1) ? 0.0 : 1.0, is_wall(c.x, c.y - 1) ? 0.0 : 1.0);
 }
+// 1 for the faces whose bit is set in `faces` (computed_faces: gi.wall_lighting and
+// gi.wall_faces), 0 for the others; multiplies wall_face_mask.
+vec4 face_bits_mask(uint faces) {
+    return vec4((faces & 1u) != 0u ? 1.0 : 0.0, (faces & 2u) != 0u ? 1.0 : 0.0,
+                (faces & 4u) != 0u ? 1.0 : 0.0, (faces & 8u) != 0u ? 1.0 : 0.0);
+}
+bool computes_face(uint faces, int face) { return ((faces >> uint(face)) & 1u) != 0u; }
 // Each face's weight (+x, -x, +z, -z) for light from unit direction d, raised to `exponent`
 // (gi.wall_face_exponent; 1 leaves it as it is, bit for bit).
 vec4 wall_facing(vec2 d, float exponent) {

@@ -19,6 +19,7 @@ const int SURFACE_GROUND = 0, SURFACE_WALL_FACE = 1, SURFACE_WALL_TOP = 2;
 struct GiShadingParams {
     vec4 window;   // min_x, min_z, width (texels), height (texels)
     vec4 config;   // resolution, tone map, white point, directional angle scale
+    vec4 options;  // x: gi.wall_lighting (1/0), y: gi.ao.walls (1/0), z, w: 0
 };
 GiShadingParams gi_shading;
 
@@ -55,6 +56,7 @@ int dominant_face(vec3 n) {
 vec2 wall_sample_position(vec3 pos, vec3 n) { return pos.xz - n.xz * (0.5 / gi_shading.config.x); }
 
 int classify_surface(vec3 pos, vec3 n) {
+    if (gi_shading.options.x == 0.0) return SURFACE_GROUND; // wall lighting off: walls are ground
     float nxz = sqrt(n.x * n.x + n.z * n.z);
     if (nxz >= 0.5) {
         if (gi_wall_at(wall_sample_position(pos, n)) || gi_wall_at(pos.xz)) return SURFACE_WALL_FACE;
@@ -62,6 +64,17 @@ int classify_surface(vec3 pos, vec3 n) {
         if (gi_wall_at(floor(pos.xz) + 0.5)) return SURFACE_WALL_TOP;
     }
     return SURFACE_GROUND;
+}
+
+// AO on a wall face (gi.ao.walls): the ground texel just outside the face, at the same
+// place along it. `inside` is wall_sample_position, in the wall tile.
+vec2 face_ao_position(vec2 inside, vec2 p, int face) {
+    vec2 cell = floor(inside);
+    float h = 0.5 / gi_shading.config.x;
+    if (face == 0) return vec2(cell.x + 1.0 + h, p.y);
+    if (face == 1) return vec2(cell.x - h, p.y);
+    if (face == 2) return vec2(p.x, cell.y + 1.0 + h);
+    return vec2(p.x, cell.y - h);
 }
 
 float gi_sun_angle(GpuDirectionalLight sun) {
@@ -86,9 +99,13 @@ vec3 ground_indirect_average(vec2 p) {
 vec3 surface_light(vec3 pos, vec3 n) {
     int kind = classify_surface(pos, n);
     if (kind == SURFACE_WALL_FACE) {
-        ivec2 t = gi_texel_at(wall_sample_position(pos, n));
+        vec2 inside = wall_sample_position(pos, n);
+        ivec2 t = gi_texel_at(inside);
         int face = dominant_face(n);
-        return gi_fetch_rgb(GI_WALL_DIRECT + face, t) + gi_fetch_rgb(GI_WALL_INDIRECT + face, t);
+        vec3 light = gi_fetch_rgb(GI_WALL_DIRECT + face, t) + gi_fetch_rgb(GI_WALL_INDIRECT + face, t);
+        if (gi_shading.options.y != 0.0 && gi_has(GI_AO))
+            light *= gi_fetch(GI_AO, gi_texel_at(face_ao_position(inside, pos.xz, face))).r;
+        return light;
     }
     if (kind == SURFACE_WALL_TOP) {
         vec3 direct = vec3(0.0);

@@ -22,21 +22,36 @@ constexpr Tex point_set[] = {Tex::direct_point,         Tex::shadow_point,      
                              Tex::wall_direct_point_nx, Tex::wall_direct_point_pz, Tex::wall_direct_point_nz};
 
 // The direct pass writes the point-light set when directional lights follow (the
-// directional pass then reads it and writes the contract textures), else the contract set.
+// directional pass then reads it and writes the contract textures), else the contract set:
+// the colour, the shadow map and the faces computed (computed_faces).
 std::span<const Tex> direct_outputs(const FrameInputs& in) {
     return in.directional_lights.empty() ? std::span<const Tex>(direct_set) : std::span<const Tex>(point_set);
 }
 
-TexSet direct_writes(const FrameInputs& in) {
+TexSet face_set(std::span<const Tex> ids, const FrameInputs& in) {
     TexSet set;
-    for (Tex t : direct_outputs(in)) set.add(t);
+    set.add(ids[0]).add(ids[1]);
+    const std::uint32_t faces = computed_faces(in.settings);
+    for (int f = 0; f < 4; ++f)
+        if (computes_face(faces, f)) set.add(ids[std::size_t(2 + f)]);
     return set;
 }
+
+TexSet direct_writes(const FrameInputs& in) { return face_set(direct_outputs(in), in); }
+TexSet directional_writes(const FrameInputs& in) { return face_set(direct_set, in); }
 
 void put_direct(ReferenceStore& store, std::span<const Tex> ids, DirectTextures d) {
     store.put(ids[0], std::move(d.direct));
     store.put(ids[1], std::move(d.shadow));
-    for (std::size_t f = 0; f < 4; ++f) store.put(ids[2 + f], std::move(d.wall_direct[f]));
+    for (std::size_t f = 0; f < 4; ++f)
+        if (d.wall_direct[f].width > 0) store.put(ids[2 + f], std::move(d.wall_direct[f]));
+}
+
+// A face texture's buffer, or for a face not computed the first output's: the shader never
+// writes a face whose bit is clear in its `faces` parameter.
+const gpu::Buffer& face_buffer(PassRecorder& r, std::span<const Tex> ids, int face) {
+    const Tex t = ids[std::size_t(2 + face)];
+    return r.has(t) ? r.buffer(t) : r.buffer(ids[0]);
 }
 
 // The parameters of each shader (GI_PASS_PARAMS, mirrored field by field; checked against
@@ -50,11 +65,13 @@ struct LightBinParams {
 };
 struct DirectParams {
     float light_softness = 0, face_exponent = 1;
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0;
+    std::uint32_t faces = 15; // computed_faces
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0;
 };
 struct DirectionalParams {
     float wall_height = 0, angle_scale = 0, face_exponent = 1;
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0;
+    std::uint32_t faces = 15; // computed_faces
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0;
 };
 
 // ---- conduction
@@ -129,11 +146,13 @@ void record_direct(PassRecorder& r) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
     const auto out = direct_outputs(in);
+    const std::uint32_t faces = computed_faces(in.settings);
     // No point or emissive lights: the outputs are zero. No wall in view: the shader skips
     // the faces, which stay zero.
     const bool no_lights = in.point_lights.empty() && in.emissive_lights.empty();
-    if (no_lights || !r.plan.has_walls_in_window) {
-        for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i) r.clear(out[i]);
+    if (no_lights || (!r.plan.has_walls_in_window && faces != 0)) {
+        for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i)
+            if (r.has(out[i])) r.clear(out[i]);
         r.cmd.barrier_transfer_to_compute();
         if (no_lights) return;
     }
@@ -166,14 +185,15 @@ void record_direct(PassRecorder& r) {
                                .uniform_buffer(2, r.lights())
                                .storage_buffer(3, r.buffer(out[0]))
                                .storage_buffer(4, r.buffer(out[1]))
-                               .storage_buffer(5, r.buffer(out[2]))
-                               .storage_buffer(6, r.buffer(out[3]))
-                               .storage_buffer(7, r.buffer(out[4]))
-                               .storage_buffer(8, r.buffer(out[5]))
+                               .storage_buffer(5, face_buffer(r, out, 0))
+                               .storage_buffer(6, face_buffer(r, out, 1))
+                               .storage_buffer(7, face_buffer(r, out, 2))
+                               .storage_buffer(8, face_buffer(r, out, 3))
                                .storage_buffer(9, s.bins));
     auto p = r.params<DirectParams>(w.width, w.height);
     p.pass.light_softness = in.settings.light_softness;
     p.pass.face_exponent = in.settings.wall_face_exponent;
+    p.pass.faces = faces;
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -188,8 +208,10 @@ void reference_direct_row(ReferenceContext& c) {
 void record_directional(PassRecorder& r) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
-    if (!r.plan.has_walls_in_window) { // the shader skips the faces: they stay zero
-        for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz}) r.clear(t);
+    const std::uint32_t faces = computed_faces(in.settings);
+    if (!r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
+        for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz})
+            if (r.has(t)) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
     }
     r.cmd.bind(
@@ -197,13 +219,15 @@ void record_directional(PassRecorder& r) {
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
     // Reads the point-light results, writes the contract textures (never in place).
-    for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(point_set[i]));
-    for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(direct_set[i]));
+    // Faces not computed: bound to the colour's buffers, neither read nor written.
+    for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(r.has(point_set[i]) ? point_set[i] : point_set[0]));
+    for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(r.has(direct_set[i]) ? direct_set[i] : direct_set[0]));
     r.cmd.push_descriptors(writes);
     auto p = r.params<DirectionalParams>(w.width, w.height);
     p.pass = {.wall_height = in.wall_height,
               .angle_scale = in.settings.directional_angle_scale,
-              .face_exponent = in.settings.wall_face_exponent};
+              .face_exponent = in.settings.wall_face_exponent,
+              .faces = faces};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -211,7 +235,8 @@ void record_directional(PassRecorder& r) {
 
 void reference_directional_row(ReferenceContext& c) {
     DirectTextures d{c.store.at(Tex::direct_point), c.store.at(Tex::shadow_point), {}};
-    for (std::size_t f = 0; f < 4; ++f) d.wall_direct[f] = c.store.at(point_set[2 + f]);
+    for (std::size_t f = 0; f < 4; ++f)
+        if (const Texture* face = c.store.find(point_set[2 + f])) d.wall_direct[f] = *face;
     reference_directional(c.in, d, c.options); // adds the suns to a copy: never in place
     put_direct(c.store, direct_set, std::move(d));
 }
@@ -224,8 +249,12 @@ const char* directional_not_needed(const FrameInputs& in, bool, bool) {
 constexpr Tex conduction_writes[] = {Tex::conduction};
 constexpr Tex ao_writes[] = {Tex::ao};
 constexpr std::string_view ao_settings[] = {"ao.enabled", "ao.radius", "ao.power", "ao.strength", "ao.dither"};
-constexpr std::string_view direct_settings[] = {"light_softness", "wall_face_exponent"};
-constexpr std::string_view directional_settings[] = {"directional_angle_scale", "wall_face_exponent"};
+constexpr std::string_view direct_settings[] = {"light_softness",   "wall_face_exponent", "wall_lighting",
+                                                "wall_faces.px",    "wall_faces.nx",      "wall_faces.pz",
+                                                "wall_faces.nz"};
+constexpr std::string_view directional_settings[] = {"directional_angle_scale", "wall_face_exponent", "wall_lighting",
+                                                     "wall_faces.px",           "wall_faces.nx",      "wall_faces.pz",
+                                                     "wall_faces.nz"};
 
 } // namespace
 
@@ -263,7 +292,7 @@ constinit const PassRow directional{
     .pass = Pass::directional,
     .name = "directional",
     .reads = point_set,
-    .writes = direct_set,
+    .writes_for = directional_writes,
     .settings = directional_settings,
     .inputs = input_walls | input_proxies | input_suns | input_wall_height | input_walls_in_window,
     .not_needed = directional_not_needed,

@@ -170,29 +170,51 @@ void reference_blur_row(ReferenceContext& c) {
 
 // ---- wall-face indirect
 
+struct WallIndirectParams {
+    std::uint32_t faces = 15; // computed_faces
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0, pad6 = 0;
+};
+
 void record_wall_indirect(PassRecorder& r) {
     const GiWindow& w = r.in.window;
-    r.cmd.bind(r.pipeline("gi_wall_indirect.comp", {.proxies = false}));
-    r.cmd.push_descriptors(gpu::DescriptorWrites()
-                               .uniform_texel_buffer(0, r.walls())
-                               .uniform_buffer(1, r.proxies())
-                               .uniform_texel_buffer(2, r.view(Tex::indirect))
-                               .storage_buffer(3, r.buffer(Tex::wall_indirect_px))
-                               .storage_buffer(4, r.buffer(Tex::wall_indirect_nx))
-                               .storage_buffer(5, r.buffer(Tex::wall_indirect_pz))
-                               .storage_buffer(6, r.buffer(Tex::wall_indirect_nz)));
-    r.cmd.push_constants(r.params(w.width, w.height));
+    const std::uint32_t faces = computed_faces(r.in.settings);
+    gpu::DescriptorWrites writes;
+    writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_texel_buffer(2, r.view(Tex::indirect));
+    // A face not computed is bound to the first computed face's buffer and never written.
+    Tex first = Tex::wall_indirect_px;
+    for (int f = 3; f >= 0; --f)
+        if (computes_face(faces, f)) first = Tex(int(Tex::wall_indirect_px) + f);
+    for (int f = 0; f < 4; ++f) {
+        const Tex t = Tex(int(Tex::wall_indirect_px) + f);
+        writes.storage_buffer(std::uint32_t(3 + f), r.buffer(computes_face(faces, f) ? t : first));
+    }
+    r.cmd.bind(r.pipeline<WallIndirectParams>("gi_wall_indirect.comp", {.proxies = false}));
+    r.cmd.push_descriptors(writes);
+    auto p = r.params<WallIndirectParams>(w.width, w.height);
+    p.pass.faces = faces;
+    r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
 }
 
 void reference_wall_indirect_row(ReferenceContext& c) {
     auto faces = reference_wall_indirect(c.in, c.store.at(Tex::indirect), c.options);
-    for (int f = 0; f < 4; ++f) c.store.put(Tex(int(Tex::wall_indirect_px) + f), std::move(faces[std::size_t(f)]));
+    for (int f = 0; f < 4; ++f)
+        if (faces[std::size_t(f)].width > 0) c.store.put(Tex(int(Tex::wall_indirect_px) + f), std::move(faces[std::size_t(f)]));
+}
+
+TexSet wall_indirect_writes(const FrameInputs& in) {
+    TexSet set;
+    const std::uint32_t faces = computed_faces(in.settings);
+    for (int f = 0; f < 4; ++f)
+        if (computes_face(faces, f)) set.add(Tex(int(Tex::wall_indirect_px) + f));
+    return set;
 }
 
 const char* blur_not_needed(const FrameInputs& in, bool, bool) { return in.settings.blur ? nullptr : "blur disabled"; }
-const char* wall_indirect_not_needed(const FrameInputs&, bool, bool walls_in_window) {
+const char* wall_indirect_not_needed(const FrameInputs& in, bool, bool walls_in_window) {
+    if (!in.settings.wall_lighting) return "wall lighting off";
+    if (computed_faces(in.settings) == 0) return "no wall face computed";
     return walls_in_window ? nullptr : "no walls in the GI window";
 }
 
@@ -208,8 +230,8 @@ constexpr Tex blur_reads[] = {Tex::indirect};
 constexpr Tex blur_writes[] = {Tex::blur_temp, Tex::indirect};
 constexpr std::string_view blur_settings[] = {"blur"};
 constexpr Tex wall_indirect_reads[] = {Tex::indirect};
-constexpr Tex wall_indirect_writes[] = {Tex::wall_indirect_px, Tex::wall_indirect_nx, Tex::wall_indirect_pz,
-                                        Tex::wall_indirect_nz};
+constexpr std::string_view wall_indirect_settings[] = {"wall_lighting", "wall_faces.px", "wall_faces.nx",
+                                                       "wall_faces.pz", "wall_faces.nz"};
 
 } // namespace
 
@@ -251,7 +273,8 @@ constinit const PassRow wall_indirect{
     .pass = Pass::wall_indirect,
     .name = "wall_indirect",
     .reads = wall_indirect_reads,
-    .writes = wall_indirect_writes,
+    .writes_for = wall_indirect_writes,
+    .settings = wall_indirect_settings,
     .inputs = input_walls | input_walls_in_window,
     .not_needed = wall_indirect_not_needed,
     .record = record_wall_indirect,

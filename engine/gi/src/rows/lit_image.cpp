@@ -16,7 +16,9 @@ constexpr Tex lit_reads[] = {Tex::direct,           Tex::indirect,         Tex::
                              Tex::wall_direct_pz,   Tex::wall_direct_nz,   Tex::wall_indirect_px,
                              Tex::wall_indirect_nx, Tex::wall_indirect_pz, Tex::wall_indirect_nz};
 constexpr Tex lit_writes[] = {Tex::lit};
-constexpr std::string_view lit_settings[] = {"tone_map", "white_point", "directional_angle_scale"};
+constexpr std::string_view lit_settings[] = {"tone_map",      "white_point",   "directional_angle_scale",
+                                             "wall_lighting", "wall_faces.px", "wall_faces.nx",
+                                             "wall_faces.pz", "wall_faces.nz", "ao.walls"};
 
 // The shader's parameters (GI_PASS_PARAMS LitParams), field by field.
 struct LitParams {
@@ -24,7 +26,8 @@ struct LitParams {
     std::uint32_t present = 0; // bit i: lit_reads[i] is bound
     std::int32_t tone_map = 0;
     float white_point = 0, angle_scale = 0;
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0;
+    std::uint32_t faces = 0; // computed_faces
+    float wall_lighting = 1, ao_walls = 0;
 };
 
 void record_lit(PassRecorder& r) {
@@ -47,7 +50,9 @@ void record_lit(PassRecorder& r) {
     auto p = r.params<LitParams>(w.width, w.height);
     const scene::GiSettings& s = r.in.settings;
     p.pass = {.wall_height = r.in.wall_height, .present = present, .tone_map = std::int32_t(s.tone_map),
-              .white_point = s.white_point, .angle_scale = s.directional_angle_scale};
+              .white_point = s.white_point, .angle_scale = s.directional_angle_scale,
+              .faces = computed_faces(s), .wall_lighting = s.wall_lighting ? 1.0f : 0.0f,
+              .ao_walls = s.ao.walls ? 1.0f : 0.0f};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();

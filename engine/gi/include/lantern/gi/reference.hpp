@@ -12,6 +12,7 @@
 #include "lantern/gi/texture.hpp"
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -27,7 +28,8 @@ inline constexpr const char* face_suffix[4] = {"px", "nx", "pz", "nz"};
 struct DirectTextures {
     Texture direct; // rgba16f: ground direct light (point + emissive + directional)
     Texture shadow; // rg8: R = max point-light visibility, G = max directional visibility
-    std::array<Texture, 4> wall_direct; // rgba16f per face (+X, -X, +Z, -Z), wall texels only
+    std::array<Texture, 4> wall_direct; // rgba16f per face (+X, -X, +Z, -Z), wall texels only;
+                                        // empty for faces not computed (computed_faces)
 };
 
 struct RefOptions {
@@ -55,6 +57,13 @@ float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 ligh
 float directional_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 pixel, glm::vec3 light_dir);
 float light_falloff(float distance, float radius, float softness);
 glm::vec4 wall_face_mask(const WallView& walls, glm::ivec2 cell);
+// The wall faces the GI computes and stores, bit f for face f (+x, -x, +z, -z): the faces
+// gi.wall_faces keeps, none when gi.wall_lighting is off. Faces left out are neither
+// traced nor allocated; they read as no light.
+std::uint32_t computed_faces(const scene::GiSettings& gi);
+inline bool computes_face(std::uint32_t faces, int face) { return (faces >> face) & 1u; }
+// 1 for the faces in `faces`, 0 for the others (multiplies wall_face_mask).
+glm::vec4 face_bits_mask(std::uint32_t faces);
 // The weight of each wall face (+x, -x, +z, -z) for light from unit direction `dir_to_light`:
 // saturate(dot(n, d)) raised to `exponent` (gi.wall_face_exponent; 1 leaves it as it is).
 glm::vec4 wall_facing(glm::vec2 dir_to_light, float exponent);

@@ -52,7 +52,8 @@ Texture reference_heat_upsample(const FrameInputs& in, const Texture& heat, cons
 Texture reference_blur(const FrameInputs& in, const Texture& indirect, const RefOptions& options = {});
 
 // Wall indirect: for each exposed face of a wall texel, the indirect light of the texel one
-// world unit away across that face (clamped to the window).
+// world unit away across that face (clamped to the window). Faces not computed
+// (computed_faces) are left empty.
 std::array<Texture, 4> reference_wall_indirect(const FrameInputs& in, const Texture& indirect,
                                                const RefOptions& options = {});
 

@@ -7,7 +7,10 @@
 //   face's wall-direct + wall-indirect textures, sampled half a GI texel into the wall;
 // - wall tops: an upward normal (n.y >= 0.5, |n.xz| <= 0.35) on a wall cell: the main
 //   sun's colour by angle, plus the 3x3 average of the ground indirect light around it;
+//   (x the AO of the ground texel just outside the face when gi.ao.walls is on);
 // - ground: (direct + indirect + directional bounce) x AO x conduction.
+// gi.wall_lighting off routes every surface to the ground (the seed's _WallLightingEnabled):
+// wall tiles then shade as ground, which conduction makes black.
 // Then the tone map. Every texture is sampled at the texel containing the position
 // (clamped to the window): point sampling at texel centres, as the seed snaps.
 #pragma once
@@ -33,7 +36,9 @@ enum SurfaceKind : int { surface_ground = 0, surface_wall_face = 1, surface_wall
 
 glm::vec3 tone_map(glm::vec3 color, scene::ToneMap mode, float white_point);
 int dominant_face(glm::vec3 normal);
-SurfaceKind classify_surface(const WallView& walls, const GiWindow& window, glm::vec3 pos, glm::vec3 normal);
+// With wall lighting off (gi.wall_lighting false) every surface is ground, as in the seed.
+SurfaceKind classify_surface(const WallView& walls, const GiWindow& window, glm::vec3 pos, glm::vec3 normal,
+                             bool wall_lighting = true);
 // Linear (before tone mapping) light arriving at the surface.
 glm::vec3 surface_light(const ShadingInputs& in, glm::vec3 pos, glm::vec3 normal);
 glm::vec3 shade(const ShadingInputs& in, glm::vec3 pos, glm::vec3 normal);

@@ -1,15 +1,19 @@
-// The GI window: the world rectangle the GI textures cover, phase-locked to whole tiles.
+// The GI window: the world rectangle the GI textures cover, phase-locked to whole tiles
+// (gi.window_snap "tile", the default) or to texel boundaries ("texel").
 //
 // Conventions (every pass, C++ and GLSL): CameraView = (min_x, min_z, width, height) in
 // world units; texel (i, j) covers [min_x + i/res, min_x + (i+1)/res) x [min_z + j/res, ...);
 // its centre is (floor(p * res) + 0.5) / res for any p inside it; row 0 is at min_z.
-// min_x and min_z are whole tiles (phase lock), and width/height are the texture size
-// divided by res, so the texel grid lines up with tile boundaries exactly.
+// min_x and min_z are whole texels (whole tiles when snapping to tiles), and width/height
+// are the texture size divided by res (whole tiles), so the texel grid lines up with tile
+// boundaries exactly either way; a pass that needs a texel's tile takes it from the global
+// texel index round(min_x * res) + i (window_texel_origin).
 #pragma once
 
 #include "lantern/scene/scene.hpp"
 
 #include <glm/vec2.hpp>
+#include <glm/ext/vector_int2.hpp>
 
 #include <cstdint>
 #include <optional>
@@ -54,7 +58,16 @@ std::optional<VisibleArea> visible_area(const scene::ViewSpec& view, std::string
 // nullopt (no GI this frame, never a crash) when the visible area is unavailable or the
 // result is not finite. Texture sizes above max_texels per side are reported through
 // `reason` too (the caller decides whether that is an error).
+// `snap_texels`: the origin's lock in texels (res: whole tiles; 0 means res).
 std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float padding, int resolution,
+                                       std::string* reason = nullptr, int max_texels = 1 << 16, int snap_texels = 0);
+// The window of a scene's gi settings: padding, resolution and gi.window_snap ("texel" locks
+// to min(res, heat scale) texels, so heat texels stay whole).
+std::optional<GiWindow> compute_window(const scene::ViewSpec& view, const scene::GiSettings& gi,
                                        std::string* reason = nullptr, int max_texels = 1 << 16);
+// The texels the lock steps by for these settings.
+int window_snap_texels(const scene::GiSettings& gi);
+// The global index of the window's first texel column and row: round(min * res).
+glm::ivec2 window_texel_origin(const GiWindow& w);
 
 } // namespace lantern::gi

@@ -21,6 +21,10 @@ namespace lantern::scene {
 
 enum class HeatScale : std::uint8_t { full = 1, half = 2, quarter = 4 };
 enum class ToneMap : std::uint8_t { none, reinhard, reinhard_white, aces };
+// What the GI window's origin locks to as the camera moves (seed 000's phase lock): whole
+// tiles, or texel boundaries (smoother tracking: the window steps 1/resolution of a tile,
+// times the heat scale, so heat texels stay whole; more cache invalidations while walking).
+enum class WindowSnap : std::uint8_t { tile, texel };
 
 struct AoSettings {
     bool enabled = true;
@@ -28,8 +32,17 @@ struct AoSettings {
     float power = 1.0f;    // distance-weight exponent
     float strength = 0.6f; // 0 = no darkening, 1 = full
     bool dither = false;   // 4x4 Bayer dither before 8-bit quantisation
+    bool walls = false;    // also darken wall faces (by the ground texel just outside the face)
 
     friend bool operator==(const AoSettings&, const AoSettings&) = default;
+};
+
+// Which wall faces the GI computes and stores (gi.wall_faces.px ... nz). A camera with a
+// fixed direction never sees some faces (the game's never sees -z): leave those out.
+struct WallFaces {
+    bool px = true, nx = true, pz = true, nz = true; // +x, -x, +z, -z
+
+    friend bool operator==(const WallFaces&, const WallFaces&) = default;
 };
 
 // Every key of a scene's "gi" object; the defaults are the documented defaults.
@@ -40,6 +53,7 @@ struct GiSettings {
     GiMethod method = GiMethod::heat;
     int resolution = 8; // GI texels per world unit, 1..32
     float padding = 1.4f;
+    WindowSnap window_snap = WindowSnap::tile;
     int heat_rounds = 20;
     HeatScale heat_scale = HeatScale::full;
     float diffusion_rate = 1.0f;
@@ -51,6 +65,8 @@ struct GiSettings {
     bool segment_check = true;
     float light_softness = 1.0f; // falloff exponent
     float wall_face_exponent = 1.0f; // k in a wall face's weight saturate(dot(n, to_light))^k (seed 000)
+    bool wall_lighting = true;       // false: no wall-face light, passes or textures (seed 000's switch)
+    WallFaces wall_faces;            // the faces computed and stored (culling for fixed cameras)
     AoSettings ao;
     bool blur = true;
     ToneMap tone_map = ToneMap::aces;
