@@ -76,7 +76,7 @@ std::unique_ptr<GiFrame> make_gi_frame(scene::Scene s, const scene::PerspectiveC
     f->scene = std::move(s);
     f->scene.view = camera;
     std::string why;
-    auto window = gi::compute_window(f->scene.view, f->scene.gi.padding, f->scene.gi.resolution, &why);
+    auto window = gi::compute_window(f->scene.view, f->scene.gi, &why);
     EXPECT_TRUE(window) << why;
     if (!window) return nullptr;
     f->in = gi::gather_frame_inputs(f->scene, *window);

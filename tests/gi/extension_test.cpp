@@ -149,7 +149,7 @@ const Added& added_rows() {
 // `named` must outlive the inputs (they point at its wall grid).
 FrameInputs scene_inputs(const gi_test::NamedScene& named) {
     const lantern::scene::Scene& s = named.scene;
-    auto window = compute_window(s.view, s.gi.padding, s.gi.resolution);
+    auto window = compute_window(s.view, s.gi);
     EXPECT_TRUE(window.has_value());
     return gather_frame_inputs(s, *window);
 }

@@ -22,7 +22,7 @@ class GiGpuCompare : public lantern::test::GpuTest {
     void compare_scene(const NamedScene& named, Pass through, bool lit) {
         const lantern::scene::Scene& s = named.scene;
         std::string why;
-        auto window = compute_window(s.view, s.gi.padding, s.gi.resolution, &why);
+        auto window = compute_window(s.view, s.gi, &why);
         ASSERT_TRUE(window) << why;
         FrameInputs in = gather_frame_inputs(s, *window);
         PassPlan plan = plan_passes(in, lit, through);
@@ -105,7 +105,7 @@ TEST_F(GiGpuCompare, PhaseLockSubTileMotionIsBitIdentical) {
     NamedScene b = a;
     std::get<lantern::scene::OrthoView>(b.scene.view).center = {12.85f, 10.7f};
     auto frame = [&](const NamedScene& s) {
-        auto w = compute_window(s.scene.view, s.scene.gi.padding, s.scene.gi.resolution);
+        auto w = compute_window(s.scene.view, s.scene.gi);
         EXPECT_TRUE(w);
         FrameInputs in = gather_frame_inputs(s.scene, *w);
         auto r = run_vulkan_frame(gi_test::shared_renderer(device()), in, plan_passes(in, true));

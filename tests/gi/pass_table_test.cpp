@@ -48,6 +48,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
     const std::map<std::string, std::pair<double, std::string>> values = {
         {"resolution", {3, "3"}},
         {"padding", {1.3, "1.3"}},
+        {"window_snap", {double(int(scene::WindowSnap::texel)), "texel"}},
         {"heat_rounds", {9, "9"}},
         {"heat_scale", {double(int(scene::HeatScale::half)), "half"}},
         {"diffusion_rate", {0.7, "0.7"}},
@@ -67,7 +68,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"max_shadow_proxies", {0, "0"}},
     };
     const std::map<std::string, std::string> second = {
-        {"resolution", "5"}, {"padding", "1.5"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
+        {"resolution", "5"}, {"padding", "1.5"}, {"window_snap", "tile"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
         {"diffusion_rate", "0.5"}, {"diffusion_distance", "2.0"}, {"emission_strength", "0.8"},
         {"range_boost", "0.8"}, {"intensity_multiplier", "1.6"}, {"light_softness", "3.0"},
         {"wall_face_exponent", "3.0"}, {"ao.radius", "3.0"}, {"ao.power", "3.5"}, {"ao.strength", "0.7"}, {"tone_map", "aces"},
@@ -93,7 +94,7 @@ struct FrameRun {
 
 FrameRun run(const scene::Scene& s, const Method* keys_method = nullptr) {
     FrameRun r;
-    auto window = compute_window(s.view, s.gi.padding, s.gi.resolution);
+    auto window = compute_window(s.view, s.gi);
     EXPECT_TRUE(window);
     r.in = gather_frame_inputs(s, *window);
     r.plan = plan_passes(r.in, true);
@@ -260,7 +261,7 @@ TEST(PassTable, AllocationFollowsThePlannedRowsWrites) {
 TEST(PassTable, TextureBudget) {
     scene::Scene s = every_pass_scene();
     s.gi.heat_scale = scene::HeatScale::full;
-    auto window = compute_window(s.view, s.gi.padding, s.gi.resolution);
+    auto window = compute_window(s.view, s.gi);
     ASSERT_TRUE(window);
     FrameInputs in = gather_frame_inputs(s, *window);
     const PassPlan plan = plan_passes(in, true);

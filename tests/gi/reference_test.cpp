@@ -24,7 +24,7 @@ Scene room(const std::vector<std::string>& rows) {
 std::vector<std::string> open_rows() { return std::vector<std::string>(16, std::string(16, '.')); }
 
 FrameInputs inputs(const Scene& s) {
-    auto w = compute_window(s.view, s.gi.padding, s.gi.resolution);
+    auto w = compute_window(s.view, s.gi);
     EXPECT_TRUE(w);
     return gather_frame_inputs(s, *w);
 }

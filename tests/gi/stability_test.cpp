@@ -37,7 +37,7 @@ struct Frames {
 
 Frames run_both(const Scene& s) {
     Frames f;
-    auto w = compute_window(s.view, s.gi.padding, s.gi.resolution);
+    auto w = compute_window(s.view, s.gi);
     EXPECT_TRUE(w);
     f.in = gather_frame_inputs(s, *w);
     const PassPlan plan = plan_passes(f.in, true);

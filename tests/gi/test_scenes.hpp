@@ -194,6 +194,18 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.emissive_lights.push_back(emissive({11.5f, 4.5f}, {1.0f, 0.3f, 0.2f}, 0.8f, 3.0f));
         out.push_back({"no_wall_lighting", s});
     }
+    {   // 13. The window locked to texels, not tiles (gi.window_snap): its origin 11 texels
+        // (2.75 tiles) left of a tile boundary, so AO and every pass see texels whose tile
+        // starts mid-window; full heat, AO dithered.
+        Scene s = open_scene({8.55f, 7.8f}, {16, 16}, 4);
+        s.walls = cave(16, 16, 41, 0.35f);
+        s.gi.window_snap = lantern::scene::WindowSnap::texel;
+        s.gi.ao.dither = true;
+        s.directional_lights.push_back({glm::normalize(glm::vec3(0.3f, -0.7f, 0.5f)), {1.0f, 0.9f, 0.8f}, 0.6f, 5.0f, 0.3f});
+        s.point_lights.push_back(point({6.3f, 9.1f}, {1, 0.7f, 0.4f}, 1.5f, 8.0f));
+        s.emissive_lights.push_back(emissive({11.5f, 5.5f}, {0.4f, 1.0f, 0.5f}, 0.8f, 3.0f));
+        out.push_back({"texel_window", s});
+    }
     return out;
 }
 

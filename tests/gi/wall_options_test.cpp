@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <optional>
 #include <string>
 
 using namespace lantern;
@@ -28,7 +30,7 @@ struct FrameRun {
 
 FrameRun run(const scene::Scene& s) {
     FrameRun r;
-    auto window = compute_window(s.view, s.gi.padding, s.gi.resolution);
+    auto window = compute_window(s.view, s.gi);
     EXPECT_TRUE(window);
     r.in = gather_frame_inputs(s, *window);
     r.plan = plan_passes(r.in, true);
@@ -187,4 +189,75 @@ TEST(WallOptions, AoOnWallFacesTakesTheGroundTexelOutside) {
     EXPECT_LT(corner, open) << "an inner corner is darker than the open wall";
     // Ground and wall tops do not change.
     EXPECT_EQ(surface_light(a, {8.5f, 0.0f, 4.5f}, {0, 1, 0}), surface_light(b, {8.5f, 0.0f, 4.5f}, {0, 1, 0}));
+}
+
+// gi.window_snap "texel": the window steps by texels, so each step changes the light at a
+// fixed place in the view less than a whole-tile step does: heat light near the window's
+// edges "swims" as the edges jump. Measured on the indirect light over the visible texels
+// (the view before padding) as the view moves one tile along x. With the edges on screen
+// (padding 1) a texel step changes the light a quarter as much; with the game's padding
+// the edges are off screen and neither mode changes the visible light beyond half-float
+// rounding (docs/gi.md, "The window").
+TEST(WindowSnap, TexelStepsChangeTheVisibleLightLessThanTileSteps) {
+    struct Steps {
+        int count = 0;
+        float largest = 0.0f, mean = 0.0f;
+    };
+    auto measure = [](scene::WindowSnap snap, float padding) {
+        scene::Scene s = gi_test::comparison_scene("rooms").scene;
+        s.gi.window_snap = snap;
+        s.gi.padding = padding;
+        std::optional<FrameRun> last;
+        Steps steps;
+        double sum = 0.0;
+        std::size_t n = 0;
+        const scene::OrthoView start = std::get<scene::OrthoView>(s.view);
+        for (int i = 0; i <= 8; ++i) {
+            scene::OrthoView& view = std::get<scene::OrthoView>(s.view);
+            view.center = start.center + glm::vec2(0.125f * float(i), 0.0f);
+            FrameRun now = run(s);
+            if (last && !(last->in.window == now.in.window)) {
+                ++steps.count;
+                const Texture& a = last->result.textures.at("indirect");
+                const Texture& b = now.result.textures.at("indirect");
+                const GiWindow& w = now.in.window;
+                const glm::ivec2 shift = window_texel_origin(w) - window_texel_origin(last->in.window);
+                for (int y = 0; y < b.height; ++y)
+                    for (int x = 0; x < b.width; ++x) {
+                        const glm::vec2 p = w.texel_center(x, y);
+                        if (glm::any(glm::lessThan(p, view.center - view.size * 0.5f)) ||
+                            glm::any(glm::greaterThan(p, view.center + view.size * 0.5f)))
+                            continue; // not visible
+                        const glm::ivec2 q = glm::ivec2(x, y) + shift; // the same place, last window
+                        if (q.x < 0 || q.y < 0 || q.x >= a.width || q.y >= a.height) continue;
+                        for (int c = 0; c < 3; ++c) {
+                            const float d = std::abs(a.at(q.x, q.y)[c] - b.at(x, y)[c]);
+                            steps.largest = std::max(steps.largest, d);
+                            sum += d;
+                            ++n;
+                        }
+                    }
+            }
+            last = std::move(now);
+        }
+        steps.mean = n ? float(sum / double(n)) : 0.0f;
+        return steps;
+    };
+    for (float padding : {1.0f, 1.5f}) {
+        const Steps tile = measure(scene::WindowSnap::tile, padding);
+        const Steps texel = measure(scene::WindowSnap::texel, padding);
+        std::printf("padding %.1f: change of the visible indirect light in one window step: whole tiles %d steps, "
+                    "largest %.4f, mean %.5f; texels %d steps, largest %.4f, mean %.5f\n",
+                    double(padding), tile.count, double(tile.largest), double(tile.mean), texel.count,
+                    double(texel.largest), double(texel.mean));
+        EXPECT_EQ(tile.count, 1);
+        EXPECT_EQ(texel.count, 4);
+        if (padding == 1.0f) {
+            EXPECT_GT(tile.mean, 0.0f);
+            EXPECT_LT(texel.mean, 0.5f * tile.mean) << "texel steps swim less";
+        } else {
+            EXPECT_LT(tile.largest, 1e-3f) << "the padding hides the edges";
+            EXPECT_LT(texel.largest, 1e-3f);
+        }
+    }
 }

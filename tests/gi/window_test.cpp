@@ -1,4 +1,5 @@
 #include "lantern/gi/window.hpp"
+#include <optional>
 
 #include <gtest/gtest.h>
 
@@ -83,4 +84,54 @@ TEST(GiWindow, CameraBailsOutCleanly) {
     // Too large for the texture limit.
     EXPECT_FALSE(compute_window(OrthoView{{0.0f, 0.0f}, {5000.0f, 10.0f}}, 1.0f, 32, &reason, 16384));
     EXPECT_NE(reason.find("limit"), std::string::npos);
+}
+
+// gi.window_snap "texel": the origin locks to texel boundaries (times the heat scale), so the
+// window steps a quarter of a tile at 4 texels per tile instead of a whole tile, still
+// covering the view; walking changes the window (and so the GI's cache key) that
+// much more often.
+TEST(GiWindow, TexelSnapStepsByTexelsAndCoversTheView) {
+    lantern::scene::GiSettings tile, texel, texel_half;
+    tile.resolution = texel.resolution = texel_half.resolution = 4;
+    tile.padding = texel.padding = texel_half.padding = 1.25f;
+    texel.window_snap = texel_half.window_snap = lantern::scene::WindowSnap::texel;
+    texel_half.heat_scale = lantern::scene::HeatScale::half;
+    EXPECT_EQ(lantern::gi::window_snap_texels(tile), 4);
+    EXPECT_EQ(lantern::gi::window_snap_texels(texel), 1);
+    EXPECT_EQ(lantern::gi::window_snap_texels(texel_half), 2);
+
+    int changes[3] = {0, 0, 0};
+    std::optional<lantern::gi::GiWindow> last[3];
+    const lantern::scene::GiSettings* settings[3] = {&tile, &texel, &texel_half};
+    for (int step = 0; step <= 400; ++step) { // 8 tiles in steps of 0.02 along x and 0.01 along z
+        const OrthoView view{{100.0f + 0.02f * float(step), 50.0f - 0.01f * float(step)}, {30.0f, 16.875f}};
+        for (int m = 0; m < 3; ++m) {
+            auto w = compute_window(view, *settings[m]);
+            ASSERT_TRUE(w);
+            const int snap = lantern::gi::window_snap_texels(*settings[m]);
+            const glm::ivec2 origin = lantern::gi::window_texel_origin(*w);
+            EXPECT_EQ(origin.x % snap, 0);
+            EXPECT_EQ(origin.y % snap, 0);
+            EXPECT_FLOAT_EQ(w->view.min_x * 4.0f, float(origin.x)); // a whole texel
+            // The view lies inside the window (the padding absorbs the snap).
+            EXPECT_LE(w->view.min_x, view.center.x - 0.5f * view.size.x);
+            EXPECT_GE(w->view.min_x + w->view.width, view.center.x + 0.5f * view.size.x);
+            EXPECT_LE(w->view.min_z, view.center.y - 0.5f * view.size.y);
+            EXPECT_GE(w->view.min_z + w->view.height, view.center.y + 0.5f * view.size.y);
+            if (last[m] && !(*last[m] == *w)) ++changes[m];
+            last[m] = w;
+        }
+    }
+    // 8 tiles along x and 4 along z: ~12 whole-tile steps, ~48 texel steps, ~24 two-texel steps.
+    EXPECT_NEAR(changes[0], 12, 2);
+    EXPECT_NEAR(changes[1], 48, 4);
+    EXPECT_NEAR(changes[2], 24, 3);
+}
+
+TEST(GiWindow, TexelSnapOnATileBoundaryIsTheTileWindow) {
+    lantern::scene::GiSettings tile, texel;
+    texel.window_snap = lantern::scene::WindowSnap::texel;
+    // padding 1.4 around centre (21, 11.2) with size 30 x 16: min (0, 0), a tile corner.
+    const OrthoView view{{21.0f, 11.2f}, {30.0f, 16.0f}};
+    EXPECT_EQ(*compute_window(view, tile), *compute_window(view, texel));
 }

@@ -221,7 +221,7 @@ TEST(OneInputPath, GameSystemsGatherWhatTheScenePathGathers) {
         Harness h(named.scene, 0, nullptr);
         h.step();
         const systems::FramePasses& f = h.world.resource<systems::FramePasses>();
-        auto window = gi::compute_window(named.scene.view, named.scene.gi.padding, named.scene.gi.resolution);
+        auto window = gi::compute_window(named.scene.view, named.scene.gi);
         ASSERT_TRUE(window) << named.name;
         const gi::FrameInputs expected = gi::gather_frame_inputs(named.scene, *window);
         auto bytes = [](const auto& v) {
@@ -235,7 +235,7 @@ TEST(OneInputPath, GameSystemsGatherWhatTheScenePathGathers) {
         EXPECT_EQ(f.plan.run, gi::plan_passes(expected, h.world.resource<systems::GiConfig>().lit_image).run) << named.name;
     }
     // The capped scene really was capped, and its dark sun left out.
-    const auto window = gi::compute_window(capped.view, capped.gi.padding, capped.gi.resolution);
+    const auto window = gi::compute_window(capped.view, capped.gi);
     const gi::FrameInputs in = gi::gather_frame_inputs(capped, *window);
     EXPECT_EQ(in.point_lights.size(), 1u);
     EXPECT_TRUE(in.proxies.empty());

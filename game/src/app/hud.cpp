@@ -170,6 +170,11 @@ HudActions Hud::draw(const HudInputs& in) {
         ImGui::Checkbox("per channel", &g.per_channel);
         // gi.wall_lighting: off leaves out every wall-face pass and texture (walls go dark).
         ImGui::Checkbox("wall lighting", &g.wall_lighting);
+        ImGui::SameLine();
+        // gi.window_snap: the window follows the camera by texels instead of whole tiles.
+        bool texel_snap = g.window_snap == scene::WindowSnap::texel;
+        if (ImGui::Checkbox("window by texels", &texel_snap))
+            g.window_snap = texel_snap ? scene::WindowSnap::texel : scene::WindowSnap::tile;
         int tone = int(g.tone_map);
         if (ImGui::Combo("tone map", &tone, tone_maps, 4)) g.tone_map = scene::ToneMap(tone);
         ImGui::SliderFloat("emission", &g.emission_strength, 0.0f, 4.0f);
