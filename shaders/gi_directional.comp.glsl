@@ -8,7 +8,8 @@ struct DirectionalParams {
     float angle_scale; // gi.directional_angle_scale
     float face_exponent; // gi.wall_face_exponent
     uint faces;          // computed_faces: bit f = face f is computed and stored
-    int pad0, pad1, pad2, pad3;
+    int sun_map;         // 1: grid shadows by the sun's shadow map (gi.sun_shadow_method), 0: the DDA
+    int pad0, pad1, pad2;
 };
 #define GI_PASS_PARAMS DirectionalParams
 #include "lantern/gi_common.glsl"
@@ -28,8 +29,12 @@ layout(std430, binding = 11) writeonly buffer FacePX { uvec2 texels[]; } o_face_
 layout(std430, binding = 12) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
 layout(std430, binding = 13) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
 layout(std430, binding = 14) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
+layout(binding = 15) uniform samplerBuffer u_sun_headers; // gi_sun_map.glsl
+layout(binding = 16) uniform usamplerBuffer u_sun_first;
+layout(binding = 17) uniform samplerBuffer u_sun_entries;
 
 #include "lantern/gi_shadow.glsl"
+#include "lantern/gi_sun_map.glsl"
 
 struct TexelLight {
     vec3 color;
@@ -41,11 +46,12 @@ float sun_angle(GpuDirectionalLight sun) {
     return mix(saturate(-sun.direction_base.y * 2.0), 1.0, pc.pass.angle_scale);
 }
 
-float sun_visibility(GpuDirectionalLight sun, vec2 from) {
+float sun_visibility(int i, GpuDirectionalLight sun, vec2 from) {
     vec3 dir = sun.direction_base.xyz;
     if (dir.y >= 0.0) return 0.0; // below the horizon
     float max_distance = sun.direction_base.w * sun.color_multiplier.w;
-    float grid = directional_shadow_dda(from, dir, max_distance, pc.pass.wall_height);
+    float grid = pc.pass.sun_map != 0 ? sun_map_visibility(i, sun, from, max_distance, pc.pass.wall_height)
+                                      : directional_shadow_dda(from, dir, max_distance, pc.pass.wall_height);
     return min(grid, directional_proxy_shadow(from, dir));
 }
 
@@ -55,7 +61,7 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
         GpuDirectionalLight sun = u_suns.suns[i];
         vec3 color = sun.color_multiplier.rgb * sun_angle(sun);
         if (!wall) {
-            float visibility = sun_visibility(sun, p);
+            float visibility = sun_visibility(i, sun, p);
             t.shadow = max(t.shadow, visibility);
             t.color += color * visibility;
             continue;
@@ -66,7 +72,7 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
         vec4 weight = mask * wall_facing(to_sun / len, pc.pass.face_exponent);
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0)) continue;
-            t.face[f] += color * (weight[f] * sun_visibility(sun, face_position(f, cell, p)));
+            t.face[f] += color * (weight[f] * sun_visibility(i, sun, face_position(f, cell, p)));
         }
     }
 }

@@ -206,6 +206,23 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.emissive_lights.push_back(emissive({11.5f, 5.5f}, {0.4f, 1.0f, 0.5f}, 0.8f, 3.0f));
         out.push_back({"texel_window", s});
     }
+    {   // 14. The suns' shadows by the shadow map (gi.sun_shadow_method): a low sun along an
+        // exact diagonal (rays through tile corners: the map's close calls), a high one off
+        // the axes, tall walls, a proxy, a patch of checkerboard.
+        Scene s = open_scene({10, 8}, {20, 16}, 4);
+        s.walls = cave(20, 16, 43, 0.3f);
+        for (int z = 2; z < 6; ++z)
+            for (int x = 12; x < 17; ++x) s.walls.cells[std::size_t(z * 20 + x)] = std::uint8_t((x + z) % 2);
+        s.wall_height = 2.0f;
+        s.gi.sun_shadow_method = lantern::scene::SunShadowMethod::shadow_map;
+        s.directional_lights.push_back({glm::normalize(glm::vec3(1.0f, -0.35f, 1.0f)), {1.0f, 0.8f, 0.6f}, 0.9f, 4.0f, 0.4f});
+        s.directional_lights.push_back({glm::normalize(glm::vec3(-0.2f, -0.9f, 0.45f)), {0.5f, 0.6f, 1.0f}, 0.5f, 4.0f, 0.2f});
+        lantern::scene::ShadowProxy tree;
+        tree.position = {6.5f, 9.5f};
+        s.shadow_proxies.push_back(tree);
+        s.point_lights.push_back(point({4.5f, 4.5f}, {1, 0.6f, 0.3f}, 1.0f, 6.0f));
+        out.push_back({"sun_map", s});
+    }
     return out;
 }
 

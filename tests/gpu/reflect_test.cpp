@@ -2,6 +2,7 @@
 // push-constant blocks it reads, the pipeline contract it enforces (set 0, dense bindings),
 // and malformed words (every truncation, random corruption) ending in an error, never a
 // crash.
+#include "lantern/gpu/pipeline.hpp"
 #include "lantern/gpu/reflect.hpp"
 
 #include "lantern_gi_shaders.hpp"
@@ -60,7 +61,7 @@ TEST(Reflect, GiShadersDeclareTheBindingsTheirRecordersPush) {
         auto layout = reflect_spirv(lantern_gi_shaders_spirv(name));
         ASSERT_TRUE(layout) << name << ": " << layout.error().message;
         EXPECT_TRUE(layout->dense_bindings()) << name;
-        EXPECT_LE(layout->bindings.size(), 16u) << name;
+        EXPECT_LE(layout->bindings.size(), lantern::gpu::max_pipeline_bindings) << name;
     }
 }
 

@@ -1,4 +1,4 @@
-// Golden images: the six scenes in tests/golden/, rendered by lantern-render on both
+// Golden images: the eight scenes in tests/golden/, rendered by lantern-render on both
 // backends, against the committed PNGs (regenerate: bash scripts/update-goldens.sh).
 // Tolerance: at most 3 sRGB steps on any channel and a mean under 0.5 step, so math-library
 // differences between machines pass while any change of the lighting itself does not.
@@ -80,5 +80,5 @@ TEST_P(Golden, MatchesOnBothBackends) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Golden,
                          ::testing::Values("torch_rooms", "crystal_cave", "courtyard_sun", "corridor_quarter",
-                                           "dusk_camera", "warm_faces"),
+                                           "dusk_camera", "warm_faces", "seed000_options", "flat_walls"),
                          [](const auto& p) { return p.param; });

@@ -1,5 +1,6 @@
 // The reference passes: one function per texel, run over every texel of the window.
 #include "lantern/gi/reference.hpp"
+#include "lantern/gi/sun_map.hpp"
 
 #include "lantern/jobs/job_system.hpp"
 
@@ -112,21 +113,26 @@ float sun_angle(const GpuDirectionalLight& sun, float angle_scale) {
     return glm::mix(saturate(-sun.direction_base.y * 2.0f), 1.0f, angle_scale);
 }
 
-float sun_visibility(const FrameInputs& in, const GpuDirectionalLight& sun, glm::vec2 from) {
+// `map`: the sun's shadow map when gi.sun_shadow_method is shadow_map, else null (the DDA).
+float sun_visibility(const FrameInputs& in, const GpuDirectionalLight& sun, const SunMap* map, glm::vec2 from) {
     const glm::vec3 dir(sun.direction_base);
     if (dir.y >= 0.0f) return 0.0f; // below the horizon
     const float max_distance = sun.direction_base.w * sun.color_multiplier.w;
-    const float grid = directional_shadow_dda(in.walls, from, dir, max_distance, in.wall_height);
+    const float grid = map ? sun_map_visibility(*map, in.walls, sun, from, in.wall_height)
+                           : directional_shadow_dda(in.walls, from, dir, max_distance, in.wall_height);
     return std::min(grid, directional_proxy_shadow(proxies_of(in), from, dir));
 }
 
-void directional_texel(const FrameInputs& in, bool wall, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
+void directional_texel(const FrameInputs& in, const std::vector<SunMap>& maps, bool wall, glm::ivec2 cell,
+                       glm::vec2 p, TexelLight& out) {
     const glm::vec4 mask =
         wall ? wall_face_mask(in.walls, cell) * face_bits_mask(computed_faces(in.settings)) : glm::vec4(0.0f);
-    for (const GpuDirectionalLight& sun : in.directional_lights) {
+    for (std::size_t i = 0; i < in.directional_lights.size(); ++i) {
+        const GpuDirectionalLight& sun = in.directional_lights[i];
+        const SunMap* map = maps.empty() ? nullptr : &maps[i];
         const glm::vec3 color = glm::vec3(sun.color_multiplier) * sun_angle(sun, in.settings.directional_angle_scale);
         if (!wall) {
-            const float visibility = sun_visibility(in, sun, p);
+            const float visibility = sun_visibility(in, sun, map, p);
             out.shadow = std::max(out.shadow, visibility);
             out.color += color * visibility;
             continue;
@@ -137,7 +143,7 @@ void directional_texel(const FrameInputs& in, bool wall, glm::ivec2 cell, glm::v
         const glm::vec4 weight = mask * wall_facing(to_sun / len, in.settings.wall_face_exponent);
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0f)) continue;
-            out.face[f] += color * (weight[f] * sun_visibility(in, sun, face_position(f, cell, p)));
+            out.face[f] += color * (weight[f] * sun_visibility(in, sun, map, face_position(f, cell, p)));
         }
     }
 }
@@ -251,13 +257,15 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
 void reference_directional(const FrameInputs& in, DirectTextures& t, const RefOptions& options) {
     const GiWindow& w = in.window;
     const std::uint32_t faces = computed_faces(in.settings);
+    const std::vector<SunMap> maps =
+        in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map ? build_sun_maps(in) : std::vector<SunMap>{};
     for_each_row(w, options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
             const glm::vec2 p = w.texel_center(x, y);
             const glm::ivec2 cell = tile_of(p);
             const bool wall = in.walls.is_wall(cell.x, cell.y);
             TexelLight sun;
-            directional_texel(in, wall, cell, p, sun);
+            directional_texel(in, maps, wall, cell, p, sun);
             const float* d = t.direct.at(x, y);
             store_rgb(t.direct, x, y, glm::vec3(d[0], d[1], d[2]) + sun.color, d[3]);
             const float shadow[2] = {t.shadow.at(x, y)[0], wall ? 0.0f : sun.shadow};

@@ -37,6 +37,11 @@ constexpr std::array<EnumName<WindowSnap>, 2> window_snap_names{{
     {"texel", WindowSnap::texel},
 }};
 
+constexpr std::array<EnumName<SunShadowMethod>, 2> sun_shadow_method_names{{
+    {"dda", SunShadowMethod::dda},
+    {"shadow_map", SunShadowMethod::shadow_map},
+}};
+
 constexpr std::array<EnumName<GiMethod>, 1> method_names{{
     {"heat", GiMethod::heat},
 }};
@@ -67,7 +72,7 @@ struct EnumField {
     std::span<const EnumName<E>> names;
 };
 using FieldTarget = std::variant<FloatField, IntField, BoolField, EnumField<HeatScale>, EnumField<ToneMap>,
-                                 EnumField<GiMethod>, EnumField<WindowSnap>>;
+                                 EnumField<GiMethod>, EnumField<WindowSnap>, EnumField<SunShadowMethod>>;
 
 struct GiField {
     std::string_view key; // below "gi"; keys of nested objects joined by dots ("ao.radius")
@@ -76,7 +81,7 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 32> gi_fields(GiSettings& gi) {
+std::array<GiField, 33> gi_fields(GiSettings& gi) {
     return {{
         {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
@@ -108,6 +113,7 @@ std::array<GiField, 32> gi_fields(GiSettings& gi) {
         {"tone_map", EnumField<ToneMap>{&gi.tone_map, tone_map_names}},
         {"white_point", FloatField{&gi.white_point, greater_than(0.0)}},
         {"directional_angle_scale", FloatField{&gi.directional_angle_scale, between(0.0, 1.0)}},
+        {"sun_shadow_method", EnumField<SunShadowMethod>{&gi.sun_shadow_method, sun_shadow_method_names}},
         {"max_lights", IntField{&gi.max_lights, {0, 4096}}},
         {"max_shadow_proxies", IntField{&gi.max_shadow_proxies, {0, 256}}},
     }};

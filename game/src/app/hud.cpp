@@ -175,6 +175,10 @@ HudActions Hud::draw(const HudInputs& in) {
         bool texel_snap = g.window_snap == scene::WindowSnap::texel;
         if (ImGui::Checkbox("window by texels", &texel_snap))
             g.window_snap = texel_snap ? scene::WindowSnap::texel : scene::WindowSnap::tile;
+        // gi.sun_shadow_method: the sun's shadows by the 1D shadow map (same image, other cost).
+        bool sun_map = g.sun_shadow_method == scene::SunShadowMethod::shadow_map;
+        if (ImGui::Checkbox("sun shadow map", &sun_map))
+            g.sun_shadow_method = sun_map ? scene::SunShadowMethod::shadow_map : scene::SunShadowMethod::dda;
         int tone = int(g.tone_map);
         if (ImGui::Combo("tone map", &tone, tone_maps, 4)) g.tone_map = scene::ToneMap(tone);
         ImGui::SliderFloat("emission", &g.emission_strength, 0.0f, 4.0f);

@@ -3,6 +3,7 @@
 // settings and inputs, its Vulkan recorder and its C++ reference.
 #include "rows/rows.hpp"
 
+#include "lantern/gi/sun_map.hpp"
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <algorithm>
@@ -71,7 +72,8 @@ struct DirectParams {
 struct DirectionalParams {
     float wall_height = 0, angle_scale = 0, face_exponent = 1;
     std::uint32_t faces = 15; // computed_faces
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0;
+    std::int32_t sun_map = 0; // 1: gi.sun_shadow_method shadow_map
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0;
 };
 
 // ---- conduction
@@ -205,9 +207,52 @@ void reference_direct_row(ReferenceContext& c) {
 
 // ---- directional lights
 
+// The suns' shadow maps on the GPU (sun_map.hpp): rebuilt and uploaded whenever the pass
+// runs with gi.sun_shadow_method = shadow_map; a one-element stand-in otherwise.
+struct SunMapState : vk::PassState {
+    struct Array {
+        gpu::Buffer buffer;
+        gpu::BufferView view;
+    };
+    Array headers, first, entries;
+};
+
+template <typename T>
+void upload_array(PassRecorder& r, SunMapState::Array& a, std::span<const T> data, VkFormat format, const char* name) {
+    const VkDeviceSize bytes = (VkDeviceSize(data.size_bytes()) + 15) & ~VkDeviceSize(15);
+    if (!a.buffer || a.buffer.size() < bytes) {
+        gpu::BufferDesc desc;
+        desc.size = std::max<VkDeviceSize>(bytes + bytes / 4, 16); // room to grow
+        desc.usage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+        desc.name = name;
+        a.buffer = r.device().create_buffer(desc);
+        a.view = r.device().create_buffer_view(a.buffer, format, 0, VK_WHOLE_SIZE, name);
+    }
+    r.cmd.upload(a.buffer, 0, std::as_bytes(data));
+}
+
+// Uploads this frame's maps; false (use the DDA) when they exceed what a texel buffer holds.
+bool upload_sun_maps(PassRecorder& r, bool wanted) {
+    SunMapState& s = r.state<SunMapState>();
+    PackedSunMaps packed = pack_sun_maps(wanted ? build_sun_maps(r.in) : std::vector<SunMap>{});
+    const std::uint32_t limit = r.device().capabilities().max_texel_buffer_elements;
+    if (packed.entries.size() > limit || packed.first.size() > limit) {
+        packed = pack_sun_maps({});
+        wanted = false;
+    }
+    if (!wanted && s.headers.buffer) return false; // the stand-ins are bound already
+    upload_array(r, s.headers, std::span<const glm::vec4>(packed.headers), VK_FORMAT_R32G32B32A32_SFLOAT, "sun map headers");
+    upload_array(r, s.first, std::span<const std::uint32_t>(packed.first), VK_FORMAT_R32_UINT, "sun map bins");
+    upload_array(r, s.entries, std::span<const glm::vec4>(packed.entries), VK_FORMAT_R32G32B32A32_SFLOAT, "sun map tiles");
+    r.cmd.barrier_transfer_to_compute();
+    return wanted;
+}
+
 void record_directional(PassRecorder& r) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
+    const bool sun_map = upload_sun_maps(r, in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map);
+    const SunMapState& maps = r.state<SunMapState>();
     const std::uint32_t faces = computed_faces(in.settings);
     if (!r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
         for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz})
@@ -222,12 +267,14 @@ void record_directional(PassRecorder& r) {
     // Faces not computed: bound to the colour's buffers, neither read nor written.
     for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(r.has(point_set[i]) ? point_set[i] : point_set[0]));
     for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(r.has(direct_set[i]) ? direct_set[i] : direct_set[0]));
+    writes.uniform_texel_buffer(15, maps.headers.view).uniform_texel_buffer(16, maps.first.view).uniform_texel_buffer(17, maps.entries.view);
     r.cmd.push_descriptors(writes);
     auto p = r.params<DirectionalParams>(w.width, w.height);
     p.pass = {.wall_height = in.wall_height,
               .angle_scale = in.settings.directional_angle_scale,
               .face_exponent = in.settings.wall_face_exponent,
-              .faces = faces};
+              .faces = faces,
+              .sun_map = sun_map ? 1 : 0};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -252,9 +299,11 @@ constexpr std::string_view ao_settings[] = {"ao.enabled", "ao.radius", "ao.power
 constexpr std::string_view direct_settings[] = {"light_softness",   "wall_face_exponent", "wall_lighting",
                                                 "wall_faces.px",    "wall_faces.nx",      "wall_faces.pz",
                                                 "wall_faces.nz"};
+// sun_shadow_method is listed although the map is exact: a change of method reruns the
+// pass, so that switching it shows what it costs.
 constexpr std::string_view directional_settings[] = {"directional_angle_scale", "wall_face_exponent", "wall_lighting",
                                                      "wall_faces.px",           "wall_faces.nx",      "wall_faces.pz",
-                                                     "wall_faces.nz"};
+                                                     "wall_faces.nz",           "sun_shadow_method"};
 
 } // namespace
 

@@ -48,7 +48,8 @@ struct ComputePipelineDesc {
     const char* name = nullptr;            // debug name
 };
 
-inline constexpr std::uint32_t max_pipeline_bindings = 16;
+// VK_KHR_push_descriptor guarantees maxPushDescriptors >= 32.
+inline constexpr std::uint32_t max_pipeline_bindings = 24;
 
 struct PipelineFields {
     Device* device_ = nullptr;

@@ -25,6 +25,9 @@ enum class ToneMap : std::uint8_t { none, reinhard, reinhard_white, aces };
 // tiles, or texel boundaries (smoother tracking: the window steps 1/resolution of a tile,
 // times the heat scale, so heat texels stay whole; more cache invalidations while walking).
 enum class WindowSnap : std::uint8_t { tile, texel };
+// How the sun's grid shadows are found: the seed's DDA per texel, or a 1D shadow map across
+// the sun direction (exact against the DDA; docs/gi.md, "The sun's shadow map").
+enum class SunShadowMethod : std::uint8_t { dda, shadow_map };
 
 struct AoSettings {
     bool enabled = true;
@@ -72,6 +75,7 @@ struct GiSettings {
     ToneMap tone_map = ToneMap::aces;
     float white_point = 4.0f;              // reinhard_white
     float directional_angle_scale = 0.0f;  // 0 = full sun-angle modulation, 1 = none
+    SunShadowMethod sun_shadow_method = SunShadowMethod::dda;
     int max_lights = 256;                  // point lights kept per frame (emissives bypass it)
     int max_shadow_proxies = 64;
 
