@@ -79,6 +79,34 @@ TEST_F(GiGpuCompare, RealMapLak303d) {
     compare_scene(*s, Pass::lit, true);
 }
 
+// The suns' shadow map (gi.sun_shadow_method) on the GPU against the reference's: real maps
+// and a checkerboard (rays through tile corners: the close calls the map hands to the DDA),
+// a low sun on an exact diagonal and a high one off the axes, both wall heights.
+TEST_F(GiGpuCompare, SunShadowMapOnRealMapsAndACheckerboard) {
+    std::vector<NamedScene> scenes;
+    for (auto [file, center] : {std::pair{"den312d.map", glm::vec2(32.0f, 40.0f)}, std::pair{"lak303d.map", glm::vec2(100.0f, 100.0f)}})
+        if (auto s = gi_test::map_scene(file, center, 3)) scenes.push_back(*s);
+    {
+        std::vector<std::string> rows(16, std::string(16, '.'));
+        for (int z = 0; z < 16; ++z)
+            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
+        lantern::scene::Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
+        s.walls = gi_test::grid_from_rows(rows);
+        scenes.push_back({"checkerboard", s});
+    }
+    for (NamedScene& named : scenes)
+        for (float wall_height : {1.0f, 3.0f}) {
+            NamedScene s = named;
+            s.scene.wall_height = wall_height;
+            s.scene.gi.sun_shadow_method = lantern::scene::SunShadowMethod::shadow_map;
+            s.scene.directional_lights = {
+                {glm::normalize(glm::vec3(-1.0f, -0.3f, -1.0f)), {1.0f, 0.8f, 0.6f}, 0.8f, 4.0f, 0.3f},
+                {glm::normalize(glm::vec3(0.35f, -0.9f, -0.2f)), {0.5f, 0.6f, 1.0f}, 0.5f, 4.0f, 0.2f}};
+            s.name += " sun map, wall height " + std::to_string(wall_height);
+            compare_scene(s, Pass::directional, false);
+        }
+}
+
 TEST_F(GiGpuCompare, HeatScalesAndModes) {
     NamedScene base = gi_test::comparison_scene("rooms");
     for (auto scale : {lantern::scene::HeatScale::full, lantern::scene::HeatScale::half, lantern::scene::HeatScale::quarter})
