@@ -15,7 +15,7 @@
 
 // BoxInstance: texel 3i xyz centre, w material; 3i+1 xyz half extents, w face mask;
 // 3i+2 rgb colour, w emissive strength.
-layout(set = 0, binding = 14) uniform samplerBuffer u_boxes;
+layout(set = 0, binding = 18) uniform samplerBuffer u_boxes;
 
 
 layout(location = 0) out vec3 out_position;     // world position

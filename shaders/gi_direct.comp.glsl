@@ -8,10 +8,13 @@ struct DirectParams {
     float light_softness; // falloff exponent (gi.light_softness)
     float face_exponent;  // gi.wall_face_exponent
     uint faces;           // computed_faces: bit f = face f is computed and stored
-    int pad0, pad1, pad2, pad3, pad4;
+    float wall_height;    // unfolded proxy shadows: the face's height
+    int pad0, pad1, pad2, pad3;
 };
 #define GI_PASS_PARAMS DirectParams
 #include "lantern/gi_common.glsl"
+
+const bool UPPER = (FEATURES & 1u) != 0u; // unfolded proxy shadows: write the upper-face textures
 
 layout(constant_id = 4) const int MAX_LIGHTS = 2048; // point lights + emissives (64 KiB UBO)
 
@@ -25,6 +28,10 @@ layout(std430, binding = 6) writeonly buffer FaceNX { uvec2 texels[]; } o_face_n
 layout(std430, binding = 7) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
 layout(std430, binding = 8) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
 layout(std430, binding = 9) readonly buffer Bins { uint masks[]; } u_bins; // gi_light_bins
+layout(std430, binding = 10) writeonly buffer UpperPX { uvec2 texels[]; } o_upper_px;
+layout(std430, binding = 11) writeonly buffer UpperNX { uvec2 texels[]; } o_upper_nx;
+layout(std430, binding = 12) writeonly buffer UpperPZ { uvec2 texels[]; } o_upper_pz;
+layout(std430, binding = 13) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
 
 #include "lantern/gi_shadow.glsl"
 
@@ -32,7 +39,22 @@ struct TexelLight {
     vec3 color;
     float shadow;
     vec3 face[4];
+    // Unfolded proxy shadows (reference_passes.cpp TexelLight): the light at each face's top
+    // and the shadow edge's height summed weighted by the light the shadow takes.
+    vec3 upper[4];
+    float edge_sum[4];
+    float edge_weight[4];
 };
+
+void add_face(inout TexelLight t, int f, vec3 light, float grid, vec3 s) {
+    float low = min(grid, s.x), high = min(grid, s.y);
+    t.face[f] += light * low;
+    t.upper[f] += light * high;
+    float taken = (light.r + light.g + light.b) * (high - low);
+    t.edge_sum[f] += taken * s.z;
+    t.edge_weight[f] += taken;
+}
+float face_edge(TexelLight t, int f) { return t.edge_weight[f] > 0.0 ? t.edge_sum[f] / t.edge_weight[f] : 0.0; }
 
 float light_distance(vec2 p, vec2 pos) {
     precise vec2 d = pos - p;
@@ -67,6 +89,11 @@ void point_wall_light(int i, ivec2 cell, vec2 p, vec4 mask, float softness, inou
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0)) continue;
             vec2 target = face_position(f, cell, p);
+            if (UPPER) {
+                add_face(t, f, contribution * weight[f], shadow_dda(pos, target, radius),
+                         point_proxy_face_shadow(pos, target, pc.pass.wall_height));
+                continue;
+            }
             float shadow = min(shadow_dda(pos, target, radius), point_proxy_shadow(pos, target));
             t.face[f] += contribution * (weight[f] * shadow);
         }
@@ -80,7 +107,10 @@ void emissive_wall_light(int i, vec2 p, vec4 mask, float softness, inout TexelLi
         if (dist > radius) return;
         vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
         vec4 weight = face_weights(mask, p, pos);
-        for (int f = 0; f < 4; ++f) t.face[f] += contribution * weight[f];
+        for (int f = 0; f < 4; ++f) {
+            t.face[f] += contribution * weight[f];
+            t.upper[f] += contribution * weight[f];
+        }
 }
 
 void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
@@ -125,6 +155,8 @@ void main() {
             t.color = vec3(0.0);
             t.shadow = 0.0;
             t.face[0] = t.face[1] = t.face[2] = t.face[3] = vec3(0.0);
+            t.upper[0] = t.upper[1] = t.upper[2] = t.upper[3] = vec3(0.0);
+            for (int f = 0; f < 4; ++f) t.edge_sum[f] = t.edge_weight[f] = 0.0;
             bool wall = false;
             if (x < pc.size.x) {
                 vec2 p = texel_center(x, y);
@@ -142,6 +174,12 @@ void main() {
                 if (computes_face(faces, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(t.face[1], has_faces));
                 if (computes_face(faces, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(t.face[2], has_faces));
                 if (computes_face(faces, 3)) o_face_nz.texels[index] = pack_rgba16f(vec4(t.face[3], has_faces));
+                if (UPPER) {
+                    if (computes_face(faces, 0)) o_upper_px.texels[index] = pack_rgba16f(vec4(t.upper[0], face_edge(t, 0)));
+                    if (computes_face(faces, 1)) o_upper_nx.texels[index] = pack_rgba16f(vec4(t.upper[1], face_edge(t, 1)));
+                    if (computes_face(faces, 2)) o_upper_pz.texels[index] = pack_rgba16f(vec4(t.upper[2], face_edge(t, 2)));
+                    if (computes_face(faces, 3)) o_upper_nz.texels[index] = pack_rgba16f(vec4(t.upper[3], face_edge(t, 3)));
+                }
             }
             shadow[k] = vec2(wall ? 0.0 : t.shadow, 0.0);
         }

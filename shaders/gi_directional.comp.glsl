@@ -8,11 +8,13 @@ struct DirectionalParams {
     float angle_scale; // gi.directional_angle_scale
     float face_exponent; // gi.wall_face_exponent
     uint faces;          // computed_faces: bit f = face f is computed and stored
-    int sun_map;         // 1: grid shadows by the sun's shadow map (gi.sun_shadow_method), 0: the DDA
-    int pad0, pad1, pad2;
+    int pad0, pad1, pad2, pad3;
 };
 #define GI_PASS_PARAMS DirectionalParams
 #include "lantern/gi_common.glsl"
+
+const bool UPPER = (FEATURES & 1u) != 0u;   // unfolded proxy shadows: the upper-face textures
+const bool SUN_MAP = (FEATURES & 2u) != 0u; // the suns' grid shadows by their shadow map
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
@@ -32,6 +34,14 @@ layout(std430, binding = 14) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_
 layout(binding = 15) uniform samplerBuffer u_sun_headers; // gi_sun_map.glsl
 layout(binding = 16) uniform usamplerBuffer u_sun_first;
 layout(binding = 17) uniform samplerBuffer u_sun_entries;
+layout(binding = 18) uniform samplerBuffer u_upper_px_in; // the point lights' upper faces
+layout(binding = 19) uniform samplerBuffer u_upper_nx_in;
+layout(binding = 20) uniform samplerBuffer u_upper_pz_in;
+layout(binding = 21) uniform samplerBuffer u_upper_nz_in;
+layout(std430, binding = 22) writeonly buffer UpperPX { uvec2 texels[]; } o_upper_px;
+layout(std430, binding = 23) writeonly buffer UpperNX { uvec2 texels[]; } o_upper_nx;
+layout(std430, binding = 24) writeonly buffer UpperPZ { uvec2 texels[]; } o_upper_pz;
+layout(std430, binding = 25) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
 
 #include "lantern/gi_shadow.glsl"
 #include "lantern/gi_sun_map.glsl"
@@ -40,19 +50,36 @@ struct TexelLight {
     vec3 color;
     float shadow;
     vec3 face[4];
+    vec3 upper[4]; // unfolded proxy shadows, as gi_direct.comp
+    float edge_sum[4];
+    float edge_weight[4];
 };
+
+void add_face(inout TexelLight t, int f, vec3 light, float grid, vec3 s) {
+    float low = min(grid, s.x), high = min(grid, s.y);
+    t.face[f] += light * low;
+    t.upper[f] += light * high;
+    float taken = (light.r + light.g + light.b) * (high - low);
+    t.edge_sum[f] += taken * s.z;
+    t.edge_weight[f] += taken;
+}
+float face_edge(TexelLight t, int f) { return t.edge_weight[f] > 0.0 ? t.edge_sum[f] / t.edge_weight[f] : 0.0; }
 
 float sun_angle(GpuDirectionalLight sun) {
     return mix(saturate(-sun.direction_base.y * 2.0), 1.0, pc.pass.angle_scale);
 }
 
-float sun_visibility(int i, GpuDirectionalLight sun, vec2 from) {
+// The walls' part of the sun's visibility (0 below the horizon).
+float sun_grid_visibility(int i, GpuDirectionalLight sun, vec2 from) {
     vec3 dir = sun.direction_base.xyz;
     if (dir.y >= 0.0) return 0.0; // below the horizon
     float max_distance = sun.direction_base.w * sun.color_multiplier.w;
-    float grid = pc.pass.sun_map != 0 ? sun_map_visibility(i, sun, from, max_distance, pc.pass.wall_height)
-                                      : directional_shadow_dda(from, dir, max_distance, pc.pass.wall_height);
-    return min(grid, directional_proxy_shadow(from, dir));
+    return SUN_MAP ? sun_map_visibility(i, sun, from, max_distance, pc.pass.wall_height)
+                                : directional_shadow_dda(from, dir, max_distance, pc.pass.wall_height);
+}
+
+float sun_visibility(int i, GpuDirectionalLight sun, vec2 from) {
+    return min(sun_grid_visibility(i, sun, from), directional_proxy_shadow(from, sun.direction_base.xyz));
 }
 
 void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
@@ -72,9 +99,37 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
         vec4 weight = mask * wall_facing(to_sun / len, pc.pass.face_exponent);
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0)) continue;
-            t.face[f] += color * (weight[f] * sun_visibility(i, sun, face_position(f, cell, p)));
+            vec2 target = face_position(f, cell, p);
+            if (UPPER) {
+                add_face(t, f, color * weight[f], sun_grid_visibility(i, sun, target),
+                         directional_proxy_face_shadow(target, sun.direction_base.xyz, pc.pass.wall_height));
+                continue;
+            }
+            t.face[f] += color * (weight[f] * sun_visibility(i, sun, target));
         }
     }
+}
+
+// Adds the suns' upper-face light to the point lights' and merges the edges, each weighted
+// by the light its shadows take (reference_passes.cpp reference_directional).
+void merge_upper(inout TexelLight t, uint faces, int index) {
+    vec4 low[4] = vec4[4](texelFetch(u_face_px_in, index), texelFetch(u_face_nx_in, index),
+                          texelFetch(u_face_pz_in, index), texelFetch(u_face_nz_in, index));
+    vec4 up[4] = vec4[4](texelFetch(u_upper_px_in, index), texelFetch(u_upper_nx_in, index),
+                         texelFetch(u_upper_pz_in, index), texelFetch(u_upper_nz_in, index));
+    vec4 out_upper[4];
+    for (int f = 0; f < 4; ++f) {
+        float taken = (up[f].r - low[f].r) + (up[f].g - low[f].g) + (up[f].b - low[f].b);
+        if (taken > 0.0) {
+            t.edge_sum[f] += taken * up[f].a;
+            t.edge_weight[f] += taken;
+        }
+        out_upper[f] = vec4(up[f].rgb + t.upper[f], face_edge(t, f));
+    }
+    if (computes_face(faces, 0)) o_upper_px.texels[index] = pack_rgba16f(out_upper[0]);
+    if (computes_face(faces, 1)) o_upper_nx.texels[index] = pack_rgba16f(out_upper[1]);
+    if (computes_face(faces, 2)) o_upper_pz.texels[index] = pack_rgba16f(out_upper[2]);
+    if (computes_face(faces, 3)) o_upper_nz.texels[index] = pack_rgba16f(out_upper[3]);
 }
 
 void main() {
@@ -91,6 +146,8 @@ void main() {
             t.color = vec3(0.0);
             t.shadow = 0.0;
             t.face[0] = t.face[1] = t.face[2] = t.face[3] = vec3(0.0);
+            t.upper[0] = t.upper[1] = t.upper[2] = t.upper[3] = vec3(0.0);
+            for (int f = 0; f < 4; ++f) t.edge_sum[f] = t.edge_weight[f] = 0.0;
             bool wall = false;
             if (x < pc.size.x) {
                 vec2 p = texel_center(x, y);
@@ -103,6 +160,7 @@ void main() {
             if (HAS_WALLS) {
                 float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
                 uint faces = pc.pass.faces;         // a face not computed has no texture
+                if (UPPER) merge_upper(t, faces, index);
                 if (computes_face(faces, 0))
                     o_face_px.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_px_in, index).rgb + t.face[0], has_faces));
                 if (computes_face(faces, 1))

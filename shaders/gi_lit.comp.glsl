@@ -32,6 +32,10 @@ layout(binding = 12) uniform samplerBuffer u_wall_indirect_nx;
 layout(binding = 13) uniform samplerBuffer u_wall_indirect_pz;
 layout(binding = 14) uniform samplerBuffer u_wall_indirect_nz;
 layout(std430, binding = 15) writeonly buffer Out { uint texels[]; } o_lit;
+layout(binding = 16) uniform samplerBuffer u_wall_upper_px;
+layout(binding = 17) uniform samplerBuffer u_wall_upper_nx;
+layout(binding = 18) uniform samplerBuffer u_wall_upper_pz;
+layout(binding = 19) uniform samplerBuffer u_wall_upper_nz;
 
 #include "lantern/gi_shadow.glsl"
 #include "lantern/shading.glsl"

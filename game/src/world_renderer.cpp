@@ -69,7 +69,7 @@ int draw_group(int face, int material) {
     return (material == int(Material::wall) ? 2 : 6) + face;
 }
 constexpr std::uint32_t binding_frame = 0, binding_walls = 1, binding_first_texture = 2;
-constexpr int gi_texture_count = 12; // GI_DIRECT ... GI_WALL_INDIRECT + 3 (shading.glsl ids)
+constexpr int gi_texture_count = 16; // GI_DIRECT ... GI_WALL_UPPER + 3 (shading.glsl ids)
 constexpr std::uint32_t binding_boxes = binding_first_texture + gi_texture_count; // the faces' boxes
 constexpr VkDeviceSize initial_box_capacity = 4096;
 
@@ -79,6 +79,8 @@ constexpr std::array<gi::vk::Tex, gi_texture_count> gi_textures = {
     gi::vk::Tex::shadow,           gi::vk::Tex::wall_direct_px,   gi::vk::Tex::wall_direct_nx,
     gi::vk::Tex::wall_direct_pz,   gi::vk::Tex::wall_direct_nz,   gi::vk::Tex::wall_indirect_px,
     gi::vk::Tex::wall_indirect_nx, gi::vk::Tex::wall_indirect_pz, gi::vk::Tex::wall_indirect_nz,
+    gi::vk::Tex::wall_upper_px,    gi::vk::Tex::wall_upper_nx,    gi::vk::Tex::wall_upper_pz,
+    gi::vk::Tex::wall_upper_nz,
 };
 
 glm::vec3 hex(std::uint32_t rgb) {

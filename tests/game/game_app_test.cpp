@@ -14,6 +14,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
+
 #include <sys/stat.h>
 
 #include <glm/geometric.hpp>
@@ -375,10 +378,14 @@ TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
 }
 
 // The soak in short (docs/performance.md, "Soak"): over the last quarter of the demo (from
-// sunrise, the last feature to appear) the resident set may step by a few MiB where something
-// is used for the first time (a chunk streamed in; 2.8 MiB seen), but a per-frame leak of
-// 32 KB or more fails: lavapipe's uniform inlining grew the game ~0.6 MB a frame. The device
-// memory must not grow at all. The 10000-frame figure in the docs is the fine measure.
+// sunrise, the last feature to appear) the resident set may step where something is used for
+// the first time (a chunk streamed in, a shader variant lavapipe compiles: up to ~11 MiB
+// seen), and where exactly a step lands depends on how far lavapipe's queue thread lags on a
+// busy machine, so the steps are set aside: the three largest sample-to-sample rises are
+// left out, and what remains may add up to 2 MiB. A per-frame leak of 32 KB or more rises
+// in every interval (8 MiB over the quarter) and fails: lavapipe's uniform inlining grew the
+// game ~0.6 MB a frame. The device memory must not grow at all. The 10000-frame figure in the
+// docs is the fine measure.
 TEST(GameHeadless, MemoryDoesNotGrowFrameByFrame) {
     test::TempDir dir;
     const std::string out = dir.file("soak");
@@ -394,17 +401,21 @@ TEST(GameHeadless, MemoryDoesNotGrowFrameByFrame) {
     ASSERT_TRUE(memory && memory->find("samples")) << log;
     const json::Value* from = nullptr;
     const json::Value* to = nullptr;
+    std::vector<double> rises; // resident set, sample to sample
     for (const json::Value& s : memory->find("samples")->as_array()) {
         if (s.as_array()[0].as_number() < 0.75 * frames) continue;
+        if (to) rises.push_back(s.as_array()[1].as_number() - to->as_array()[1].as_number());
         if (!from) from = &s;
         to = &s;
     }
-    ASSERT_TRUE(from && to && to->as_array()[0].as_number() - from->as_array()[0].as_number() >= 240)
+    ASSERT_TRUE(from && to && to->as_array()[0].as_number() - from->as_array()[0].as_number() >= 240 && rises.size() >= 20)
         << "too few memory samples after frame " << 0.75 * frames;
-    const double resident_growth = to->as_array()[1].as_number() - from->as_array()[1].as_number();
+    std::sort(rises.begin(), rises.end());
+    const double steady = std::accumulate(rises.begin(), rises.end() - 3, 0.0);
     const double device_growth = to->as_array()[2].as_number() - from->as_array()[2].as_number();
-    EXPECT_LE(resident_growth, 8.0) << "MiB of resident set from frame " << from->as_array()[0].as_number()
-                                    << " to " << to->as_array()[0].as_number();
+    EXPECT_LE(steady, 2.0) << "MiB of resident set from frame " << from->as_array()[0].as_number() << " to "
+                           << to->as_array()[0].as_number() << " outside the three largest steps (all of it: "
+                           << to->as_array()[1].as_number() - from->as_array()[1].as_number() << " MiB)";
     EXPECT_EQ(device_growth, 0.0) << "MiB of device memory";
 }
 

@@ -223,6 +223,37 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.point_lights.push_back(point({4.5f, 4.5f}, {1, 0.6f, 0.3f}, 1.0f, 6.0f));
         out.push_back({"sun_map", s});
     }
+    {   // 15. Proxy shadows unfolded up the walls (gi.proxy_wall_shadows): proxies before
+        // walls, lit by point lights, an emissive and a sun; tall walls.
+        Scene s = open_scene({8, 8}, {16, 16}, 4);
+        std::vector<std::string> rows(16, std::string(16, '.'));
+        for (int x = 2; x < 14; ++x) rows[11][std::size_t(x)] = '#';
+        for (int z = 3; z < 9; ++z) rows[std::size_t(z)][12] = '#';
+        rows[5][4] = '#';
+        s.walls = grid_from_rows(rows);
+        s.wall_height = 2.5f;
+        s.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::unfold;
+        for (glm::vec2 at : {glm::vec2(6.5f, 8.5f), glm::vec2(9.5f, 6.0f), glm::vec2(10.0f, 9.7f)}) {
+            lantern::scene::ShadowProxy p;
+            p.position = at;
+            p.max_length = 3.5f;
+            p.penumbra_length = 0.5f;
+            s.shadow_proxies.push_back(p);
+        }
+        lantern::scene::ShadowProxy crate;
+        crate.position = {4.5f, 9.0f};
+        crate.shape = lantern::scene::ProxyShape::box;
+        crate.size = {0.4f, 0.3f};
+        crate.penumbra_width = 0.0f;
+        crate.penumbra_length = 0.0f;
+        crate.max_length = 2.5f;
+        s.shadow_proxies.push_back(crate);
+        s.point_lights.push_back(point({6.0f, 5.0f}, {1, 0.8f, 0.5f}, 1.5f, 10.0f));
+        s.point_lights.push_back(point({9.0f, 3.5f}, {0.5f, 0.7f, 1.0f}, 1.0f, 9.0f));
+        s.emissive_lights.push_back(emissive({2.5f, 10.0f}, {1.0f, 0.3f, 0.2f}, 0.6f, 3.0f));
+        s.directional_lights.push_back({glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f)), {1.0f, 0.9f, 0.7f}, 0.6f, 4.0f, 0.3f});
+        out.push_back({"unfolded_proxies", s});
+    }
     return out;
 }
 

@@ -261,3 +261,58 @@ TEST(WindowSnap, TexelStepsChangeTheVisibleLightLessThanTileSteps) {
         }
     }
 }
+
+// gi.proxy_wall_shadows = unfold: a hard-edged proxy's shadow, 4.5 tiles long, meets a wall
+// 3 tiles behind the proxy; folded up the wall, it covers the face's lower 1.5 tiles and
+// the face above is lit as if the proxy were not there. "full" shades the face top to bottom.
+TEST(WallOptions, UnfoldedProxyShadowsReachUpTheWallAsFarAsTheirLength) {
+    std::vector<std::string> rows(16, std::string(16, '.'));
+    for (int x = 2; x < 14; ++x) rows[10][std::size_t(x)] = '#'; // the -z face is the plane z = 10
+    scene::Scene s = gi_test::open_scene({8.0f, 8.0f}, {16.0f, 16.0f}, 4);
+    s.walls = gi_test::grid_from_rows(rows);
+    s.wall_height = 2.5f;
+    s.point_lights.push_back(gi_test::point({8.125f, 2.0f}, {1, 1, 1}, 1.0f, 12.0f));
+    const FrameRun open_run = run(s); // no proxy: the light the face gets unshadowed
+    scene::ShadowProxy post;
+    post.position = {8.125f, 7.0f};
+    post.size = {0.4f, 0.4f};
+    post.max_length = 4.5f;
+    post.penumbra_width = 0.0f;
+    post.penumbra_length = 0.0f;
+    s.shadow_proxies.push_back(post);
+    const FrameRun full = run(s);
+    s.gi.proxy_wall_shadows = scene::ProxyWallShadows::unfold;
+    const FrameRun unfolded = run(s);
+
+    EXPECT_EQ(full.result.textures.count("wall_upper_nz"), 0u) << "full: no upper textures";
+    ASSERT_EQ(unfolded.result.textures.count("wall_upper_nz"), 1u);
+    const Texture& open_face = open_run.result.textures.at("wall_direct_nz");
+    const Texture& full_face = full.result.textures.at("wall_direct_nz");
+    const Texture& low = unfolded.result.textures.at("wall_direct_nz");
+    const Texture& upper = unfolded.result.textures.at("wall_upper_nz");
+    const int x = 32, z = 40; // texel centre (8.125, 10.125), in the wall, behind the proxy
+    ASSERT_GT(open_face.at(x, z)[0], 0.0f);
+    EXPECT_EQ(full_face.at(x, z)[0], 0.0f) << "full: the face is shadowed top to bottom";
+    EXPECT_EQ(low.at(x, z)[0], 0.0f) << "unfold: the face's foot is in the shadow";
+    EXPECT_EQ(upper.at(x, z)[0], open_face.at(x, z)[0]) << "unfold: the top is lit as without the proxy";
+    // The shadow's remaining length: 4.5 - (10 - 7) = 1.5 tiles up the wall (half-float edge).
+    EXPECT_NEAR(upper.at(x, z)[3], 1.5f, 2e-3f);
+    // Far from the shadow the upper light equals the foot's and no edge is stored.
+    EXPECT_EQ(upper.at(4, z)[0], low.at(4, z)[0]);
+    EXPECT_EQ(upper.at(4, z)[3], 0.0f);
+
+    // Shading: below the edge the face shows the foot's light, above it the top's.
+    ShadingInputs si;
+    si.frame = &unfolded.in;
+    si.wall_direct[face_neg_z] = &low;
+    si.wall_upper[face_neg_z] = &upper;
+    const glm::vec3 n(0.0f, 0.0f, -1.0f);
+    EXPECT_EQ(surface_light(si, {8.125f, 1.0f, 10.0f}, n).r, 0.0f);
+    EXPECT_EQ(surface_light(si, {8.125f, 2.0f, 10.0f}, n).r, open_face.at(x, z)[0]);
+    // Every other texture is what "full" gave.
+    for (const auto& [name, texture] : full.result.textures)
+        if (name != "lit") {
+            ASSERT_EQ(unfolded.result.textures.count(name), 1u) << name;
+            EXPECT_TRUE(same(texture, unfolded.result.textures.at(name))) << name << " changed";
+        }
+}

@@ -32,7 +32,8 @@ TEST(Reflect, GiShadersDeclareTheBindingsTheirRecordersPush) {
         {"gi_heat.comp", {B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
         {"gi_direct.comp",
          {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::storage_buffer, B::storage_buffer,
-          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer}},
+          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
+          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer}},
     };
     for (const auto& [shader, bindings] : expected) {
         auto layout = reflect_spirv(lantern_gi_shaders_spirv(shader));

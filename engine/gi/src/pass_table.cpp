@@ -46,6 +46,14 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {wall_direct_point_nx, "wall_direct_point_nx", TexFormat::rgba16f, TexScale::window, false, true},
     {wall_direct_point_pz, "wall_direct_point_pz", TexFormat::rgba16f, TexScale::window, false, true},
     {wall_direct_point_nz, "wall_direct_point_nz", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_px, "wall_upper_px", TexFormat::rgba16f},
+    {wall_upper_nx, "wall_upper_nx", TexFormat::rgba16f},
+    {wall_upper_pz, "wall_upper_pz", TexFormat::rgba16f},
+    {wall_upper_nz, "wall_upper_nz", TexFormat::rgba16f},
+    {wall_upper_point_px, "wall_upper_point_px", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_point_nx, "wall_upper_point_nx", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_point_pz, "wall_upper_point_pz", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_point_nz, "wall_upper_point_nz", TexFormat::rgba16f, TexScale::window, false, true},
 };
 
 constexpr bool rows_in_order() {
@@ -423,6 +431,7 @@ ShadingInputs ReferenceStore::shading_inputs(const FrameInputs& in) const {
     for (int f = 0; f < 4; ++f) {
         s.wall_direct[std::size_t(f)] = find(Tex(int(Tex::wall_direct_px) + f));
         s.wall_indirect[std::size_t(f)] = find(Tex(int(Tex::wall_indirect_px) + f));
+        s.wall_upper[std::size_t(f)] = find(Tex(int(Tex::wall_upper_px) + f));
     }
     return s;
 }

@@ -49,12 +49,28 @@ struct TexelLight {
     glm::vec3 color{0.0f};
     float shadow = 0.0f;
     glm::vec3 face[4] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+    // Unfolded proxy shadows (unfolds_proxy_shadows): the light at each face's top, and the
+    // shadow edge's height summed weighted by the light the shadow takes (edge_weight).
+    glm::vec3 upper[4] = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+    float edge_sum[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    float edge_weight[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+
+    // Light `light` reaching face f, with grid visibility `grid` and the proxies' `s`.
+    void add_face(int f, glm::vec3 light, float grid, const FaceProxyShadow& s) {
+        face[f] += light * std::min(grid, s.low);
+        upper[f] += light * std::min(grid, s.high);
+        const float taken = (light.r + light.g + light.b) * (std::min(grid, s.high) - std::min(grid, s.low));
+        edge_sum[f] += taken * s.edge;
+        edge_weight[f] += taken;
+    }
+    float edge(int f) const { return edge_weight[f] > 0.0f ? edge_sum[f] / edge_weight[f] : 0.0f; }
 };
 
 // Point and emissive lights at one wall texel: per-face light, each face shadowed by its
 // own traversal to just outside it.
 void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
     const glm::vec4 mask = wall_face_mask(in.walls, cell) * face_bits_mask(computed_faces(in.settings));
+    const bool unfold = unfolds_proxy_shadows(in);
     const float softness = in.settings.light_softness;
     auto face_weights = [&](glm::vec2 light_pos) {
         glm::vec2 to_light = light_pos - p;
@@ -72,6 +88,11 @@ void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight&
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0f)) continue;
             const glm::vec2 target = face_position(f, cell, p);
+            if (unfold) {
+                out.add_face(f, contribution * weight[f], shadow_dda(in.walls, pos, target, radius),
+                             point_proxy_face_shadow(proxies_of(in), pos, target, in.wall_height));
+                continue;
+            }
             const float shadow = std::min(shadow_dda(in.walls, pos, target, radius),
                                           point_proxy_shadow(proxies_of(in), pos, target));
             out.face[f] += contribution * (weight[f] * shadow);
@@ -84,7 +105,10 @@ void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight&
         if (dist > radius) continue;
         const glm::vec3 contribution = glm::vec3(l.color) * light_falloff(dist, radius, softness);
         const glm::vec4 weight = face_weights(pos);
-        for (int f = 0; f < 4; ++f) out.face[f] += contribution * weight[f];
+        for (int f = 0; f < 4; ++f) {
+            out.face[f] += contribution * weight[f];
+            if (unfold) out.upper[f] += contribution * weight[f];
+        }
     }
 }
 
@@ -113,14 +137,19 @@ float sun_angle(const GpuDirectionalLight& sun, float angle_scale) {
     return glm::mix(saturate(-sun.direction_base.y * 2.0f), 1.0f, angle_scale);
 }
 
-// `map`: the sun's shadow map when gi.sun_shadow_method is shadow_map, else null (the DDA).
-float sun_visibility(const FrameInputs& in, const GpuDirectionalLight& sun, const SunMap* map, glm::vec2 from) {
+// The walls' part of the sun's visibility. `map`: the sun's shadow map when
+// gi.sun_shadow_method is shadow_map, else null (the DDA).
+float sun_grid_visibility(const FrameInputs& in, const GpuDirectionalLight& sun, const SunMap* map, glm::vec2 from) {
     const glm::vec3 dir(sun.direction_base);
     if (dir.y >= 0.0f) return 0.0f; // below the horizon
     const float max_distance = sun.direction_base.w * sun.color_multiplier.w;
-    const float grid = map ? sun_map_visibility(*map, in.walls, sun, from, in.wall_height)
-                           : directional_shadow_dda(in.walls, from, dir, max_distance, in.wall_height);
-    return std::min(grid, directional_proxy_shadow(proxies_of(in), from, dir));
+    return map ? sun_map_visibility(*map, in.walls, sun, from, in.wall_height)
+               : directional_shadow_dda(in.walls, from, dir, max_distance, in.wall_height);
+}
+
+float sun_visibility(const FrameInputs& in, const GpuDirectionalLight& sun, const SunMap* map, glm::vec2 from) {
+    const float grid = sun_grid_visibility(in, sun, map, from); // 0 below the horizon
+    return std::min(grid, directional_proxy_shadow(proxies_of(in), from, glm::vec3(sun.direction_base)));
 }
 
 void directional_texel(const FrameInputs& in, const std::vector<SunMap>& maps, bool wall, glm::ivec2 cell,
@@ -143,7 +172,13 @@ void directional_texel(const FrameInputs& in, const std::vector<SunMap>& maps, b
         const glm::vec4 weight = mask * wall_facing(to_sun / len, in.settings.wall_face_exponent);
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0f)) continue;
-            out.face[f] += color * (weight[f] * sun_visibility(in, sun, map, face_position(f, cell, p)));
+            const glm::vec2 target = face_position(f, cell, p);
+            if (unfolds_proxy_shadows(in)) {
+                out.add_face(f, color * weight[f], sun_grid_visibility(in, sun, map, target),
+                             directional_proxy_face_shadow(proxies_of(in), target, glm::vec3(sun.direction_base), in.wall_height));
+                continue;
+            }
+            out.face[f] += color * (weight[f] * sun_visibility(in, sun, map, target));
         }
     }
 }
@@ -228,11 +263,15 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
     const GiWindow& w = in.window;
     DirectTextures out{Texture("direct", TexFormat::rgba16f, w.width, w.height),
                        Texture("shadow", TexFormat::rg8, w.width, w.height),
+                       {},
                        {}};
     const std::uint32_t faces = computed_faces(in.settings);
+    const bool unfold = unfolds_proxy_shadows(in);
     for (int f = 0; f < 4; ++f)
-        if (computes_face(faces, f))
+        if (computes_face(faces, f)) {
             out.wall_direct[f] = Texture(std::string("wall_direct_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
+            if (unfold) out.wall_upper[f] = Texture(std::string("wall_upper_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
+        }
     for_each_row(w, options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
             const glm::vec2 p = w.texel_center(x, y);
@@ -247,8 +286,11 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
             const float shadow[2] = {wall ? 0.0f : light.shadow, 0.0f};
             out.shadow.store(x, y, shadow);
             // Face alpha flags texels that hold face light (wall texels).
-            for (int f = 0; f < 4; ++f)
-                if (computes_face(faces, f)) store_rgb(out.wall_direct[f], x, y, light.face[f], wall ? 1.0f : 0.0f);
+            for (int f = 0; f < 4; ++f) {
+                if (!computes_face(faces, f)) continue;
+                store_rgb(out.wall_direct[f], x, y, light.face[f], wall ? 1.0f : 0.0f);
+                if (unfold) store_rgb(out.wall_upper[f], x, y, light.upper[f], light.edge(f));
+            }
         }
     });
     return out;
@@ -257,6 +299,7 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
 void reference_directional(const FrameInputs& in, DirectTextures& t, const RefOptions& options) {
     const GiWindow& w = in.window;
     const std::uint32_t faces = computed_faces(in.settings);
+    const bool unfold = unfolds_proxy_shadows(in);
     const std::vector<SunMap> maps =
         in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map ? build_sun_maps(in) : std::vector<SunMap>{};
     for_each_row(w, options, [&](int y) {
@@ -272,6 +315,17 @@ void reference_directional(const FrameInputs& in, DirectTextures& t, const RefOp
             t.shadow.store(x, y, shadow);
             for (int f = 0; f < 4; ++f) {
                 if (!computes_face(faces, f)) continue;
+                if (unfold) {
+                    // Merge the edges, each weighted by the light its shadows take.
+                    const float* low = t.wall_direct[f].at(x, y);
+                    const float* up = t.wall_upper[f].at(x, y);
+                    const float taken = (up[0] - low[0]) + (up[1] - low[1]) + (up[2] - low[2]);
+                    if (taken > 0.0f) {
+                        sun.edge_sum[f] += taken * up[3];
+                        sun.edge_weight[f] += taken;
+                    }
+                    store_rgb(t.wall_upper[f], x, y, glm::vec3(up[0], up[1], up[2]) + sun.upper[f], sun.edge(f));
+                }
                 const float* face = t.wall_direct[f].at(x, y);
                 store_rgb(t.wall_direct[f], x, y, glm::vec3(face[0], face[1], face[2]) + sun.face[f], wall ? 1.0f : 0.0f);
             }

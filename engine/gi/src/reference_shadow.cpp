@@ -185,6 +185,76 @@ float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 ligh
     return shadow;
 }
 
+namespace {
+
+// Where the proxy's length penumbra is half way (penumbra_factor's band [lo, lo + width]).
+float length_edge(const GpuShadowProxy& p) {
+    const float edge = p.lengths.x, width = p.lengths.w;
+    if (!(width > 0.0f)) return edge;
+    const int mode = int(p.modes.w + 0.5f);
+    const float lo = mode == 0 ? edge - width : mode == 1 ? edge : edge - 0.5f * width;
+    return lo + 0.5f * width;
+}
+
+// The height up the face where proxy p's shadow (axis dir_shadow) ends, for a face point
+// `target` unfolded along `travel`.
+float unfolded_reach(const GpuShadowProxy& p, glm::vec2 target, glm::vec2 travel, glm::vec2 dir_shadow) {
+    const glm::vec2 to_target = target - glm::vec2(p.position_size.x, p.position_size.y);
+    const float along = to_target.x * dir_shadow.x + to_target.y * dir_shadow.y;
+    const float rate = std::max(travel.x * dir_shadow.x + travel.y * dir_shadow.y, 1e-3f);
+    return (length_edge(p) - along) / rate;
+}
+
+} // namespace
+
+FaceProxyShadow point_proxy_face_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 light, glm::vec2 target,
+                                        float height) {
+    FaceProxyShadow s;
+    if (proxies.empty()) return s;
+    const glm::vec2 ray = target - light;
+    const float ray_len = std::sqrt(ray.x * ray.x + ray.y * ray.y);
+    if (ray_len < 1e-4f) return s;
+    const glm::vec2 dir = ray / ray_len;
+    s.low = point_proxy_shadow(proxies, light, target);
+    s.high = point_proxy_shadow(proxies, light, target + dir * height);
+    if (!(s.high > s.low)) return s;
+    float reach = 0.0f;
+    for (const GpuShadowProxy& p : proxies) { // the proxies shading the foot, as point_proxy_shadow
+        const glm::vec2 to_proxy = glm::vec2(p.position_size.x, p.position_size.y) - light;
+        const float proxy_dist = std::sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
+        if (proxy_dist < 1e-4f) continue;
+        const glm::vec2 dir_flat = to_proxy / proxy_dist;
+        const glm::vec2 blended = glm::mix(dir, dir_flat, saturate(p.lengths.y));
+        const float blended_len = std::sqrt(blended.x * blended.x + blended.y * blended.y);
+        const glm::vec2 dir_shadow = blended_len > 1e-6f ? blended / blended_len : dir_flat;
+        if (glm::dot(to_proxy, dir_shadow) <= 0.0f) continue;
+        if (proxy_occlusion(p, target, dir_shadow) > 0.0f) reach = std::max(reach, unfolded_reach(p, target, dir, dir_shadow));
+    }
+    s.edge = std::clamp(reach, 0.0f, height);
+    return s;
+}
+
+FaceProxyShadow directional_proxy_face_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 target,
+                                              glm::vec3 light_dir, float height) {
+    FaceProxyShadow s;
+    const float xz_length = std::sqrt(light_dir.x * light_dir.x + light_dir.z * light_dir.z);
+    if (proxies.empty() || xz_length < 1e-4f) return s;
+    const glm::vec2 travel(light_dir.x / xz_length, light_dir.z / xz_length);
+    s.low = directional_proxy_shadow(proxies, target, light_dir);
+    s.high = directional_proxy_shadow(proxies, target + travel * height, light_dir);
+    if (!(s.high > s.low)) return s;
+    float reach = 0.0f;
+    for (const GpuShadowProxy& p : proxies)
+        if (proxy_occlusion(p, target, travel) > 0.0f) reach = std::max(reach, unfolded_reach(p, target, travel, travel));
+    s.edge = std::clamp(reach, 0.0f, height);
+    return s;
+}
+
+bool unfolds_proxy_shadows(const FrameInputs& in) {
+    return in.settings.proxy_wall_shadows == scene::ProxyWallShadows::unfold && !in.proxies.empty() &&
+           computed_faces(in.settings) != 0 && in.wall_height > 0.0f;
+}
+
 float directional_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 pixel, glm::vec3 light_dir) {
     const float xz_length = std::sqrt(light_dir.x * light_dir.x + light_dir.z * light_dir.z);
     if (proxies.empty() || xz_length < 1e-4f) return 1.0f;

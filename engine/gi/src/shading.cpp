@@ -106,7 +106,12 @@ glm::vec3 surface_light(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
         const glm::vec2 inside = wall_sample_position(w, pos, n);
         const glm::ivec2 t = texel_at(w, inside);
         const int face = dominant_face(n);
-        glm::vec3 light = fetch_rgb(in.wall_direct[face], t) + fetch_rgb(in.wall_indirect[face], t);
+        glm::vec3 direct = fetch_rgb(in.wall_direct[face], t);
+        if (const Texture* upper = in.wall_upper[face]) { // above the proxies' shadow edge: the light at the top
+            const float* u = upper->at(t.x, t.y);
+            if (pos.y >= u[3]) direct = glm::vec3(u[0], u[1], u[2]);
+        }
+        glm::vec3 light = direct + fetch_rgb(in.wall_indirect[face], t);
         if (f.settings.ao.walls && in.ao)
         {
             const glm::ivec2 outside = texel_at(w, face_ao_position(w, inside, {pos.x, pos.z}, face));

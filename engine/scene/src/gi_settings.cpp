@@ -42,6 +42,11 @@ constexpr std::array<EnumName<SunShadowMethod>, 2> sun_shadow_method_names{{
     {"shadow_map", SunShadowMethod::shadow_map},
 }};
 
+constexpr std::array<EnumName<ProxyWallShadows>, 2> proxy_wall_shadows_names{{
+    {"full", ProxyWallShadows::full},
+    {"unfold", ProxyWallShadows::unfold},
+}};
+
 constexpr std::array<EnumName<GiMethod>, 1> method_names{{
     {"heat", GiMethod::heat},
 }};
@@ -72,7 +77,8 @@ struct EnumField {
     std::span<const EnumName<E>> names;
 };
 using FieldTarget = std::variant<FloatField, IntField, BoolField, EnumField<HeatScale>, EnumField<ToneMap>,
-                                 EnumField<GiMethod>, EnumField<WindowSnap>, EnumField<SunShadowMethod>>;
+                                 EnumField<GiMethod>, EnumField<WindowSnap>, EnumField<SunShadowMethod>,
+                                 EnumField<ProxyWallShadows>>;
 
 struct GiField {
     std::string_view key; // below "gi"; keys of nested objects joined by dots ("ao.radius")
@@ -81,7 +87,7 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 33> gi_fields(GiSettings& gi) {
+std::array<GiField, 34> gi_fields(GiSettings& gi) {
     return {{
         {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
@@ -116,6 +122,7 @@ std::array<GiField, 33> gi_fields(GiSettings& gi) {
         {"sun_shadow_method", EnumField<SunShadowMethod>{&gi.sun_shadow_method, sun_shadow_method_names}},
         {"max_lights", IntField{&gi.max_lights, {0, 4096}}},
         {"max_shadow_proxies", IntField{&gi.max_shadow_proxies, {0, 256}}},
+        {"proxy_wall_shadows", EnumField<ProxyWallShadows>{&gi.proxy_wall_shadows, proxy_wall_shadows_names}},
     }};
 }
 

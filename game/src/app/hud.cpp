@@ -175,6 +175,11 @@ HudActions Hud::draw(const HudInputs& in) {
         bool texel_snap = g.window_snap == scene::WindowSnap::texel;
         if (ImGui::Checkbox("window by texels", &texel_snap))
             g.window_snap = texel_snap ? scene::WindowSnap::texel : scene::WindowSnap::tile;
+        // gi.proxy_wall_shadows: proxy shadows fold up the walls as far as they reach.
+        bool unfold = g.proxy_wall_shadows == scene::ProxyWallShadows::unfold;
+        if (ImGui::Checkbox("unfold proxy shadows", &unfold))
+            g.proxy_wall_shadows = unfold ? scene::ProxyWallShadows::unfold : scene::ProxyWallShadows::full;
+        ImGui::SameLine();
         // gi.sun_shadow_method: the sun's shadows by the 1D shadow map (same image, other cost).
         bool sun_map = g.sun_shadow_method == scene::SunShadowMethod::shadow_map;
         if (ImGui::Checkbox("sun shadow map", &sun_map))

@@ -66,6 +66,10 @@ layout(set = 0, binding = 10) uniform samplerBuffer u_wall_indirect_px;
 layout(set = 0, binding = 11) uniform samplerBuffer u_wall_indirect_nx;
 layout(set = 0, binding = 12) uniform samplerBuffer u_wall_indirect_pz;
 layout(set = 0, binding = 13) uniform samplerBuffer u_wall_indirect_nz;
+layout(set = 0, binding = 14) uniform samplerBuffer u_wall_upper_px;
+layout(set = 0, binding = 15) uniform samplerBuffer u_wall_upper_nx;
+layout(set = 0, binding = 16) uniform samplerBuffer u_wall_upper_pz;
+layout(set = 0, binding = 17) uniform samplerBuffer u_wall_upper_nz;
 
 #include "lantern/gi_walls.glsl"
 #include "lantern/shading.glsl"

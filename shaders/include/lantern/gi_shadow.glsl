@@ -208,4 +208,67 @@ float directional_proxy_shadow(vec2 pixel, vec3 light_dir) {
     }
     return shadow;
 }
+
+// gi.proxy_wall_shadows = unfold (reference_shadow.cpp point_proxy_face_shadow): the
+// proxies' visibility of a face point at the face's foot (x) and top (y, the ground
+// `height` beyond it along the light's travel), and the height where their shadows end (z).
+float proxy_length_edge(GpuShadowProxy p) {
+    float edge = p.lengths.x, width = p.lengths.w;
+    if (!(width > 0.0)) return edge;
+    int mode = int(p.modes.w + 0.5);
+    float lo = mode == 0 ? edge - width : (mode == 1 ? edge : edge - 0.5 * width);
+    return lo + 0.5 * width;
+}
+
+float unfolded_reach(GpuShadowProxy p, vec2 target, vec2 travel, vec2 dir_shadow) {
+    precise vec2 to_target = target - p.position_size.xy;
+    precise float along = to_target.x * dir_shadow.x + to_target.y * dir_shadow.y;
+    precise float rate = max(travel.x * dir_shadow.x + travel.y * dir_shadow.y, 1e-3);
+    return (proxy_length_edge(p) - along) / rate;
+}
+
+vec3 point_proxy_face_shadow(vec2 light, vec2 target, float height) {
+    vec3 s = vec3(1.0, 1.0, 0.0);
+    if (!HAS_PROXIES) return s;
+    precise vec2 ray = target - light;
+    precise float ray_len = sqrt(ray.x * ray.x + ray.y * ray.y);
+    if (ray_len < 1e-4) return s;
+    precise vec2 dir = ray / ray_len;
+    s.x = point_proxy_shadow(light, target);
+    s.y = point_proxy_shadow(light, target + dir * height);
+    if (!(s.y > s.x)) return s;
+    float reach = 0.0;
+    for (int i = 0; i < pc.counts.w; ++i) {
+        GpuShadowProxy p = u_proxies.proxies[i];
+        vec2 to_proxy = p.position_size.xy - light;
+        float proxy_dist = sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
+        if (proxy_dist < 1e-4) continue;
+        vec2 dir_flat = to_proxy / proxy_dist;
+        vec2 blended = mix(dir, dir_flat, saturate(p.lengths.y));
+        float blended_len = sqrt(blended.x * blended.x + blended.y * blended.y);
+        vec2 dir_shadow = blended_len > 1e-6 ? blended / blended_len : dir_flat;
+        if (dot(to_proxy, dir_shadow) <= 0.0) continue;
+        if (proxy_occlusion(p, target, dir_shadow) > 0.0) reach = max(reach, unfolded_reach(p, target, dir, dir_shadow));
+    }
+    s.z = clamp(reach, 0.0, height);
+    return s;
+}
+
+vec3 directional_proxy_face_shadow(vec2 target, vec3 light_dir, float height) {
+    vec3 s = vec3(1.0, 1.0, 0.0);
+    precise float xz_length = sqrt(light_dir.x * light_dir.x + light_dir.z * light_dir.z);
+    if (!HAS_PROXIES || xz_length < 1e-4) return s;
+    precise vec2 travel = vec2(light_dir.x / xz_length, light_dir.z / xz_length);
+    s.x = directional_proxy_shadow(target, light_dir);
+    s.y = directional_proxy_shadow(target + travel * height, light_dir);
+    if (!(s.y > s.x)) return s;
+    float reach = 0.0;
+    for (int i = 0; i < pc.counts.w; ++i) {
+        GpuShadowProxy p = u_proxies.proxies[i];
+        if (proxy_occlusion(p, target, travel) > 0.0) reach = max(reach, unfolded_reach(p, target, travel, travel));
+    }
+    s.z = clamp(reach, 0.0, height);
+    return s;
+}
+
 #endif

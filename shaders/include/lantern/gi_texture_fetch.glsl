@@ -4,7 +4,8 @@
 // site (as the shading library's calls are) the chain folds to one fetch.
 //
 // Requires shading.glsl's ids and the declarations u_direct, u_indirect, u_ao, u_shadow,
-// u_wall_direct_{px,nx,pz,nz}, u_wall_indirect_{px,nx,pz,nz} (samplerBuffer).
+// u_wall_direct_{px,nx,pz,nz}, u_wall_indirect_{px,nx,pz,nz}, u_wall_upper_{px,nx,pz,nz}
+// (samplerBuffer).
 #ifndef LANTERN_GI_TEXTURE_FETCH_GLSL
 #define LANTERN_GI_TEXTURE_FETCH_GLSL
 
@@ -20,7 +21,11 @@ vec4 gi_texture_fetch(int t, int index) {
     if (t == GI_WALL_INDIRECT + 0) return texelFetch(u_wall_indirect_px, index);
     if (t == GI_WALL_INDIRECT + 1) return texelFetch(u_wall_indirect_nx, index);
     if (t == GI_WALL_INDIRECT + 2) return texelFetch(u_wall_indirect_pz, index);
-    return texelFetch(u_wall_indirect_nz, index);
+    if (t == GI_WALL_INDIRECT + 3) return texelFetch(u_wall_indirect_nz, index);
+    if (t == GI_WALL_UPPER + 0) return texelFetch(u_wall_upper_px, index);
+    if (t == GI_WALL_UPPER + 1) return texelFetch(u_wall_upper_nx, index);
+    if (t == GI_WALL_UPPER + 2) return texelFetch(u_wall_upper_pz, index);
+    return texelFetch(u_wall_upper_nz, index);
 }
 
 #endif

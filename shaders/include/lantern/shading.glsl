@@ -12,6 +12,7 @@ const int GI_AO = 2;
 const int GI_SHADOW = 3;
 const int GI_WALL_DIRECT = 4;   // + face (0 +X, 1 -X, 2 +Z, 3 -Z)
 const int GI_WALL_INDIRECT = 8; // + face
+const int GI_WALL_UPPER = 12;   // + face: unfolded proxy shadows (rgb: light at the top, a: edge height)
 
 const int TONE_NONE = 0, TONE_REINHARD = 1, TONE_REINHARD_WHITE = 2, TONE_ACES = 3;
 const int SURFACE_GROUND = 0, SURFACE_WALL_FACE = 1, SURFACE_WALL_TOP = 2;
@@ -102,7 +103,12 @@ vec3 surface_light(vec3 pos, vec3 n) {
         vec2 inside = wall_sample_position(pos, n);
         ivec2 t = gi_texel_at(inside);
         int face = dominant_face(n);
-        vec3 light = gi_fetch_rgb(GI_WALL_DIRECT + face, t) + gi_fetch_rgb(GI_WALL_INDIRECT + face, t);
+        vec3 direct = gi_fetch_rgb(GI_WALL_DIRECT + face, t);
+        if (gi_has(GI_WALL_UPPER + face)) { // above the proxies' shadow edge: the light at the top
+            vec4 upper = gi_fetch(GI_WALL_UPPER + face, t);
+            if (pos.y >= upper.a) direct = upper.rgb;
+        }
+        vec3 light = direct + gi_fetch_rgb(GI_WALL_INDIRECT + face, t);
         if (gi_shading.options.y != 0.0 && gi_has(GI_AO))
             light *= gi_fetch(GI_AO, gi_texel_at(face_ao_position(inside, pos.xz, face))).r;
         return light;

@@ -22,6 +22,10 @@ constexpr Tex direct_set[] = {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex
 constexpr Tex point_set[] = {Tex::direct_point,         Tex::shadow_point,         Tex::wall_direct_point_px,
                              Tex::wall_direct_point_nx, Tex::wall_direct_point_pz, Tex::wall_direct_point_nz};
 
+constexpr Tex upper_set[] = {Tex::wall_upper_px, Tex::wall_upper_nx, Tex::wall_upper_pz, Tex::wall_upper_nz};
+constexpr Tex upper_point_set[] = {Tex::wall_upper_point_px, Tex::wall_upper_point_nx, Tex::wall_upper_point_pz,
+                                   Tex::wall_upper_point_nz};
+
 // The direct pass writes the point-light set when directional lights follow (the
 // directional pass then reads it and writes the contract textures), else the contract set:
 // the colour, the shadow map and the faces computed (computed_faces).
@@ -29,12 +33,21 @@ std::span<const Tex> direct_outputs(const FrameInputs& in) {
     return in.directional_lights.empty() ? std::span<const Tex>(direct_set) : std::span<const Tex>(point_set);
 }
 
+// The upper-face textures that go with a set (unfolded proxy shadows).
+std::span<const Tex> upper_outputs(std::span<const Tex> ids) {
+    return ids.data() == point_set ? std::span<const Tex>(upper_point_set) : std::span<const Tex>(upper_set);
+}
+
 TexSet face_set(std::span<const Tex> ids, const FrameInputs& in) {
     TexSet set;
     set.add(ids[0]).add(ids[1]);
     const std::uint32_t faces = computed_faces(in.settings);
+    const bool unfold = unfolds_proxy_shadows(in);
     for (int f = 0; f < 4; ++f)
-        if (computes_face(faces, f)) set.add(ids[std::size_t(2 + f)]);
+        if (computes_face(faces, f)) {
+            set.add(ids[std::size_t(2 + f)]);
+            if (unfold) set.add(upper_outputs(ids)[std::size_t(f)]);
+        }
     return set;
 }
 
@@ -44,8 +57,17 @@ TexSet directional_writes(const FrameInputs& in) { return face_set(direct_set, i
 void put_direct(ReferenceStore& store, std::span<const Tex> ids, DirectTextures d) {
     store.put(ids[0], std::move(d.direct));
     store.put(ids[1], std::move(d.shadow));
-    for (std::size_t f = 0; f < 4; ++f)
+    for (std::size_t f = 0; f < 4; ++f) {
         if (d.wall_direct[f].width > 0) store.put(ids[2 + f], std::move(d.wall_direct[f]));
+        if (d.wall_upper[f].width > 0) store.put(upper_outputs(ids)[f], std::move(d.wall_upper[f]));
+    }
+}
+
+// An upper-face texture's buffer, or for one not stored the first output's (never written:
+// the shader writes uppers only when its `upper` parameter is set, and then all computed).
+const gpu::Buffer& upper_buffer(PassRecorder& r, std::span<const Tex> ids, int face) {
+    const Tex t = upper_outputs(ids)[std::size_t(face)];
+    return r.has(t) ? r.buffer(t) : r.buffer(ids[0]);
 }
 
 // A face texture's buffer, or for a face not computed the first output's: the shader never
@@ -67,14 +89,17 @@ struct LightBinParams {
 struct DirectParams {
     float light_softness = 0, face_exponent = 1;
     std::uint32_t faces = 15; // computed_faces
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0;
+    float wall_height = 0;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0;
 };
 struct DirectionalParams {
     float wall_height = 0, angle_scale = 0, face_exponent = 1;
     std::uint32_t faces = 15; // computed_faces
-    std::int32_t sun_map = 0; // 1: gi.sun_shadow_method shadow_map
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0;
+    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0;
 };
+// FEATURES bits of the direct and directional shaders.
+constexpr std::uint32_t feature_upper = 1;   // unfolded proxy shadows (unfolds_proxy_shadows)
+constexpr std::uint32_t feature_sun_map = 2; // gi.sun_shadow_method shadow_map
 
 // ---- conduction
 
@@ -155,6 +180,8 @@ void record_direct(PassRecorder& r) {
     if (no_lights || (!r.plan.has_walls_in_window && faces != 0)) {
         for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i)
             if (r.has(out[i])) r.clear(out[i]);
+        for (Tex t : upper_outputs(out))
+            if (r.has(t)) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
         if (no_lights) return;
     }
@@ -180,7 +207,9 @@ void record_direct(PassRecorder& r) {
     r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
     r.cmd.barrier_compute_to_compute();
 
-    r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(), .walls = r.plan.has_walls_in_window}));
+    r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
+                                                          .walls = r.plan.has_walls_in_window,
+                                                          .features = unfolds_proxy_shadows(in) ? feature_upper : 0u}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
                                .uniform_buffer(1, r.proxies())
@@ -191,11 +220,16 @@ void record_direct(PassRecorder& r) {
                                .storage_buffer(6, face_buffer(r, out, 1))
                                .storage_buffer(7, face_buffer(r, out, 2))
                                .storage_buffer(8, face_buffer(r, out, 3))
-                               .storage_buffer(9, s.bins));
+                               .storage_buffer(9, s.bins)
+                               .storage_buffer(10, upper_buffer(r, out, 0))
+                               .storage_buffer(11, upper_buffer(r, out, 1))
+                               .storage_buffer(12, upper_buffer(r, out, 2))
+                               .storage_buffer(13, upper_buffer(r, out, 3)));
     auto p = r.params<DirectParams>(w.width, w.height);
     p.pass.light_softness = in.settings.light_softness;
     p.pass.face_exponent = in.settings.wall_face_exponent;
     p.pass.faces = faces;
+    p.pass.wall_height = in.wall_height;
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -255,12 +289,16 @@ void record_directional(PassRecorder& r) {
     const SunMapState& maps = r.state<SunMapState>();
     const std::uint32_t faces = computed_faces(in.settings);
     if (!r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
-        for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz})
+        for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz,
+                      Tex::wall_upper_px, Tex::wall_upper_nx, Tex::wall_upper_pz, Tex::wall_upper_nz})
             if (r.has(t)) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
     }
     r.cmd.bind(
-        r.pipeline<DirectionalParams>("gi_directional.comp", {.proxies = !in.proxies.empty(), .walls = r.plan.has_walls_in_window}));
+        r.pipeline<DirectionalParams>("gi_directional.comp", {.proxies = !in.proxies.empty(),
+                                                               .walls = r.plan.has_walls_in_window,
+                                                               .features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
+                                                                           (sun_map ? feature_sun_map : 0u)}));
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
     // Reads the point-light results, writes the contract textures (never in place).
@@ -268,25 +306,36 @@ void record_directional(PassRecorder& r) {
     for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(r.has(point_set[i]) ? point_set[i] : point_set[0]));
     for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(r.has(direct_set[i]) ? direct_set[i] : direct_set[0]));
     writes.uniform_texel_buffer(15, maps.headers.view).uniform_texel_buffer(16, maps.first.view).uniform_texel_buffer(17, maps.entries.view);
+    for (std::uint32_t f = 0; f < 4; ++f) {
+        const Tex in_upper = upper_point_set[f], out_upper = upper_set[f];
+        writes.uniform_texel_buffer(18 + f, r.view(r.has(in_upper) ? in_upper : point_set[0]));
+        writes.storage_buffer(22 + f, r.buffer(r.has(out_upper) ? out_upper : direct_set[0]));
+    }
     r.cmd.push_descriptors(writes);
     auto p = r.params<DirectionalParams>(w.width, w.height);
     p.pass = {.wall_height = in.wall_height,
               .angle_scale = in.settings.directional_angle_scale,
               .face_exponent = in.settings.wall_face_exponent,
-              .faces = faces,
-              .sun_map = sun_map ? 1 : 0};
+              .faces = faces};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
 }
 
 void reference_directional_row(ReferenceContext& c) {
-    DirectTextures d{c.store.at(Tex::direct_point), c.store.at(Tex::shadow_point), {}};
-    for (std::size_t f = 0; f < 4; ++f)
+    DirectTextures d{c.store.at(Tex::direct_point), c.store.at(Tex::shadow_point), {}, {}};
+    for (std::size_t f = 0; f < 4; ++f) {
         if (const Texture* face = c.store.find(point_set[2 + f])) d.wall_direct[f] = *face;
+        if (const Texture* upper = c.store.find(upper_point_set[f])) d.wall_upper[f] = *upper;
+    }
     reference_directional(c.in, d, c.options); // adds the suns to a copy: never in place
     put_direct(c.store, direct_set, std::move(d));
 }
+
+constexpr Tex directional_reads[] = {Tex::direct_point,         Tex::shadow_point,         Tex::wall_direct_point_px,
+                                     Tex::wall_direct_point_nx, Tex::wall_direct_point_pz, Tex::wall_direct_point_nz,
+                                     Tex::wall_upper_point_px,  Tex::wall_upper_point_nx,  Tex::wall_upper_point_pz,
+                                     Tex::wall_upper_point_nz};
 
 const char* ao_not_needed(const FrameInputs& in, bool, bool) { return in.settings.ao.enabled ? nullptr : "AO disabled"; }
 const char* directional_not_needed(const FrameInputs& in, bool, bool) {
@@ -296,14 +345,13 @@ const char* directional_not_needed(const FrameInputs& in, bool, bool) {
 constexpr Tex conduction_writes[] = {Tex::conduction};
 constexpr Tex ao_writes[] = {Tex::ao};
 constexpr std::string_view ao_settings[] = {"ao.enabled", "ao.radius", "ao.power", "ao.strength", "ao.dither"};
-constexpr std::string_view direct_settings[] = {"light_softness",   "wall_face_exponent", "wall_lighting",
-                                                "wall_faces.px",    "wall_faces.nx",      "wall_faces.pz",
-                                                "wall_faces.nz"};
+constexpr std::string_view direct_settings[] = {"light_softness", "wall_face_exponent", "wall_lighting", "wall_faces.px",
+                                                "wall_faces.nx",  "wall_faces.pz",      "wall_faces.nz", "proxy_wall_shadows"};
 // sun_shadow_method is listed although the map is exact: a change of method reruns the
 // pass, so that switching it shows what it costs.
 constexpr std::string_view directional_settings[] = {"directional_angle_scale", "wall_face_exponent", "wall_lighting",
                                                      "wall_faces.px",           "wall_faces.nx",      "wall_faces.pz",
-                                                     "wall_faces.nz",           "sun_shadow_method"};
+                                                     "wall_faces.nz",           "sun_shadow_method",  "proxy_wall_shadows"};
 
 } // namespace
 
@@ -332,7 +380,7 @@ constinit const PassRow direct{
     .name = "direct",
     .writes_for = direct_writes,
     .settings = direct_settings,
-    .inputs = input_walls | input_lights | input_proxies | input_walls_in_window,
+    .inputs = input_walls | input_lights | input_proxies | input_wall_height | input_walls_in_window,
     .record = record_direct,
     .reference = reference_direct_row,
 };
@@ -340,7 +388,7 @@ constinit const PassRow direct{
 constinit const PassRow directional{
     .pass = Pass::directional,
     .name = "directional",
-    .reads = point_set,
+    .reads = directional_reads,
     .writes_for = directional_writes,
     .settings = directional_settings,
     .inputs = input_walls | input_proxies | input_suns | input_wall_height | input_walls_in_window,

@@ -14,7 +14,9 @@ using vk::PassRecorder;
 constexpr Tex lit_reads[] = {Tex::direct,           Tex::indirect,         Tex::ao,
                              Tex::shadow,           Tex::wall_direct_px,   Tex::wall_direct_nx,
                              Tex::wall_direct_pz,   Tex::wall_direct_nz,   Tex::wall_indirect_px,
-                             Tex::wall_indirect_nx, Tex::wall_indirect_pz, Tex::wall_indirect_nz};
+                             Tex::wall_indirect_nx, Tex::wall_indirect_pz, Tex::wall_indirect_nz,
+                             Tex::wall_upper_px,    Tex::wall_upper_nx,    Tex::wall_upper_pz,
+                             Tex::wall_upper_nz};
 constexpr Tex lit_writes[] = {Tex::lit};
 constexpr std::string_view lit_settings[] = {"tone_map",      "white_point",   "directional_angle_scale",
                                              "wall_lighting", "wall_faces.px", "wall_faces.nx",
@@ -45,6 +47,7 @@ void record_lit(PassRecorder& r) {
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
     for (std::uint32_t i = 0; i < 12; ++i) writes.uniform_texel_buffer(3 + i, view_or(lit_reads[i], i));
     writes.storage_buffer(15, r.buffer(Tex::lit));
+    for (std::uint32_t i = 12; i < 16; ++i) writes.uniform_texel_buffer(4 + i, view_or(lit_reads[i], i));
     r.cmd.bind(r.pipeline<LitParams>("gi_lit.comp", {.proxies = false, .walls = r.plan.has_walls_in_window}));
     r.cmd.push_descriptors(writes);
     auto p = r.params<LitParams>(w.width, w.height);

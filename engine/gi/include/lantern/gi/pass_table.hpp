@@ -70,6 +70,17 @@ enum class Tex : std::uint8_t {
     wall_direct_point_nx,
     wall_direct_point_pz,
     wall_direct_point_nz,
+    // gi.proxy_wall_shadows = unfold, with shadow proxies: per face the light at the top of
+    // the face (rgb) and the height where the proxies' shadows end (a, world units); the
+    // wall_direct_* textures then hold the light at the face's foot.
+    wall_upper_px,
+    wall_upper_nx,
+    wall_upper_pz,
+    wall_upper_nz,
+    wall_upper_point_px, // the point-light part, when directional lights follow
+    wall_upper_point_nx,
+    wall_upper_point_pz,
+    wall_upper_point_nz,
     builtin_count
 };
 // Texture ids: the built-ins above, then textures added at run time (add_texture) up to

@@ -30,6 +30,9 @@ struct DirectTextures {
     Texture shadow; // rg8: R = max point-light visibility, G = max directional visibility
     std::array<Texture, 4> wall_direct; // rgba16f per face (+X, -X, +Z, -Z), wall texels only;
                                         // empty for faces not computed (computed_faces)
+    // gi.proxy_wall_shadows = unfold with proxies (unfolds_proxy_shadows): per face the light
+    // at the face's top (rgb) and the height where the proxies' shadows end (a); else empty.
+    std::array<Texture, 4> wall_upper;
 };
 
 struct RefOptions {
@@ -56,6 +59,22 @@ float proxy_width(const GpuShadowProxy& proxy, glm::vec2 perp);
 float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 light, glm::vec2 pixel);
 float directional_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 pixel, glm::vec3 light_dir);
 float light_falloff(float distance, float radius, float softness);
+
+// gi.proxy_wall_shadows = unfold: the wall folded flat onto the ground behind it, so a face
+// point at height y is shaded by the proxies as the ground point y beyond it along the
+// light's direction of travel. `low`: the proxies' visibility at the face's foot (the
+// seed's value), `high`: at its top (height), `edge`: the height where their shadows end
+// (where the length penumbra is half way), in [0, height]; 0 when none falls on it.
+struct FaceProxyShadow {
+    float low = 1.0f, high = 1.0f, edge = 0.0f;
+};
+FaceProxyShadow point_proxy_face_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 light, glm::vec2 target,
+                                        float height);
+FaceProxyShadow directional_proxy_face_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 target,
+                                              glm::vec3 light_dir, float height);
+// True when the frame stores unfolded proxy shadows on wall faces: the setting, proxies,
+// computed faces and walls with a height.
+bool unfolds_proxy_shadows(const FrameInputs& in);
 glm::vec4 wall_face_mask(const WallView& walls, glm::ivec2 cell);
 // The wall faces the GI computes and stores, bit f for face f (+x, -x, +z, -z): the faces
 // gi.wall_faces keeps, none when gi.wall_lighting is off. Faces left out are neither

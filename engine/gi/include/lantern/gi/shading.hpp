@@ -4,7 +4,8 @@
 //
 // Routing (seed 000, "Sampling in the Lit shader"):
 // - wall faces: a mostly horizontal normal (|n.xz| >= 0.5) on a wall cell: the dominant
-//   face's wall-direct + wall-indirect textures, sampled half a GI texel into the wall;
+//   face's wall-direct + wall-indirect textures, sampled half a GI texel into the wall (with
+//   unfolded proxy shadows, wall-direct below the edge height, the upper texture above it);
 // - wall tops: an upward normal (n.y >= 0.5, |n.xz| <= 0.35) on a wall cell: the main
 //   sun's colour by angle, plus the 3x3 average of the ground indirect light around it;
 //   (x the AO of the ground texel just outside the face when gi.ao.walls is on);
@@ -30,6 +31,7 @@ struct ShadingInputs {
     const Texture* shadow = nullptr;
     std::array<const Texture*, 4> wall_direct{};
     std::array<const Texture*, 4> wall_indirect{}; // null entries: none
+    std::array<const Texture*, 4> wall_upper{};    // gi.proxy_wall_shadows unfold; null: none
 };
 
 enum SurfaceKind : int { surface_ground = 0, surface_wall_face = 1, surface_wall_top = 2 };

@@ -49,7 +49,7 @@ struct ComputePipelineDesc {
 };
 
 // VK_KHR_push_descriptor guarantees maxPushDescriptors >= 32.
-inline constexpr std::uint32_t max_pipeline_bindings = 24;
+inline constexpr std::uint32_t max_pipeline_bindings = 32;
 
 struct PipelineFields {
     Device* device_ = nullptr;

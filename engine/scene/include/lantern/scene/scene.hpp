@@ -28,6 +28,11 @@ enum class WindowSnap : std::uint8_t { tile, texel };
 // How the sun's grid shadows are found: the seed's DDA per texel, or a 1D shadow map across
 // the sun direction (exact against the DDA; docs/gi.md, "The sun's shadow map").
 enum class SunShadowMethod : std::uint8_t { dda, shadow_map };
+// How a shadow proxy's shadow falls on a wall face: the whole face top to bottom (the seed's),
+// or unfolded: the wall is folded flat onto the ground behind it, so a face at height y is
+// shaded as the ground y beyond the face along the ray, and the shadow keeps its shape,
+// reaching up the wall as far as its remaining length (docs/gi.md, "Proxy shadows on walls").
+enum class ProxyWallShadows : std::uint8_t { full, unfold };
 
 struct AoSettings {
     bool enabled = true;
@@ -78,6 +83,7 @@ struct GiSettings {
     SunShadowMethod sun_shadow_method = SunShadowMethod::dda;
     int max_lights = 256;                  // point lights kept per frame (emissives bypass it)
     int max_shadow_proxies = 64;
+    ProxyWallShadows proxy_wall_shadows = ProxyWallShadows::full;
 
     friend bool operator==(const GiSettings&, const GiSettings&) = default;
 };

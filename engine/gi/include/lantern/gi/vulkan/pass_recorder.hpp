@@ -29,6 +29,10 @@ struct PipelineSpec {
     bool per_channel = true;
     bool segment_check = true;
     std::uint32_t block_h = 0, group_x = 0, group_y = 0; // 0: the renderer's
+    // The pass's own compile-time switches (FEATURES): code a frame does not use is compiled
+    // out rather than branched over. Lavapipe keeps a shader variant per value of every
+    // push-constant word that decides a branch, so lean shaders also keep those variants small.
+    std::uint32_t features = 0;
 };
 
 class PassRecorder {
