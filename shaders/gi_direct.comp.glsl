@@ -35,26 +35,7 @@ layout(std430, binding = 13) writeonly buffer UpperNZ { uvec2 texels[]; } o_uppe
 
 #include "lantern/gi_shadow.glsl"
 
-struct TexelLight {
-    vec3 color;
-    float shadow;
-    vec3 face[4];
-    // Unfolded proxy shadows (reference_passes.cpp TexelLight): the light at each face's top
-    // and the shadow edge's height summed weighted by the light the shadow takes.
-    vec3 upper[4];
-    float edge_sum[4];
-    float edge_weight[4];
-};
-
-void add_face(inout TexelLight t, int f, vec3 light, float grid, vec3 s) {
-    float low = min(grid, s.x), high = min(grid, s.y);
-    t.face[f] += light * low;
-    t.upper[f] += light * high;
-    float taken = (light.r + light.g + light.b) * (high - low);
-    t.edge_sum[f] += taken * s.z;
-    t.edge_weight[f] += taken;
-}
-float face_edge(TexelLight t, int f) { return t.edge_weight[f] > 0.0 ? t.edge_sum[f] / t.edge_weight[f] : 0.0; }
+#include "lantern/gi_texel_light.glsl"
 
 float light_distance(vec2 p, vec2 pos) {
     precise vec2 d = pos - p;
@@ -151,12 +132,7 @@ void main() {
         vec2 shadow[4];
         for (int k = 0; k < 4; ++k) {
             int x = o.x + k;
-            TexelLight t;
-            t.color = vec3(0.0);
-            t.shadow = 0.0;
-            t.face[0] = t.face[1] = t.face[2] = t.face[3] = vec3(0.0);
-            t.upper[0] = t.upper[1] = t.upper[2] = t.upper[3] = vec3(0.0);
-            for (int f = 0; f < 4; ++f) t.edge_sum[f] = t.edge_weight[f] = 0.0;
+            TexelLight t = no_texel_light();
             bool wall = false;
             if (x < pc.size.x) {
                 vec2 p = texel_center(x, y);

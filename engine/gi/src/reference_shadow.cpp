@@ -162,6 +162,24 @@ float proxy_occlusion(const GpuShadowProxy& p, glm::vec2 pixel, glm::vec2 dir_sh
 
 } // namespace
 
+namespace {
+
+// The axis of proxy p's shadow from a point light at `light` for a ray along `dir`; false
+// when the proxy casts none (it is at the light, or behind it).
+bool point_shadow_axis(const GpuShadowProxy& p, glm::vec2 light, glm::vec2 dir, glm::vec2& dir_shadow) {
+    const glm::vec2 to_proxy = glm::vec2(p.position_size.x, p.position_size.y) - light;
+    const float proxy_dist = std::sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
+    if (proxy_dist < 1e-4f) return false;
+    const glm::vec2 dir_flat = to_proxy / proxy_dist;
+    // End-cap blend: rotate the shadow axis from the pixel ray towards the proxy axis.
+    const glm::vec2 blended = glm::mix(dir, dir_flat, saturate(p.lengths.y));
+    const float blended_len = std::sqrt(blended.x * blended.x + blended.y * blended.y);
+    dir_shadow = blended_len > 1e-6f ? blended / blended_len : dir_flat;
+    return glm::dot(to_proxy, dir_shadow) > 0.0f;
+}
+
+} // namespace
+
 float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 light, glm::vec2 pixel) {
     if (proxies.empty()) return 1.0f;
     const glm::vec2 ray = pixel - light;
@@ -170,15 +188,8 @@ float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 ligh
     const glm::vec2 dir = ray / ray_len;
     float shadow = 1.0f;
     for (const GpuShadowProxy& p : proxies) {
-        const glm::vec2 to_proxy = glm::vec2(p.position_size.x, p.position_size.y) - light;
-        const float proxy_dist = std::sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
-        if (proxy_dist < 1e-4f) continue;
-        const glm::vec2 dir_flat = to_proxy / proxy_dist;
-        // End-cap blend: rotate the shadow axis from the pixel ray towards the proxy axis.
-        const glm::vec2 blended = glm::mix(dir, dir_flat, saturate(p.lengths.y));
-        const float blended_len = std::sqrt(blended.x * blended.x + blended.y * blended.y);
-        const glm::vec2 dir_shadow = blended_len > 1e-6f ? blended / blended_len : dir_flat;
-        if (glm::dot(to_proxy, dir_shadow) <= 0.0f) continue; // proxy behind the light
+        glm::vec2 dir_shadow;
+        if (!point_shadow_axis(p, light, dir, dir_shadow)) continue;
         shadow = std::min(shadow, 1.0f - proxy_occlusion(p, pixel, dir_shadow));
         if (shadow <= 0.001f) break;
     }
@@ -220,15 +231,9 @@ FaceProxyShadow point_proxy_face_shadow(std::span<const GpuShadowProxy> proxies,
     if (!(s.high > s.low)) return s;
     float reach = 0.0f;
     for (const GpuShadowProxy& p : proxies) { // the proxies shading the foot, as point_proxy_shadow
-        const glm::vec2 to_proxy = glm::vec2(p.position_size.x, p.position_size.y) - light;
-        const float proxy_dist = std::sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
-        if (proxy_dist < 1e-4f) continue;
-        const glm::vec2 dir_flat = to_proxy / proxy_dist;
-        const glm::vec2 blended = glm::mix(dir, dir_flat, saturate(p.lengths.y));
-        const float blended_len = std::sqrt(blended.x * blended.x + blended.y * blended.y);
-        const glm::vec2 dir_shadow = blended_len > 1e-6f ? blended / blended_len : dir_flat;
-        if (glm::dot(to_proxy, dir_shadow) <= 0.0f) continue;
-        if (proxy_occlusion(p, target, dir_shadow) > 0.0f) reach = std::max(reach, unfolded_reach(p, target, dir, dir_shadow));
+        glm::vec2 dir_shadow;
+        if (point_shadow_axis(p, light, dir, dir_shadow) && proxy_occlusion(p, target, dir_shadow) > 0.0f)
+            reach = std::max(reach, unfolded_reach(p, target, dir, dir_shadow));
     }
     s.edge = std::clamp(reach, 0.0f, height);
     return s;

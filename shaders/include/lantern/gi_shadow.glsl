@@ -173,6 +173,19 @@ float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
     return edge * len;
 }
 
+// The axis of proxy p's shadow from a point light (reference_shadow.cpp point_shadow_axis).
+bool point_shadow_axis(GpuShadowProxy p, vec2 light, vec2 dir, out vec2 dir_shadow) {
+    vec2 to_proxy = p.position_size.xy - light;
+    float proxy_dist = sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
+    dir_shadow = vec2(0.0);
+    if (proxy_dist < 1e-4) return false;
+    vec2 dir_flat = to_proxy / proxy_dist;
+    vec2 blended = mix(dir, dir_flat, saturate(p.lengths.y));
+    float blended_len = sqrt(blended.x * blended.x + blended.y * blended.y);
+    dir_shadow = blended_len > 1e-6 ? blended / blended_len : dir_flat;
+    return dot(to_proxy, dir_shadow) > 0.0;
+}
+
 float point_proxy_shadow(vec2 light, vec2 pixel) {
     if (!HAS_PROXIES) return 1.0;
     vec2 ray = pixel - light;
@@ -182,14 +195,8 @@ float point_proxy_shadow(vec2 light, vec2 pixel) {
     float shadow = 1.0;
     for (int i = 0; i < pc.counts.w; ++i) {
         GpuShadowProxy p = u_proxies.proxies[i];
-        vec2 to_proxy = p.position_size.xy - light;
-        float proxy_dist = sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
-        if (proxy_dist < 1e-4) continue;
-        vec2 dir_flat = to_proxy / proxy_dist;
-        vec2 blended = mix(dir, dir_flat, saturate(p.lengths.y));
-        float blended_len = sqrt(blended.x * blended.x + blended.y * blended.y);
-        vec2 dir_shadow = blended_len > 1e-6 ? blended / blended_len : dir_flat;
-        if (dot(to_proxy, dir_shadow) <= 0.0) continue;
+        vec2 dir_shadow;
+        if (!point_shadow_axis(p, light, dir, dir_shadow)) continue;
         shadow = min(shadow, 1.0 - proxy_occlusion(p, pixel, dir_shadow));
         if (shadow <= 0.001) break;
     }
@@ -240,15 +247,9 @@ vec3 point_proxy_face_shadow(vec2 light, vec2 target, float height) {
     float reach = 0.0;
     for (int i = 0; i < pc.counts.w; ++i) {
         GpuShadowProxy p = u_proxies.proxies[i];
-        vec2 to_proxy = p.position_size.xy - light;
-        float proxy_dist = sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
-        if (proxy_dist < 1e-4) continue;
-        vec2 dir_flat = to_proxy / proxy_dist;
-        vec2 blended = mix(dir, dir_flat, saturate(p.lengths.y));
-        float blended_len = sqrt(blended.x * blended.x + blended.y * blended.y);
-        vec2 dir_shadow = blended_len > 1e-6 ? blended / blended_len : dir_flat;
-        if (dot(to_proxy, dir_shadow) <= 0.0) continue;
-        if (proxy_occlusion(p, target, dir_shadow) > 0.0) reach = max(reach, unfolded_reach(p, target, dir, dir_shadow));
+        vec2 dir_shadow;
+        if (point_shadow_axis(p, light, dir, dir_shadow) && proxy_occlusion(p, target, dir_shadow) > 0.0)
+            reach = max(reach, unfolded_reach(p, target, dir, dir_shadow));
     }
     s.z = clamp(reach, 0.0, height);
     return s;
