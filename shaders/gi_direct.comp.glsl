@@ -7,7 +7,7 @@
 struct DirectParams {
     float light_softness; // falloff exponent (gi.light_softness)
     float face_exponent;  // gi.wall_face_exponent
-    uint faces;           // computed_faces: bit f = face f is computed and stored
+    int pad_f;            // (the faces computed are FACES, a specialisation constant)
     float wall_height;    // unfolded proxy shadows: the face's height
     int pad0, pad1, pad2, pad3;
 };
@@ -95,7 +95,7 @@ void emissive_wall_light(int i, vec2 p, vec4 mask, float softness, inout TexelLi
 }
 
 void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
-    vec4 mask = wall_face_mask(cell) * face_bits_mask(pc.pass.faces);
+    vec4 mask = wall_face_mask(cell) * face_bits_mask(FACES);
     float softness = pc.pass.light_softness;
     FOR_EACH_BIN_LIGHT(i) {
         if (i < pc.counts.x) point_wall_light(i, cell, p, mask, softness, t);
@@ -139,13 +139,13 @@ void main() {
                 ivec2 cell = ivec2(floor(p));
                 wall = HAS_WALLS && is_wall(cell);
                 if (!wall) ground_texel(p, t);
-                else if (pc.pass.faces != 0u) wall_texel(cell, p, t); // a wall's ground light is 0
+                else if (FACES != 0u) wall_texel(cell, p, t); // a wall's ground light is 0
             }
             int index = texel_index(x, y);
             o_direct.texels[index] = pack_rgba16f(vec4(t.color, 0.0));
             if (HAS_WALLS) { // otherwise the face textures are cleared once by the host
                 float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
-                uint faces = pc.pass.faces;         // a face not computed has no texture
+                uint faces = FACES;         // a face not computed has no texture
                 if (computes_face(faces, 0)) o_face_px.texels[index] = pack_rgba16f(vec4(t.face[0], has_faces));
                 if (computes_face(faces, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(t.face[1], has_faces));
                 if (computes_face(faces, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(t.face[2], has_faces));

@@ -7,7 +7,7 @@ struct DirectionalParams {
     float wall_height;
     float angle_scale; // gi.directional_angle_scale
     float face_exponent; // gi.wall_face_exponent
-    uint faces;          // computed_faces: bit f = face f is computed and stored
+    int pad_f;            // (the faces computed are FACES, a specialisation constant)
     int pad0, pad1, pad2, pad3;
 };
 #define GI_PASS_PARAMS DirectionalParams
@@ -66,7 +66,7 @@ float sun_visibility(int i, GpuDirectionalLight sun, vec2 from) {
 }
 
 void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
-    vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(pc.pass.faces) : vec4(0.0);
+    vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
     for (int i = 0; i < pc.counts.z; ++i) {
         GpuDirectionalLight sun = u_suns.suns[i];
         vec3 color = sun.color_multiplier.rgb * sun_angle(sun);
@@ -137,7 +137,7 @@ void main() {
             o_direct.texels[index] = pack_rgba16f(vec4(direct.rgb + t.color, direct.a));
             if (HAS_WALLS) {
                 float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
-                uint faces = pc.pass.faces;         // a face not computed has no texture
+                uint faces = FACES;         // a face not computed has no texture
                 if (UPPER) merge_upper(t, faces, index);
                 if (computes_face(faces, 0))
                     o_face_px.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_px_in, index).rgb + t.face[0], has_faces));

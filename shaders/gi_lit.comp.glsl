@@ -9,7 +9,7 @@ struct LitParams {
     int tone_map;      // scene::ToneMap
     float white_point;
     float angle_scale; // gi.directional_angle_scale
-    uint faces;        // computed_faces: the faces that have light (others show the top)
+    int pad_f;            // (the faces computed are FACES, a specialisation constant)
     float wall_lighting, ao_walls; // gi_shading.options x, y
 
 };
@@ -59,7 +59,7 @@ void lit_surface_at(int x, int y, out vec3 pos, out vec3 normal) {
     int res = pc.size.w;
     int lx = int(floor((p.x - float(cell.x)) * float(res))), lz = int(floor((p.y - float(cell.y)) * float(res)));
     int band = max(1, res / 4);
-    vec4 mask = wall_face_mask(cell) * face_bits_mask(pc.pass.faces);
+    vec4 mask = wall_face_mask(cell) * face_bits_mask(FACES);
     int distance[4] = int[4](res - 1 - lx, lx, res - 1 - lz, lz);
     const vec3 normals[4] = vec3[4](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1));
     int best = -1;

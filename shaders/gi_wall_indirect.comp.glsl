@@ -4,7 +4,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 struct WallIndirectParams {
-    uint faces; // computed_faces: bit f = face f is computed and stored
+    int pad_f;            // (the faces computed are FACES, a specialisation constant)
     int pad0, pad1, pad2, pad3, pad4, pad5, pad6;
 };
 #define GI_PASS_PARAMS WallIndirectParams
@@ -45,11 +45,11 @@ void main() {
                 vec2 p = texel_center(x, y);
                 ivec2 cell = ivec2(floor(p));
                 if (is_wall(cell)) {
-                    vec4 mask = wall_face_mask(cell) * face_bits_mask(pc.pass.faces);
+                    vec4 mask = wall_face_mask(cell) * face_bits_mask(FACES);
                     for (int f = 0; f < 4; ++f) v[f] = face_value(f, mask, p);
                 }
             }
-            uint faces = pc.pass.faces; // a face not computed has no texture
+            uint faces = FACES; // a face not computed has no texture
             if (computes_face(faces, 0)) o_face_px.texels[index] = pack_rgba16f(v[0]);
             if (computes_face(faces, 1)) o_face_nx.texels[index] = pack_rgba16f(v[1]);
             if (computes_face(faces, 2)) o_face_pz.texels[index] = pack_rgba16f(v[2]);

@@ -16,6 +16,7 @@ layout(local_size_x_id = 1, local_size_y_id = 2) in;  // workgroup size (blocks)
 layout(constant_id = 3) const bool HAS_PROXIES = true; // false: proxy loops compiled out
 layout(constant_id = 5) const bool HAS_WALLS = true;   // false: no wall tile in the window
 layout(constant_id = 8) const uint FEATURES = 0u;      // the pass's own switches (PipelineSpec::features)
+layout(constant_id = 9) const uint FACES = 15u;        // computed_faces: bit f = wall face f is computed
 
 const uint BLOCK_W = 4;
 

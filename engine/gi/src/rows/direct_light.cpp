@@ -88,13 +88,13 @@ struct LightBinParams {
 };
 struct DirectParams {
     float light_softness = 0, face_exponent = 1;
-    std::uint32_t faces = 15; // computed_faces
+    std::int32_t pad_f = 0; // (the faces computed: PipelineSpec::faces)
     float wall_height = 0;
     std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0;
 };
 struct DirectionalParams {
     float wall_height = 0, angle_scale = 0, face_exponent = 1;
-    std::uint32_t faces = 15; // computed_faces
+    std::int32_t pad_f = 0; // (the faces computed: PipelineSpec::faces)
     std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0;
 };
 // FEATURES bits of the direct and directional shaders.
@@ -209,7 +209,8 @@ void record_direct(PassRecorder& r) {
 
     r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
                                                           .walls = r.plan.has_walls_in_window,
-                                                          .features = unfolds_proxy_shadows(in) ? feature_upper : 0u}));
+                                                          .features = unfolds_proxy_shadows(in) ? feature_upper : 0u,
+                                                          .faces = faces}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
                                .uniform_buffer(1, r.proxies())
@@ -228,7 +229,6 @@ void record_direct(PassRecorder& r) {
     auto p = r.params<DirectParams>(w.width, w.height);
     p.pass.light_softness = in.settings.light_softness;
     p.pass.face_exponent = in.settings.wall_face_exponent;
-    p.pass.faces = faces;
     p.pass.wall_height = in.wall_height;
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
@@ -298,7 +298,8 @@ void record_directional(PassRecorder& r) {
         r.pipeline<DirectionalParams>("gi_directional.comp", {.proxies = !in.proxies.empty(),
                                                                .walls = r.plan.has_walls_in_window,
                                                                .features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
-                                                                           (sun_map ? feature_sun_map : 0u)}));
+                                                                           (sun_map ? feature_sun_map : 0u),
+                                                               .faces = faces}));
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
     // Reads the point-light results, writes the contract textures (never in place).
@@ -316,7 +317,7 @@ void record_directional(PassRecorder& r) {
     p.pass = {.wall_height = in.wall_height,
               .angle_scale = in.settings.directional_angle_scale,
               .face_exponent = in.settings.wall_face_exponent,
-              .faces = faces};
+};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();

@@ -28,7 +28,7 @@ struct LitParams {
     std::uint32_t present = 0; // bit i: lit_reads[i] is bound
     std::int32_t tone_map = 0;
     float white_point = 0, angle_scale = 0;
-    std::uint32_t faces = 0; // computed_faces
+    std::int32_t pad_f = 0; // (the faces computed: PipelineSpec::faces)
     float wall_lighting = 1, ao_walls = 0;
 };
 
@@ -48,13 +48,14 @@ void record_lit(PassRecorder& r) {
     for (std::uint32_t i = 0; i < 12; ++i) writes.uniform_texel_buffer(3 + i, view_or(lit_reads[i], i));
     writes.storage_buffer(15, r.buffer(Tex::lit));
     for (std::uint32_t i = 12; i < 16; ++i) writes.uniform_texel_buffer(4 + i, view_or(lit_reads[i], i));
-    r.cmd.bind(r.pipeline<LitParams>("gi_lit.comp", {.proxies = false, .walls = r.plan.has_walls_in_window}));
+    r.cmd.bind(r.pipeline<LitParams>("gi_lit.comp", {.proxies = false, .walls = r.plan.has_walls_in_window,
+                                                .faces = computed_faces(r.in.settings)}));
     r.cmd.push_descriptors(writes);
     auto p = r.params<LitParams>(w.width, w.height);
     const scene::GiSettings& s = r.in.settings;
     p.pass = {.wall_height = r.in.wall_height, .present = present, .tone_map = std::int32_t(s.tone_map),
               .white_point = s.white_point, .angle_scale = s.directional_angle_scale,
-              .faces = computed_faces(s), .wall_lighting = s.wall_lighting ? 1.0f : 0.0f,
+              .wall_lighting = s.wall_lighting ? 1.0f : 0.0f,
               .ao_walls = s.ao.walls ? 1.0f : 0.0f};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);

@@ -230,7 +230,7 @@ const gpu::ComputePipeline& Renderer::pipeline(ShaderLookup shaders, const char*
                                                std::span<const gpu::ScalarKind> kinds) {
     return pipelines_->get(shaders, shader, kinds, spec.block_h ? spec.block_h : block_h_, spec.group_x ? spec.group_x : group_x_,
                            spec.group_y ? spec.group_y : group_y_, spec.proxies, spec.walls, spec.per_channel,
-                           spec.segment_check, spec.features);
+                           spec.segment_check, spec.features, spec.faces);
 }
 
 } // namespace lantern::gi::vk

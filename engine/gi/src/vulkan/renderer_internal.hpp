@@ -33,14 +33,15 @@ void check_params_layout(const char* shader, std::span<const std::uint32_t> spir
 // Pipelines by (shader, specialisation), created on first use and kept.
 struct Renderer::Pipelines {
     gpu::Device* device = nullptr;
-    std::map<std::tuple<ShaderLookup, std::string, bool, bool, bool, bool, std::uint32_t>, gpu::ComputePipeline> cache;
+    std::map<std::tuple<ShaderLookup, std::string, bool, bool, bool, bool, std::uint32_t, std::uint32_t>, gpu::ComputePipeline>
+        cache;
 
     const gpu::ComputePipeline& get(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds,
                                     std::uint32_t block_h, std::uint32_t gx, std::uint32_t gy, bool proxies = true,
                                     bool walls = true, bool per_channel = true, bool segment_check = true,
-                                    std::uint32_t features = 0) {
+                                    std::uint32_t features = 0, std::uint32_t faces = 15) {
         if (!shaders) shaders = lantern_gi_shaders_spirv;
-        auto key = std::make_tuple(shaders, std::string(shader), proxies, walls, per_channel, segment_check, features);
+        auto key = std::make_tuple(shaders, std::string(shader), proxies, walls, per_channel, segment_check, features, faces);
         auto it = cache.find(key);
         if (it != cache.end()) return it->second;
         gpu::ComputePipelineDesc desc;
@@ -51,7 +52,8 @@ struct Renderer::Pipelines {
         desc.specialization = {{spec_block_h, block_h},       {spec_group_x, gx},
                                {spec_group_y, gy},            {spec_has_proxies, proxies ? 1u : 0u},
                                {spec_has_walls, walls ? 1u : 0u}, {spec_per_channel, per_channel ? 1u : 0u},
-                               {spec_segment_check, segment_check ? 1u : 0u}, {spec_features, features}};
+                               {spec_segment_check, segment_check ? 1u : 0u}, {spec_features, features},
+                               {spec_faces, faces}};
         if (std::string(shader) == "gi_direct.comp" || std::string(shader) == "gi_light_bins.comp")
             desc.specialization.push_back({spec_max_lights, max_gpu_lights});
         desc.push_constant_size = sizeof(GiPassParams);

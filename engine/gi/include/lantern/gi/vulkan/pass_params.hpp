@@ -68,6 +68,7 @@ enum SpecId : unsigned {
     spec_per_channel = 6,
     spec_segment_check = 7,
     spec_features = 8, // a pass's own compile-time switches (FEATURES in gi_common.glsl)
+    spec_faces = 9,    // computed_faces (FACES)
 };
 
 inline constexpr int max_gpu_lights = 2048;   // point lights + emissives: one 64 KiB UBO

@@ -33,6 +33,7 @@ struct PipelineSpec {
     // out rather than branched over. Lavapipe keeps a shader variant per value of every
     // push-constant word that decides a branch, so lean shaders also keep those variants small.
     std::uint32_t features = 0;
+    std::uint32_t faces = 15; // computed_faces (FACES): constant for a configuration, so compiled in
 };
 
 class PassRecorder {
