@@ -1,13 +1,8 @@
 // Wall indirect: each exposed face of a wall texel takes the indirect light of the texel
 // one world unit across that face (clamped to the window); ground texels stay zero.
-// Parameters: WallIndirectParams.
+// No parameters of its own; the faces computed are FACES (a specialisation constant).
 #version 450
 #extension GL_GOOGLE_include_directive : require
-struct WallIndirectParams {
-    int pad_f;            // (the faces computed are FACES, a specialisation constant)
-    int pad0, pad1, pad2, pad3, pad4, pad5, pad6;
-};
-#define GI_PASS_PARAMS WallIndirectParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;

@@ -170,11 +170,6 @@ void reference_blur_row(ReferenceContext& c) {
 
 // ---- wall-face indirect
 
-struct WallIndirectParams {
-    std::int32_t pad_f = 0; // (the faces computed: PipelineSpec::faces)
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0, pad4 = 0, pad5 = 0, pad6 = 0;
-};
-
 void record_wall_indirect(PassRecorder& r) {
     const GiWindow& w = r.in.window;
     const std::uint32_t faces = computed_faces(r.in.settings);
@@ -188,10 +183,9 @@ void record_wall_indirect(PassRecorder& r) {
         const Tex t = Tex(int(Tex::wall_indirect_px) + f);
         writes.storage_buffer(std::uint32_t(3 + f), r.buffer(computes_face(faces, f) ? t : first));
     }
-    r.cmd.bind(r.pipeline<WallIndirectParams>("gi_wall_indirect.comp", {.proxies = false, .faces = faces}));
+    r.cmd.bind(r.pipeline("gi_wall_indirect.comp", {.proxies = false, .faces = faces}));
     r.cmd.push_descriptors(writes);
-    auto p = r.params<WallIndirectParams>(w.width, w.height);
-    r.cmd.push_constants(p);
+    r.cmd.push_constants(r.params(w.width, w.height));
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
 }
