@@ -1,7 +1,8 @@
 // Direct light from point lights (DDA-shadowed, proxy-shadowed) and emissives (no
 // shadows, no cap): ground colour (rgba16f), shadow map R (rg8), and per-face wall light
 // (4 x rgba16f) on wall texels. Each workgroup visits only the lights gi_light_bins listed
-// for its footprint. Parameters: DirectParams.
+// for its footprint. Grid shadows by the lights' shadow maps (gi_point_map.glsl) or the
+// DDA. Parameters: DirectParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 struct DirectParams {
@@ -9,18 +10,20 @@ struct DirectParams {
     float face_exponent;  // gi.wall_face_exponent
     int pad_f;            // (the faces computed are FACES, a specialisation constant)
     float wall_height;    // unfolded proxy shadows: the face's height
-    int pad0, pad1, pad2, pad3;
+    int proxy_per_light;  // 1: gi_light_bins wrote a proxy mask per (bin, point light)
+    int pad1, pad2, pad3;
 };
 #define GI_PASS_PARAMS DirectParams
 #include "lantern/gi_common.glsl"
 
-const bool UPPER = (FEATURES & 1u) != 0u; // unfolded proxy shadows: write the upper-face textures
+const bool UPPER = (FEATURES & 1u) != 0u;     // unfolded proxy shadows: write the upper-face textures
+const bool POINT_MAP = (FEATURES & 4u) != 0u; // gi.shadow_method = shadow_map: grid shadows by the lights' maps
 
 layout(constant_id = 4) const int MAX_LIGHTS = 2048; // point lights + emissives (64 KiB UBO)
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
-layout(std140, binding = 2) uniform LightBlock { GpuPointLight lights[MAX_LIGHTS]; } u_lights;
+layout(std140, binding = 2) uniform LightBlock { GpuPointLight lights[MAX_LIGHTS]; } u_lights; // w: gi_point_map.glsl
 layout(std430, binding = 3) writeonly buffer DirectOut { uvec2 texels[]; } o_direct;
 layout(std430, binding = 4) writeonly buffer ShadowOut { uvec2 texels[]; } o_shadow; // 4 rg8 texels each
 layout(std430, binding = 5) writeonly buffer FacePX { uvec2 texels[]; } o_face_px;
@@ -32,8 +35,33 @@ layout(std430, binding = 10) writeonly buffer UpperPX { uvec2 texels[]; } o_uppe
 layout(std430, binding = 11) writeonly buffer UpperNX { uvec2 texels[]; } o_upper_nx;
 layout(std430, binding = 12) writeonly buffer UpperPZ { uvec2 texels[]; } o_upper_pz;
 layout(std430, binding = 13) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
+layout(std430, binding = 14) readonly buffer PointMapBins { uvec2 bins[]; } u_point_map; // gi_point_map.glsl
+layout(std430, binding = 15) readonly buffer ProxyBins { uint masks[]; } u_proxy_bins; // gi_light_bins
+
+// The proxies this workgroup's bin lists, in ascending order (gi_shadow.glsl's loops).
+int g_proxy_base;
+int g_proxy_words;
+int g_bin, g_bins_total;
+#define GI_PROXY_LIST
+int proxy_next(int i) {
+    int j = i + 1;
+    int w = j >> 5;
+    if (w >= g_proxy_words) return pc.counts.w;
+    uint bits = u_proxy_bins.masks[g_proxy_base + w] & (~0u << uint(j & 31));
+    while (bits == 0u) {
+        if (++w >= g_proxy_words) return pc.counts.w;
+        bits = u_proxy_bins.masks[g_proxy_base + w];
+    }
+    return w * 32 + findLSB(bits);
+}
 
 #include "lantern/gi_shadow.glsl"
+#include "lantern/gi_point_map.glsl"
+
+// Point light l's grid visibility of target: its shadow map's, or the seed's DDA (equal).
+float grid_visibility(GpuPointLight l, vec2 target) {
+    return POINT_MAP ? point_map_visibility(l, target) : shadow_dda(l.position_radius.xy, target, l.position_radius.z);
+}
 
 #include "lantern/gi_texel_light.glsl"
 
@@ -49,76 +77,84 @@ vec4 face_weights(vec4 mask, vec2 p, vec2 light_pos) {
     return mask * wall_facing(to_light * inv_len, pc.pass.face_exponent);
 }
 
-// The lights this workgroup's bin lists, in ascending order: point lights first.
+// The lights this workgroup's bin lists, in ascending order: point lights first. lavapipe
+// runs both sides of every branch, so point lights and emissives have loops of their own and
+// a texel's targets (its centre, or two faces) share one code path.
 int g_bin_base;
 int g_bin_words;
 
-#define FOR_EACH_BIN_LIGHT(i)                                                                   \
-    for (int w_ = 0; w_ < g_bin_words; ++w_)                                                    \
-        for (uint bits_ = u_bins.masks[g_bin_base + w_]; bits_ != 0u; bits_ &= bits_ - 1u)      \
+#define FOR_EACH_BIN_LIGHT(i, first, end)                                                        \
+    for (int w_ = (first) >> 5; w_ < ((end) + 31) >> 5; ++w_)                                    \
+        for (uint bits_ = u_bins.masks[g_bin_base + w_] & light_word_mask(w_, first, end); bits_ != 0u; \
+             bits_ &= bits_ - 1u)                                                                \
             for (int i = w_ * 32 + findLSB(bits_), once_ = 1; once_ == 1; once_ = 0)
 
-void point_wall_light(int i, ivec2 cell, vec2 p, vec4 mask, float softness, inout TexelLight t) {
-        GpuPointLight l = u_lights.lights[i];
-        vec2 pos = l.position_radius.xy;
-        float radius = l.position_radius.z;
-        float dist = light_distance(p, pos);
-        if (dist > radius) return;
-        vec4 weight = face_weights(mask, p, pos);
-        if (weight == vec4(0.0)) return;
-        vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
-        for (int f = 0; f < 4; ++f) {
-            if (!(weight[f] > 0.0)) continue;
-            vec2 target = face_position(f, cell, p);
-            if (UPPER) {
-                add_face(t, f, contribution * weight[f], shadow_dda(pos, target, radius),
-                         point_proxy_face_shadow(pos, target, pc.pass.wall_height));
-                continue;
-            }
-            float shadow = min(shadow_dda(pos, target, radius), point_proxy_shadow(pos, target));
-            t.face[f] += contribution * (weight[f] * shadow);
+// The bits of mask word w that stand for lights in [first, end).
+uint light_word_mask(int w, int first, int end) {
+    int lo = clamp(first - w * 32, 0, 32), hi = clamp(end - w * 32, 0, 32);
+    uint below_hi = hi >= 32 ? ~0u : (1u << uint(hi)) - 1u;
+    uint below_lo = lo >= 32 ? ~0u : (1u << uint(lo)) - 1u;
+    return below_hi & ~below_lo;
+}
+
+// Point light i at a texel: on the ground its colour and shadow; on a wall each face that
+// can face the light (one across x, one across z), shadowed by its own traversal to just
+// outside the face.
+void point_light(int i, bool wall, ivec2 cell, vec2 p, vec4 mask, float softness, inout TexelLight t) {
+    if (pc.pass.proxy_per_light != 0) // this light's proxies in this bin (gi_light_bins)
+        g_proxy_base = (g_bins_total + g_bin * pc.counts.x + i) * g_proxy_words;
+    GpuPointLight l = u_lights.lights[i];
+    vec2 pos = l.position_radius.xy;
+    float radius = l.position_radius.z;
+    float dist = light_distance(p, pos);
+    vec4 weight = face_weights(mask, p, pos);
+    int fx = weight.x > 0.0 ? 0 : 1, fz = weight.z > 0.0 ? 2 : 3;
+    vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
+    int targets = dist > radius ? 0 : (wall ? 2 : 1);
+    for (int s = 0; s < targets; ++s) {
+        int f = s == 0 ? fx : fz;
+        float w = s == 0 ? (fx == 0 ? weight.x : weight.y) : (fz == 2 ? weight.z : weight.w);
+        vec2 target = wall ? face_position(f, cell, p) : p;
+        float grid = grid_visibility(l, target);
+        if (UPPER && wall) {
+            add_face(t, f, contribution * w, grid, point_proxy_face_shadow(pos, target, pc.pass.wall_height));
+            continue;
         }
-}
-
-void emissive_wall_light(int i, vec2 p, vec4 mask, float softness, inout TexelLight t) {
-        GpuPointLight l = u_lights.lights[i];
-        vec2 pos = l.position_radius.xy;
-        float radius = l.position_radius.z;
-        float dist = light_distance(p, pos);
-        if (dist > radius) return;
-        vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
-        vec4 weight = face_weights(mask, p, pos);
-        for (int f = 0; f < 4; ++f) {
-            t.face[f] += contribution * weight[f];
-            t.upper[f] += contribution * weight[f];
-        }
-}
-
-void wall_texel(ivec2 cell, vec2 p, inout TexelLight t) {
-    vec4 mask = wall_face_mask(cell) * face_bits_mask(FACES);
-    float softness = pc.pass.light_softness;
-    FOR_EACH_BIN_LIGHT(i) {
-        if (i < pc.counts.x) point_wall_light(i, cell, p, mask, softness, t);
-        else emissive_wall_light(i, p, mask, softness, t);
-    }
-}
-
-void ground_texel(vec2 p, inout TexelLight t) {
-    float softness = pc.pass.light_softness;
-    FOR_EACH_BIN_LIGHT(i) {
-        GpuPointLight l = u_lights.lights[i];
-        vec2 pos = l.position_radius.xy;
-        float radius = l.position_radius.z;
-        float dist = light_distance(p, pos);
-        if (dist > radius) continue;
-        if (i < pc.counts.x) {
-            float shadow = min(shadow_dda(pos, p, radius), point_proxy_shadow(pos, p));
-            t.shadow = max(t.shadow, shadow);
-            t.color += l.color.rgb * light_falloff(dist, radius, softness) * shadow;
+        float shadow = min(grid, point_proxy_shadow(pos, target));
+        if (wall) {
+            add_face_light(t, f, contribution * (w * shadow)); // w = 0: adds 0, as the reference's skip
         } else {
-            t.color += l.color.rgb * light_falloff(dist, radius, softness);
+            t.shadow = max(t.shadow, shadow);
+            t.color += contribution * shadow; // (colour x falloff) x shadow, as the reference
         }
     }
+}
+
+// Emissive light i at a texel (no shadows): the ground colour, or each face's.
+void emissive_light(int i, bool wall, vec2 p, vec4 mask, float softness, inout TexelLight t) {
+    GpuPointLight l = u_lights.lights[i];
+    vec2 pos = l.position_radius.xy;
+    float radius = l.position_radius.z;
+    float dist = light_distance(p, pos);
+    if (dist > radius) return;
+    vec3 contribution = l.color.rgb * light_falloff(dist, radius, softness);
+    if (!wall) {
+        t.color += contribution;
+        return;
+    }
+    vec4 weight = face_weights(mask, p, pos);
+    for (int f = 0; f < 4; ++f) {
+        t.face[f] += contribution * weight[f];
+        if (UPPER) t.upper[f] += contribution * weight[f];
+    }
+}
+
+void texel_light(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
+    vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
+    float softness = pc.pass.light_softness;
+    int points = pc.counts.x, lights = pc.counts.x + pc.counts.y;
+    FOR_EACH_BIN_LIGHT(i, 0, points) point_light(i, wall, cell, p, mask, softness, t);
+    FOR_EACH_BIN_LIGHT(i, points, lights) emissive_light(i, wall, p, mask, softness, t);
 }
 
 void main() {
@@ -126,6 +162,10 @@ void main() {
     if (o.x >= pc.size.x) return;
     g_bin_words = (pc.counts.x + pc.counts.y + 31) >> 5;
     g_bin_base = int(gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * g_bin_words;
+    g_proxy_words = (pc.counts.w + 31) >> 5;
+    g_bin = int(gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x);
+    g_bins_total = int(gl_NumWorkGroups.x * gl_NumWorkGroups.y);
+    g_proxy_base = g_bin * g_proxy_words;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);
         if (y >= pc.size.y) return;
@@ -138,8 +178,8 @@ void main() {
                 vec2 p = texel_center(x, y);
                 ivec2 cell = ivec2(floor(p));
                 wall = HAS_WALLS && is_wall(cell);
-                if (!wall) ground_texel(p, t);
-                else if (FACES != 0u) wall_texel(cell, p, t); // a wall's ground light is 0
+                // A wall's ground light is 0; with no face computed a wall texel has no light.
+                if (!wall || FACES != 0u) texel_light(wall, cell, p, t);
             }
             int index = texel_index(x, y);
             o_direct.texels[index] = pack_rgba16f(vec4(t.color, 0.0));

@@ -19,7 +19,9 @@ class GiGpuCompare : public lantern::test::GpuTest {
   protected:
     // Runs the scene's frame (through `through`) on both backends and compares every texture
     // and the lit image.
-    void compare_scene(const NamedScene& named, Pass through, bool lit) {
+    // With `reference_by_dda`, the reference traces point lights' shadows by the DDA (the
+    // specification) whatever gi.shadow_method says.
+    void compare_scene(const NamedScene& named, Pass through, bool lit, bool reference_by_dda = false) {
         const lantern::scene::Scene& s = named.scene;
         std::string why;
         auto window = compute_window(s.view, s.gi, &why);
@@ -28,7 +30,9 @@ class GiGpuCompare : public lantern::test::GpuTest {
         PassPlan plan = plan_passes(in, lit, through);
         auto gpu = run_vulkan_frame(gi_test::shared_renderer(device()), in, plan);
         ASSERT_TRUE(gpu.ok()) << gpu.error().message;
-        FrameResult ref = run_reference_frame(in, plan);
+        FrameInputs ref_in = in;
+        if (reference_by_dda) ref_in.settings.shadow_method = lantern::scene::ShadowMethod::dda;
+        FrameResult ref = run_reference_frame(ref_in, plan);
         ASSERT_EQ(gpu->textures.size(), ref.textures.size()) << named.name;
         for (const auto& [name, reference] : ref.textures) {
             auto it = gpu->textures.find(name);
@@ -104,6 +108,47 @@ TEST_F(GiGpuCompare, SunShadowMapOnRealMapsAndACheckerboard) {
                 {glm::normalize(glm::vec3(0.35f, -0.9f, -0.2f)), {0.5f, 0.6f, 1.0f}, 0.5f, 4.0f, 0.2f}};
             s.name += " sun map, wall height " + std::to_string(wall_height);
             compare_scene(s, Pass::directional, false);
+        }
+}
+
+// The point lights' shadow maps (gi.shadow_method = shadow_map) on the GPU against the
+// reference tracing every shadow by the DDA: real maps, a checkerboard (rays through tile
+// corners) and a cave with a lattice of lights on tile centres, edges and corners, with
+// proxies and both proxy-wall modes (every face path of the direct shader).
+TEST_F(GiGpuCompare, PointShadowMapsEqualTheDda) {
+    std::vector<NamedScene> scenes;
+    for (auto [file, center] : {std::pair{"den312d.map", glm::vec2(32.0f, 40.0f)}, std::pair{"lak303d.map", glm::vec2(100.0f, 100.0f)}})
+        if (auto s = gi_test::map_scene(file, center, 5)) scenes.push_back(*s);
+    {
+        std::vector<std::string> rows(16, std::string(16, '.'));
+        for (int z = 0; z < 16; ++z)
+            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
+        lantern::scene::Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
+        s.walls = gi_test::grid_from_rows(rows);
+        for (glm::vec2 p : {glm::vec2(4.0f, 4.0f), glm::vec2(7.5f, 8.5f), glm::vec2(11.0f, 6.5f), glm::vec2(9.0001f, 12.0f)})
+            s.point_lights.push_back(gi_test::point(p, {1.0f, 0.9f, 0.7f}, 1.0f, 6.0f));
+        scenes.push_back({"checkerboard", s});
+    }
+    {
+        lantern::scene::Scene s = gi_test::open_scene({12, 12}, {24, 24}, 8);
+        s.walls = gi_test::cave(24, 24, 11u);
+        for (float z = 1.0f; z < 24.0f; z += 3.5f)
+            for (float x = 1.0f; x < 24.0f; x += 4.25f)
+                s.point_lights.push_back(gi_test::point({x, z}, {0.6f, 0.5f, 0.4f}, 0.5f, 5.0f));
+        for (glm::vec2 p : {glm::vec2(6.3f, 7.1f), glm::vec2(15.2f, 12.6f)}) {
+            lantern::scene::ShadowProxy proxy;
+            proxy.position = p;
+            s.shadow_proxies.push_back(proxy);
+        }
+        scenes.push_back({"lattice cave", s});
+    }
+    for (NamedScene& named : scenes)
+        for (auto walls : {lantern::scene::ProxyWallShadows::full, lantern::scene::ProxyWallShadows::unfold}) {
+            NamedScene s = named;
+            s.scene.gi.shadow_method = lantern::scene::ShadowMethod::shadow_map;
+            s.scene.gi.proxy_wall_shadows = walls;
+            s.name += walls == lantern::scene::ProxyWallShadows::full ? " point maps" : " point maps, unfolded";
+            compare_scene(s, Pass::direct, false, true);
         }
 }
 

@@ -50,6 +50,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"padding", {1.3, "1.3"}},
         {"window_snap", {double(int(scene::WindowSnap::texel)), "texel"}},
         {"sun_shadow_method", {double(int(scene::SunShadowMethod::shadow_map)), "shadow_map"}},
+        {"shadow_method", {double(int(scene::ShadowMethod::dda)), "dda"}},
         {"proxy_wall_shadows", {double(int(scene::ProxyWallShadows::unfold)), "unfold"}},
         {"heat_rounds", {9, "9"}},
         {"heat_scale", {double(int(scene::HeatScale::half)), "half"}},
@@ -70,7 +71,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"max_shadow_proxies", {0, "0"}},
     };
     const std::map<std::string, std::string> second = {
-        {"resolution", "5"}, {"padding", "1.5"}, {"window_snap", "tile"}, {"sun_shadow_method", "dda"}, {"proxy_wall_shadows", "full"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
+        {"resolution", "5"}, {"padding", "1.5"}, {"window_snap", "tile"}, {"sun_shadow_method", "dda"}, {"shadow_method", "shadow_map"}, {"proxy_wall_shadows", "full"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
         {"diffusion_rate", "0.5"}, {"diffusion_distance", "2.0"}, {"emission_strength", "0.8"},
         {"range_boost", "0.8"}, {"intensity_multiplier", "1.6"}, {"light_softness", "3.0"},
         {"wall_face_exponent", "3.0"}, {"ao.radius", "3.0"}, {"ao.power", "3.5"}, {"ao.strength", "0.7"}, {"tone_map", "aces"},

@@ -28,12 +28,13 @@ TEST(Reflect, GiShadersDeclareTheBindingsTheirRecordersPush) {
     const std::vector<std::pair<const char*, std::vector<BindingType>>> expected = {
         {"gi_conduction.comp", {B::uniform_texel_buffer, B::uniform_buffer, B::storage_buffer}},
         {"gi_emission.comp", {B::uniform_texel_buffer, B::storage_buffer}},
-        {"gi_light_bins.comp", {B::uniform_buffer, B::storage_buffer}},
+        {"gi_light_bins.comp", {B::uniform_buffer, B::storage_buffer, B::uniform_buffer, B::storage_buffer}},
         {"gi_heat.comp", {B::uniform_texel_buffer, B::uniform_texel_buffer, B::storage_buffer}},
         {"gi_direct.comp",
          {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::storage_buffer, B::storage_buffer,
           B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
-          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer}},
+          B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
+          B::storage_buffer}},
     };
     for (const auto& [shader, bindings] : expected) {
         auto layout = reflect_spirv(lantern_gi_shaders_spirv(shader));

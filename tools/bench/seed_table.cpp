@@ -28,7 +28,8 @@ struct PassNumbers {
 struct RowResult {
     SeedRow row;
     int width = 0, height = 0;
-    std::map<gi::Pass, PassNumbers> passes;
+    std::map<gi::Pass, PassNumbers> passes;  // with gi.shadow_method = shadow_map (the default)
+    PassNumbers direct_by_dda;               // the direct pass with gi.shadow_method = dda
     double total_gpu = 0.0, total_copy = 0.0, total_cpp = 0.0;
 };
 
@@ -42,17 +43,28 @@ Result<RowResult> run_row(gi::vk::Renderer& renderer, const SeedRow& row, const 
     std::string why;
     auto window = gi::compute_window(s.view, s.gi, &why);
     if (!window) return make_error("seed scene has no GI window: " + why, 1);
-    const gi::FrameInputs in = gi::gather_frame_inputs(s, *window);
+    gi::FrameInputs in = gi::gather_frame_inputs(s, *window);
+    in.settings.shadow_method = scene::ShadowMethod::shadow_map;
+    gi::FrameInputs by_dda = in;
+    by_dda.settings.shadow_method = scene::ShadowMethod::dda;
     const gi::PassPlan plan = gi::plan_passes(in, false);
-    RowResult r{row, window->width, window->height, {}, 0, 0, 0};
+    RowResult r{row, window->width, window->height, {}, {}, 0, 0, 0};
     std::map<gi::Pass, std::vector<double>> samples;
+    std::vector<double> dda_samples;
+    // The two shadow methods alternate frame by frame, so that both see the same machine.
     for (int rep = 0; rep <= o.repeats; ++rep) { // rep 0 warms up (pipeline creation)
         auto frame = gi::run_vulkan_frame(renderer, in, plan, false);
         if (!frame) return frame.error();
+        auto dda = gi::run_vulkan_frame(renderer, by_dda, plan, false);
+        if (!dda) return dda.error();
         if (rep == 0) continue;
         for (const gi::PassReport& p : frame->passes)
             if (p.ran) samples[p.pass].push_back(p.gpu_ms);
+        for (const gi::PassReport& p : dda->passes)
+            if (p.ran && p.pass == gi::Pass::direct) dda_samples.push_back(p.gpu_ms);
     }
+    r.direct_by_dda.ran = !dda_samples.empty();
+    r.direct_by_dda.gpu_ms = median(dda_samples);
     for (auto& [pass, v] : samples) {
         PassNumbers& n = r.passes[pass];
         n.ran = true;
@@ -68,6 +80,9 @@ Result<RowResult> run_row(gi::vk::Renderer& renderer, const SeedRow& row, const 
                 r.passes[p.pass].cpp_ms = p.gpu_ms;
                 r.total_cpp += p.gpu_ms;
             }
+        const gi::PassPlan direct_only = gi::plan_passes(by_dda, false, gi::Pass::direct);
+        for (const gi::PassReport& p : gi::run_reference_frame(by_dda, direct_only).passes)
+            if (p.ran && p.pass == gi::Pass::direct) r.direct_by_dda.cpp_ms = p.gpu_ms;
     }
     return r;
 }
@@ -88,6 +103,15 @@ void print_row(const RowResult& r, bool reference) {
         if (reference) std::printf(" %10.2f %8.1f", n.cpp_ms, n.gpu_ms > 0 ? n.cpp_ms / n.gpu_ms : 0.0);
         std::printf("\n");
     }
+    if (r.direct_by_dda.ran) {
+        const PassNumbers& d = r.direct_by_dda;
+        const double map_ms = r.passes.at(gi::Pass::direct).gpu_ms, map_cpp = r.passes.at(gi::Pass::direct).cpp_ms;
+        std::printf("  %-14s %10.3f %10s %8s", "direct by DDA", d.gpu_ms, "", "");
+        if (reference) std::printf(" %10.2f %8.1f", d.cpp_ms, d.gpu_ms > 0 ? d.cpp_ms / d.gpu_ms : 0.0);
+        std::printf("\n  map speed-up: %.1fx on the device", map_ms > 0 ? d.gpu_ms / map_ms : 0.0);
+        if (reference) std::printf(", %.1fx in C++", map_cpp > 0 ? d.cpp_ms / map_cpp : 0.0);
+        std::printf("\n");
+    }
     std::printf("  %-14s %10.3f %10.3f %8.2f", "total", r.total_gpu, r.total_copy,
                 r.total_copy > 0 ? r.total_gpu / r.total_copy : 0.0);
     if (reference) std::printf(" %10.2f %8.1f", r.total_cpp, r.total_gpu > 0 ? r.total_cpp / r.total_gpu : 0.0);
@@ -97,12 +121,12 @@ void print_row(const RowResult& r, bool reference) {
 
 std::string markdown(const std::vector<RowResult>& rows, const std::string& device, bool reference) {
     std::string md = "Device: " + device + "\nMachine: " + describe_machine() + "\n\n";
-    md += "| giRes | Heat Spread Res | Point | Emissive | Directional | DDA | DDA_Directional | HeatSpread | Blur | "
+    md += "| giRes | Heat Spread Res | Point | Emissive | Directional | DDA | DDA by DDA | map speed-up | DDA_Directional | HeatSpread | Blur | "
           "Total (ms) | DDA x copy | Dir x copy | Heat x copy | Blur x copy | Cond x copy | AO x copy | "
           "Emission x copy | WallInd x copy |";
-    md += reference ? " C++ total (ms) |\n" : "\n";
-    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|";
-    md += reference ? "---|\n" : "\n";
+    md += reference ? " C++ total (ms) | C++ DDA | C++ DDA by DDA |\n" : "\n";
+    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|";
+    md += reference ? "---|---|---|\n" : "\n";
     auto get = [](const RowResult& r, gi::Pass p) {
         auto it = r.passes.find(p);
         return it == r.passes.end() ? PassNumbers{} : it->second;
@@ -119,11 +143,17 @@ std::string markdown(const std::vector<RowResult>& rows, const std::string& devi
         const char* scale = r.row.scale == scene::HeatScale::full ? "full" : r.row.scale == scene::HeatScale::half ? "half" : "quarter";
         md += "| " + std::to_string(r.row.resolution) + " | " + scale + " | " + std::to_string(r.row.points) + " | " +
               std::to_string(r.row.emissives) + " | " + std::to_string(r.row.directionals) + " | " + ms(gi::Pass::direct) +
+              " | " + (r.direct_by_dda.ran ? fmt("%.2f", r.direct_by_dda.gpu_ms) : std::string("-")) + " | " +
+              (r.direct_by_dda.ran && get(r, gi::Pass::direct).gpu_ms > 0
+                   ? fmt("%.1fx", r.direct_by_dda.gpu_ms / get(r, gi::Pass::direct).gpu_ms)
+                   : std::string("-")) +
               " | " + ms(gi::Pass::directional) + " | " + ms(gi::Pass::heat) + " | " + ms(gi::Pass::blur) + " | " +
               fmt("%.2f", r.total_gpu) + " | " + ratio(gi::Pass::direct) + " | " + ratio(gi::Pass::directional) + " | " +
               ratio(gi::Pass::heat) + " | " + ratio(gi::Pass::blur) + " | " + ratio(gi::Pass::conduction) + " | " +
               ratio(gi::Pass::ao) + " | " + ratio(gi::Pass::emission) + " | " + ratio(gi::Pass::wall_indirect) + " |";
-        md += reference ? " " + fmt("%.1f", r.total_cpp) + " |\n" : "\n";
+        md += reference ? " " + fmt("%.1f", r.total_cpp) + " | " + fmt("%.1f", get(r, gi::Pass::direct).cpp_ms) + " | " +
+                              fmt("%.1f", r.direct_by_dda.cpp_ms) + " |\n"
+                        : "\n";
     }
     return md;
 }

@@ -1,5 +1,6 @@
 // The reference passes: one function per texel, run over every texel of the window.
 #include "lantern/gi/reference.hpp"
+#include "lantern/gi/point_map.hpp"
 #include "lantern/gi/sun_map.hpp"
 
 #include "lantern/jobs/job_system.hpp"
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace lantern::gi {
 namespace {
@@ -68,7 +70,14 @@ struct TexelLight {
 
 // Point and emissive lights at one wall texel: per-face light, each face shadowed by its
 // own traversal to just outside it.
-void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
+// A point light's grid visibility of `target`: by its shadow map when the frame has them
+// (gi.shadow_method = shadow_map), else by the DDA.
+float point_visibility(const FrameInputs& in, const PointMaps* maps, std::size_t i, glm::vec2 pos, glm::vec2 target,
+                       float radius) {
+    return maps ? point_map_visibility(*maps, in.walls, i, pos, target, radius) : shadow_dda(in.walls, pos, target, radius);
+}
+
+void wall_texel(const FrameInputs& in, const PointMaps* maps, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
     const glm::vec4 mask = wall_face_mask(in.walls, cell) * face_bits_mask(computed_faces(in.settings));
     const bool unfold = unfolds_proxy_shadows(in);
     const float softness = in.settings.light_softness;
@@ -77,7 +86,8 @@ void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight&
         const float inv_len = 1.0f / std::sqrt(std::max(glm::dot(to_light, to_light), 1e-6f));
         return mask * wall_facing(to_light * inv_len, in.settings.wall_face_exponent);
     };
-    for (const GpuPointLight& l : in.point_lights) {
+    for (std::size_t i = 0; i < in.point_lights.size(); ++i) {
+        const GpuPointLight& l = in.point_lights[i];
         const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
         const float radius = l.position_radius.z;
         const float dist = glm::distance(p, pos);
@@ -89,11 +99,11 @@ void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight&
             if (!(weight[f] > 0.0f)) continue;
             const glm::vec2 target = face_position(f, cell, p);
             if (unfold) {
-                out.add_face(f, contribution * weight[f], shadow_dda(in.walls, pos, target, radius),
+                out.add_face(f, contribution * weight[f], point_visibility(in, maps, i, pos, target, radius),
                              point_proxy_face_shadow(proxies_of(in), pos, target, in.wall_height));
                 continue;
             }
-            const float shadow = std::min(shadow_dda(in.walls, pos, target, radius),
+            const float shadow = std::min(point_visibility(in, maps, i, pos, target, radius),
                                           point_proxy_shadow(proxies_of(in), pos, target));
             out.face[f] += contribution * (weight[f] * shadow);
         }
@@ -112,15 +122,16 @@ void wall_texel(const FrameInputs& in, glm::ivec2 cell, glm::vec2 p, TexelLight&
     }
 }
 
-void ground_texel(const FrameInputs& in, glm::vec2 p, TexelLight& out) {
+void ground_texel(const FrameInputs& in, const PointMaps* maps, glm::vec2 p, TexelLight& out) {
     const float softness = in.settings.light_softness;
-    for (const GpuPointLight& l : in.point_lights) {
+    for (std::size_t i = 0; i < in.point_lights.size(); ++i) {
+        const GpuPointLight& l = in.point_lights[i];
         const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
         const float radius = l.position_radius.z;
         const float dist = glm::distance(p, pos);
         if (dist > radius) continue;
         const float shadow =
-            std::min(shadow_dda(in.walls, pos, p, radius), point_proxy_shadow(proxies_of(in), pos, p));
+            std::min(point_visibility(in, maps, i, pos, p, radius), point_proxy_shadow(proxies_of(in), pos, p));
         out.shadow = std::max(out.shadow, shadow);
         out.color += glm::vec3(l.color) * light_falloff(dist, radius, softness) * shadow;
     }
@@ -272,6 +283,9 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
             out.wall_direct[f] = Texture(std::string("wall_direct_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
             if (unfold) out.wall_upper[f] = Texture(std::string("wall_upper_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
         }
+    std::optional<PointMaps> maps;
+    if (in.settings.shadow_method == scene::ShadowMethod::shadow_map && !in.point_lights.empty()) maps = build_point_maps(in);
+    const PointMaps* map = maps ? &*maps : nullptr;
     for_each_row(w, options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
             const glm::vec2 p = w.texel_center(x, y);
@@ -279,9 +293,9 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
             const bool wall = in.walls.is_wall(cell.x, cell.y);
             TexelLight light;
             if (!wall)
-                ground_texel(in, p, light);
+                ground_texel(in, map, p, light);
             else if (faces != 0) // a wall texel's ground light is zero; its faces hold its light
-                wall_texel(in, cell, p, light);
+                wall_texel(in, map, cell, p, light);
             store_rgb(out.direct, x, y, light.color, 0.0f);
             const float shadow[2] = {wall ? 0.0f : light.shadow, 0.0f};
             out.shadow.store(x, y, shadow);

@@ -164,6 +164,17 @@ float proxy_occlusion(const GpuShadowProxy& p, glm::vec2 pixel, glm::vec2 dir_sh
 
 namespace {
 
+// Beyond this distance from its position proxy p occludes nothing: its shadow is at most
+// max_length + penumbra_length long and its width plus penumbra_width wide (the GPU's
+// gi_light_bins lists per workgroup only the proxies within it; gi_types.glsl's twin).
+bool out_of_reach(const GpuShadowProxy& p, glm::vec2 point) {
+    const float along = std::max(p.lengths.x + p.lengths.w, 0.0f);
+    const float across = std::abs(p.position_size.z) + std::abs(p.position_size.w) + std::max(p.lengths.z, 0.0f);
+    const float reach = std::sqrt(along * along + across * across) * 1.0001f + 1e-3f;
+    const glm::vec2 d = point - glm::vec2(p.position_size.x, p.position_size.y);
+    return d.x * d.x + d.y * d.y > reach * reach;
+}
+
 // The axis of proxy p's shadow from a point light at `light` for a ray along `dir`; false
 // when the proxy casts none (it is at the light, or behind it).
 bool point_shadow_axis(const GpuShadowProxy& p, glm::vec2 light, glm::vec2 dir, glm::vec2& dir_shadow) {
@@ -189,7 +200,7 @@ float point_proxy_shadow(std::span<const GpuShadowProxy> proxies, glm::vec2 ligh
     float shadow = 1.0f;
     for (const GpuShadowProxy& p : proxies) {
         glm::vec2 dir_shadow;
-        if (!point_shadow_axis(p, light, dir, dir_shadow)) continue;
+        if (out_of_reach(p, pixel) || !point_shadow_axis(p, light, dir, dir_shadow)) continue;
         shadow = std::min(shadow, 1.0f - proxy_occlusion(p, pixel, dir_shadow));
         if (shadow <= 0.001f) break;
     }
@@ -232,7 +243,7 @@ FaceProxyShadow point_proxy_face_shadow(std::span<const GpuShadowProxy> proxies,
     float reach = 0.0f;
     for (const GpuShadowProxy& p : proxies) { // the proxies shading the foot, as point_proxy_shadow
         glm::vec2 dir_shadow;
-        if (point_shadow_axis(p, light, dir, dir_shadow) && proxy_occlusion(p, target, dir_shadow) > 0.0f)
+        if (!out_of_reach(p, target) && point_shadow_axis(p, light, dir, dir_shadow) && proxy_occlusion(p, target, dir_shadow) > 0.0f)
             reach = std::max(reach, unfolded_reach(p, target, dir, dir_shadow));
     }
     s.edge = std::clamp(reach, 0.0f, height);

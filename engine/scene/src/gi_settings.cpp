@@ -42,6 +42,11 @@ constexpr std::array<EnumName<SunShadowMethod>, 2> sun_shadow_method_names{{
     {"shadow_map", SunShadowMethod::shadow_map},
 }};
 
+constexpr std::array<EnumName<ShadowMethod>, 2> shadow_method_names{{
+    {"dda", ShadowMethod::dda},
+    {"shadow_map", ShadowMethod::shadow_map},
+}};
+
 constexpr std::array<EnumName<ProxyWallShadows>, 2> proxy_wall_shadows_names{{
     {"full", ProxyWallShadows::full},
     {"unfold", ProxyWallShadows::unfold},
@@ -77,7 +82,7 @@ struct EnumField {
     std::span<const EnumName<E>> names;
 };
 using FieldTarget = std::variant<FloatField, IntField, BoolField, EnumField<HeatScale>, EnumField<ToneMap>,
-                                 EnumField<GiMethod>, EnumField<WindowSnap>, EnumField<SunShadowMethod>,
+                                 EnumField<GiMethod>, EnumField<WindowSnap>, EnumField<ShadowMethod>, EnumField<SunShadowMethod>,
                                  EnumField<ProxyWallShadows>>;
 
 struct GiField {
@@ -87,7 +92,7 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 34> gi_fields(GiSettings& gi) {
+std::array<GiField, 35> gi_fields(GiSettings& gi) {
     return {{
         {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
@@ -119,6 +124,7 @@ std::array<GiField, 34> gi_fields(GiSettings& gi) {
         {"tone_map", EnumField<ToneMap>{&gi.tone_map, tone_map_names}},
         {"white_point", FloatField{&gi.white_point, greater_than(0.0)}},
         {"directional_angle_scale", FloatField{&gi.directional_angle_scale, between(0.0, 1.0)}},
+        {"shadow_method", EnumField<ShadowMethod>{&gi.shadow_method, shadow_method_names}},
         {"sun_shadow_method", EnumField<SunShadowMethod>{&gi.sun_shadow_method, sun_shadow_method_names}},
         {"max_lights", IntField{&gi.max_lights, {0, 4096}}},
         {"max_shadow_proxies", IntField{&gi.max_shadow_proxies, {0, 256}}},

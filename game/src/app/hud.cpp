@@ -180,6 +180,11 @@ HudActions Hud::draw(const HudInputs& in) {
         if (ImGui::Checkbox("unfold proxy shadows", &unfold))
             g.proxy_wall_shadows = unfold ? scene::ProxyWallShadows::unfold : scene::ProxyWallShadows::full;
         ImGui::SameLine();
+        // gi.shadow_method: point lights' shadows by their angular maps (same image, other cost).
+        bool point_maps = g.shadow_method == scene::ShadowMethod::shadow_map;
+        if (ImGui::Checkbox("light shadow maps", &point_maps))
+            g.shadow_method = point_maps ? scene::ShadowMethod::shadow_map : scene::ShadowMethod::dda;
+        ImGui::SameLine();
         // gi.sun_shadow_method: the sun's shadows by the 1D shadow map (same image, other cost).
         bool sun_map = g.sun_shadow_method == scene::SunShadowMethod::shadow_map;
         if (ImGui::Checkbox("sun shadow map", &sun_map))

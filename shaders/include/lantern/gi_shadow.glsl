@@ -173,6 +173,13 @@ float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
     return edge * len;
 }
 
+// The shadow proxies a point light's loops visit: all of them, unless the including shader
+// defines GI_PROXY_LIST and its own proxy_next (the direct pass: the proxies its
+// workgroup's bin lists; one left out occludes nothing there, so the result is the same).
+#ifndef GI_PROXY_LIST
+int proxy_next(int i) { return i + 1; }
+#endif
+
 // The axis of proxy p's shadow from a point light (reference_shadow.cpp point_shadow_axis).
 bool point_shadow_axis(GpuShadowProxy p, vec2 light, vec2 dir, out vec2 dir_shadow) {
     vec2 to_proxy = p.position_size.xy - light;
@@ -193,7 +200,7 @@ float point_proxy_shadow(vec2 light, vec2 pixel) {
     if (ray_len < 1e-4) return 1.0;
     vec2 dir = ray / ray_len;
     float shadow = 1.0;
-    for (int i = 0; i < pc.counts.w; ++i) {
+    for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
         GpuShadowProxy p = u_proxies.proxies[i];
         vec2 dir_shadow;
         if (!point_shadow_axis(p, light, dir, dir_shadow)) continue;
@@ -245,7 +252,7 @@ vec3 point_proxy_face_shadow(vec2 light, vec2 target, float height) {
     s.y = point_proxy_shadow(light, target + dir * height);
     if (!(s.y > s.x)) return s;
     float reach = 0.0;
-    for (int i = 0; i < pc.counts.w; ++i) {
+    for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
         GpuShadowProxy p = u_proxies.proxies[i];
         vec2 dir_shadow;
         if (point_shadow_axis(p, light, dir, dir_shadow) && proxy_occlusion(p, target, dir_shadow) > 0.0)

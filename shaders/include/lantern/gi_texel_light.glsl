@@ -26,13 +26,22 @@ TexelLight no_texel_light() {
 }
 
 // Light `light` reaching face f with grid visibility `grid` and the proxies' (foot, top, edge) `s`.
+// f may vary per invocation: every face adds, the others zero (exact: x + 0 = x), so no
+// face array is indexed dynamically (lavapipe runs every branch of an if anyway).
 void add_face(inout TexelLight t, int f, vec3 light, float grid, vec3 s) {
     float low = min(grid, s.x), high = min(grid, s.y);
-    t.face[f] += light * low;
-    t.upper[f] += light * high;
     float taken = (light.r + light.g + light.b) * (high - low);
-    t.edge_sum[f] += taken * s.z;
-    t.edge_weight[f] += taken;
+    for (int k = 0; k < 4; ++k) {
+        bool on = k == f;
+        t.face[k] += on ? light * low : vec3(0.0);
+        t.upper[k] += on ? light * high : vec3(0.0);
+        t.edge_sum[k] += on ? taken * s.z : 0.0;
+        t.edge_weight[k] += on ? taken : 0.0;
+    }
+}
+// Light `light` reaching face f (no unfolded proxy shadows).
+void add_face_light(inout TexelLight t, int f, vec3 light) {
+    for (int k = 0; k < 4; ++k) t.face[k] += k == f ? light : vec3(0.0);
 }
 
 float face_edge(TexelLight t, int f) { return t.edge_weight[f] > 0.0 ? t.edge_sum[f] / t.edge_weight[f] : 0.0; }

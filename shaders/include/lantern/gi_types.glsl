@@ -20,4 +20,13 @@ struct GpuShadowProxy {
     vec4 modes;         // penumbra power, shape (0 box, 1 circle), width mode, penumbra mode
 };
 
+// Beyond this distance from its position proxy p occludes nothing (reference_shadow.cpp
+// proxy_reach): its shadow is at most max_length + penumbra_length long and its width plus
+// penumbra_width wide.
+float proxy_reach(GpuShadowProxy p) {
+    float along = max(p.lengths.x + p.lengths.w, 0.0);
+    float across = abs(p.position_size.z) + abs(p.position_size.w) + max(p.lengths.z, 0.0);
+    return sqrt(along * along + across * across) * 1.0001 + 1e-3;
+}
+
 #endif

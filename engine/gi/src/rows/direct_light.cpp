@@ -3,6 +3,7 @@
 // settings and inputs, its Vulkan recorder and its C++ reference.
 #include "rows/rows.hpp"
 
+#include "lantern/gi/point_map.hpp"
 #include "lantern/gi/sun_map.hpp"
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 
@@ -84,13 +85,15 @@ struct AoParams {
     std::int32_t range = 0, pad0 = 0, pad1 = 0, pad2 = 0;
 };
 struct LightBinParams {
-    std::int32_t bins_x = 0, bins_y = 0, words = 0, bin_w = 0, bin_h = 0, pad0 = 0, pad1 = 0, pad2 = 0;
+    std::int32_t bins_x = 0, bins_y = 0, words = 0, bin_w = 0, bin_h = 0, proxy_words = 0;
+    float proxy_pad = 0;
+    std::int32_t per_light = 0;
 };
 struct DirectParams {
     float light_softness = 0, face_exponent = 1;
     std::int32_t pad_f = 0; // (the faces computed: PipelineSpec::faces)
     float wall_height = 0;
-    std::int32_t pad0 = 0, pad1 = 0, pad2 = 0, pad3 = 0;
+    std::int32_t proxy_per_light = 0, pad1 = 0, pad2 = 0, pad3 = 0;
 };
 struct DirectionalParams {
     float wall_height = 0, angle_scale = 0, face_exponent = 1;
@@ -100,6 +103,7 @@ struct DirectionalParams {
 // FEATURES bits of the direct and directional shaders.
 constexpr std::uint32_t feature_upper = 1;   // unfolded proxy shadows (unfolds_proxy_shadows)
 constexpr std::uint32_t feature_sun_map = 2; // gi.sun_shadow_method shadow_map
+constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
 
 // ---- conduction
 
@@ -164,10 +168,68 @@ void reference_ao_row(ReferenceContext& c) { c.store.put(Tex::ao, reference_ao(c
 
 // ---- point and emissive lights
 
-// Light bins: one per direct-pass workgroup, a bitmask of the lights reaching it.
-struct DirectState : vk::PassState {
-    gpu::Buffer bins;
+// A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown
+// as needed.
+struct UploadedArray {
+    gpu::Buffer buffer;
+    gpu::BufferView view;
 };
+
+template <typename T>
+void upload_array(PassRecorder& r, UploadedArray& a, std::span<const T> data, VkFormat format, const char* name) {
+    const VkDeviceSize bytes = (VkDeviceSize(data.size_bytes()) + 15) & ~VkDeviceSize(15);
+    if (!a.buffer || a.buffer.size() < bytes) {
+        gpu::BufferDesc desc;
+        desc.size = std::max<VkDeviceSize>(bytes + bytes / 4, 16); // room to grow
+        desc.usage = format == VK_FORMAT_UNDEFINED ? VK_BUFFER_USAGE_STORAGE_BUFFER_BIT : VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+        desc.name = name;
+        a.buffer = r.device().create_buffer(desc);
+        if (format != VK_FORMAT_UNDEFINED) a.view = r.device().create_buffer_view(a.buffer, format, 0, VK_WHOLE_SIZE, name);
+    }
+    r.cmd.upload(a.buffer, 0, std::as_bytes(data));
+}
+
+// Light bins: one per direct-pass workgroup, a bitmask of the lights reaching it, and one of
+// the proxies that can shade it. The point lights' shadow maps (point_map.hpp): built and
+// uploaded whenever the pass runs with gi.shadow_method = shadow_map (a one-element
+// stand-in otherwise); their headers ride in the spare fields of the pass's own copy of the
+// lights.
+struct DirectState : vk::PassState {
+    gpu::Buffer bins, proxy_bins, lights;
+    UploadedArray map_bins;
+};
+
+// Uploads this frame's point-light maps and the lights with their headers; false (the
+// DDA) when the maps exceed what a storage buffer holds.
+bool upload_point_maps(PassRecorder& r, DirectState& s, bool wanted) {
+    const FrameInputs& in = r.in;
+    PointMaps maps = wanted ? build_point_maps(in) : PointMaps{};
+    if (maps.bins.size() * sizeof(glm::uvec2) > r.device().capabilities().max_storage_buffer_range) {
+        maps = PointMaps{};
+        wanted = false;
+    }
+    if (maps.bins.empty()) maps.bins.emplace_back(0u);
+    if (!s.lights) {
+        gpu::BufferDesc desc;
+        desc.size = r.lights().size();
+        desc.usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+        desc.name = "gi direct lights";
+        s.lights = r.device().create_buffer(desc);
+    }
+    std::vector<GpuPointLight> lights(in.point_lights);
+    lights.insert(lights.end(), in.emissive_lights.begin(), in.emissive_lights.end());
+    for (std::size_t i = 0; i < in.point_lights.size(); ++i) {
+        const glm::vec2 h = wanted ? maps.headers[i] : glm::vec2(-1.0f, 0.0f);
+        lights[i].position_radius.w = h.x;
+        lights[i].color.w = h.y;
+    }
+    if (!lights.empty())
+        r.cmd.update_buffer(s.lights, 0, std::as_bytes(std::span<const GpuPointLight>(lights)).first(
+                                             std::min<std::size_t>(lights.size() * sizeof(GpuPointLight), s.lights.size())));
+    upload_array(r, s.map_bins, std::span<const glm::uvec2>(maps.bins), VK_FORMAT_UNDEFINED, "point map bins");
+    r.cmd.barrier_transfer_to_compute();
+    return wanted;
+}
 
 void record_direct(PassRecorder& r) {
     const FrameInputs& in = r.in;
@@ -191,30 +253,49 @@ void record_direct(PassRecorder& r) {
     const std::uint32_t bins_x = (blocks_x + r.group_x() - 1) / r.group_x(), bins_y = (blocks_y + r.group_y() - 1) / r.group_y();
     const std::uint32_t words = std::uint32_t((in.point_lights.size() + in.emissive_lights.size() + 31) / 32);
     const VkDeviceSize bin_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(bins_x) * bins_y * std::max(words, 1u) * 4);
-    if (!s.bins || s.bins.size() < bin_bytes) {
-        gpu::BufferDesc desc;
-        desc.size = bin_bytes;
-        desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-        desc.name = "gi light bins";
-        s.bins = r.device().create_buffer(desc);
-    }
+    const std::uint32_t proxy_words = std::uint32_t((in.proxies.size() + 31) / 32);
+    // Proxy masks per bin, then (when they fit in 16 MiB) per bin and point light.
+    const VkDeviceSize per_bin = VkDeviceSize(bins_x) * bins_y * proxy_words * 4;
+    const VkDeviceSize per_light = per_bin * in.point_lights.size();
+    const bool proxy_per_light = proxy_words > 0 && per_light <= (VkDeviceSize(16) << 20);
+    const VkDeviceSize proxy_bytes = std::max<VkDeviceSize>(16, per_bin + (proxy_per_light ? per_light : 0));
+    for (auto [buffer, bytes, name] : {std::tuple{&s.bins, bin_bytes, "gi light bins"}, std::tuple{&s.proxy_bins, proxy_bytes, "gi proxy bins"}})
+        if (!*buffer || buffer->size() < bytes) {
+            gpu::BufferDesc desc;
+            desc.size = bytes;
+            desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+            desc.name = name;
+            *buffer = r.device().create_buffer(desc);
+        }
     r.cmd.bind(r.pipeline<LightBinParams>("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 8, .group_y = 8}));
-    r.cmd.push_descriptors(gpu::DescriptorWrites().uniform_buffer(0, r.lights()).storage_buffer(1, s.bins));
+    r.cmd.push_descriptors(gpu::DescriptorWrites()
+                               .uniform_buffer(0, r.lights())
+                               .storage_buffer(1, s.bins)
+                               .uniform_buffer(2, r.proxies())
+                               .storage_buffer(3, s.proxy_bins));
     auto b = r.params<LightBinParams>(w.width, w.height);
+    // A bin's proxy queries: its texel centres, face points (half a tile off), and with
+    // unfolded proxy shadows points a wall height beyond those.
     b.pass = {.bins_x = std::int32_t(bins_x), .bins_y = std::int32_t(bins_y), .words = std::int32_t(words),
-              .bin_w = std::int32_t(4 * r.group_x()), .bin_h = std::int32_t(r.block_h() * r.group_y())};
+              .bin_w = std::int32_t(4 * r.group_x()), .bin_h = std::int32_t(r.block_h() * r.group_y()),
+              .proxy_words = std::int32_t(proxy_words),
+              .proxy_pad = 0.51f + (unfolds_proxy_shadows(in) ? std::max(in.wall_height, 0.0f) : 0.0f),
+              .per_light = proxy_per_light ? 1 : 0};
     r.cmd.push_constants(b);
     r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
     r.cmd.barrier_compute_to_compute();
 
+    const bool point_map =
+        upload_point_maps(r, s, in.settings.shadow_method == scene::ShadowMethod::shadow_map && !in.point_lights.empty());
     r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
                                                           .walls = r.plan.has_walls_in_window,
-                                                          .features = unfolds_proxy_shadows(in) ? feature_upper : 0u,
+                                                          .features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
+                                                                      (point_map ? feature_point_map : 0u),
                                                           .faces = faces}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
                                .uniform_buffer(1, r.proxies())
-                               .uniform_buffer(2, r.lights())
+                               .uniform_buffer(2, s.lights)
                                .storage_buffer(3, r.buffer(out[0]))
                                .storage_buffer(4, r.buffer(out[1]))
                                .storage_buffer(5, face_buffer(r, out, 0))
@@ -225,11 +306,14 @@ void record_direct(PassRecorder& r) {
                                .storage_buffer(10, upper_buffer(r, out, 0))
                                .storage_buffer(11, upper_buffer(r, out, 1))
                                .storage_buffer(12, upper_buffer(r, out, 2))
-                               .storage_buffer(13, upper_buffer(r, out, 3)));
+                               .storage_buffer(13, upper_buffer(r, out, 3))
+                               .storage_buffer(14, s.map_bins.buffer)
+                               .storage_buffer(15, s.proxy_bins));
     auto p = r.params<DirectParams>(w.width, w.height);
     p.pass.light_softness = in.settings.light_softness;
     p.pass.face_exponent = in.settings.wall_face_exponent;
     p.pass.wall_height = in.wall_height;
+    p.pass.proxy_per_light = proxy_per_light ? 1 : 0;
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -244,26 +328,8 @@ void reference_direct_row(ReferenceContext& c) {
 // The suns' shadow maps on the GPU (sun_map.hpp): rebuilt and uploaded whenever the pass
 // runs with gi.sun_shadow_method = shadow_map; a one-element stand-in otherwise.
 struct SunMapState : vk::PassState {
-    struct Array {
-        gpu::Buffer buffer;
-        gpu::BufferView view;
-    };
-    Array headers, first, entries;
+    UploadedArray headers, first, entries;
 };
-
-template <typename T>
-void upload_array(PassRecorder& r, SunMapState::Array& a, std::span<const T> data, VkFormat format, const char* name) {
-    const VkDeviceSize bytes = (VkDeviceSize(data.size_bytes()) + 15) & ~VkDeviceSize(15);
-    if (!a.buffer || a.buffer.size() < bytes) {
-        gpu::BufferDesc desc;
-        desc.size = std::max<VkDeviceSize>(bytes + bytes / 4, 16); // room to grow
-        desc.usage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-        desc.name = name;
-        a.buffer = r.device().create_buffer(desc);
-        a.view = r.device().create_buffer_view(a.buffer, format, 0, VK_WHOLE_SIZE, name);
-    }
-    r.cmd.upload(a.buffer, 0, std::as_bytes(data));
-}
 
 // Uploads this frame's maps; false (use the DDA) when they exceed what a texel buffer holds.
 bool upload_sun_maps(PassRecorder& r, bool wanted) {
@@ -346,8 +412,11 @@ const char* directional_not_needed(const FrameInputs& in, bool, bool) {
 constexpr Tex conduction_writes[] = {Tex::conduction};
 constexpr Tex ao_writes[] = {Tex::ao};
 constexpr std::string_view ao_settings[] = {"ao.enabled", "ao.radius", "ao.power", "ao.strength", "ao.dither"};
-constexpr std::string_view direct_settings[] = {"light_softness", "wall_face_exponent", "wall_lighting", "wall_faces.px",
-                                                "wall_faces.nx",  "wall_faces.pz",      "wall_faces.nz", "proxy_wall_shadows"};
+// shadow_method is listed although the maps are exact: a change of method reruns the pass,
+// so that switching it shows what it costs.
+constexpr std::string_view direct_settings[] = {"light_softness", "wall_face_exponent", "wall_lighting",
+                                                "wall_faces.px",  "wall_faces.nx",      "wall_faces.pz",
+                                                "wall_faces.nz",  "proxy_wall_shadows", "shadow_method"};
 // sun_shadow_method is listed although the map is exact: a change of method reruns the
 // pass, so that switching it shows what it costs.
 constexpr std::string_view directional_settings[] = {"directional_angle_scale", "wall_face_exponent", "wall_lighting",

@@ -28,6 +28,7 @@ enum class WindowSnap : std::uint8_t { tile, texel };
 // How the sun's grid shadows are found: the seed's DDA per texel, or a 1D shadow map across
 // the sun direction (exact against the DDA; docs/gi.md, "The sun's shadow map").
 enum class SunShadowMethod : std::uint8_t { dda, shadow_map };
+enum class ShadowMethod : std::uint8_t { dda, shadow_map }; // point lights' grid shadows
 // How a shadow proxy's shadow falls on a wall face: the whole face top to bottom (the seed's),
 // or unfolded: the wall is folded flat onto the ground behind it, so a face at height y is
 // shaded as the ground y beyond the face along the ray, and the shadow keeps its shape,
@@ -80,6 +81,7 @@ struct GiSettings {
     ToneMap tone_map = ToneMap::aces;
     float white_point = 4.0f;              // reinhard_white
     float directional_angle_scale = 0.0f;  // 0 = full sun-angle modulation, 1 = none
+    ShadowMethod shadow_method = ShadowMethod::shadow_map; // point lights: angular maps (exact) or the DDA
     SunShadowMethod sun_shadow_method = SunShadowMethod::dda;
     int max_lights = 256;                  // point lights kept per frame (emissives bypass it)
     int max_shadow_proxies = 64;
