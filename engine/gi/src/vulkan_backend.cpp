@@ -1,5 +1,6 @@
 // Backend on the Vulkan renderer: one submission per frame that has work, at most two in
 // flight, timestamps read back from earlier frames without stalling.
+#include "lantern/profile/profiler.hpp"
 #include "lantern/gi/backend.hpp"
 
 #include "lantern/gi/vulkan/renderer.hpp"
@@ -21,9 +22,14 @@ class VulkanBackend final : public Backend {
                          const WallUpdate& walls) override {
         gpu::Device& device = renderer_.device();
         // Throttle: wait for the submission two frames back before recording a third.
-        if (device.last_submitted_serial() >= frames_in_flight)
+        if (device.last_submitted_serial() >= frames_in_flight) {
+            LANTERN_PROFILE_SCOPE("gi.wait");
             device.wait(device.last_submitted_serial() - (frames_in_flight - 1));
-        if (auto ok = renderer_.prepare(in, plan); !ok) return ok;
+        }
+        {
+            LANTERN_PROFILE_SCOPE("gi.prepare");
+            if (auto ok = renderer_.prepare(in, plan); !ok) return ok;
+        }
         const bool walls_changed = walls.whole || !walls.ranges.empty();
         if (run.bits == 0 && !walls_changed) return {}; // an unchanged frame: no GPU work
         gpu::CommandList cmd = device.begin("gi frame");
@@ -39,7 +45,11 @@ class VulkanBackend final : public Backend {
             renderer_.update_walls(cmd, in.walls, walls.ranges);
         uploaded_walls_ = true;
         if (run.has(Pass::direct) || run.has(Pass::directional)) renderer_.upload_lights(cmd, in);
-        renderer_.record_plan(cmd, in, plan, run);
+        {
+            LANTERN_PROFILE_SCOPE("gi.record");
+            renderer_.record_plan(cmd, in, plan, run);
+        }
+        LANTERN_PROFILE_SCOPE("gi.submit");
         device.submit(std::move(cmd));
         return {};
     }

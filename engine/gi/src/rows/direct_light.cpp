@@ -105,6 +105,11 @@ constexpr std::uint32_t feature_upper = 1;   // unfolded proxy shadows (unfolds_
 constexpr std::uint32_t feature_sun_map = 2; // gi.sun_shadow_method shadow_map
 constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
 
+// The directional shader's FEATURES for a frame (also what the direct row prefetches).
+std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
+    return (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (sun_map ? feature_sun_map : 0u);
+}
+
 // ---- conduction
 
 void record_conduction(PassRecorder& r) {
@@ -317,6 +322,13 @@ void record_direct(PassRecorder& r) {
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
+    // The suns' pipelines, before a sunrise needs them (with and without proxies and walls).
+    for (int flip = 0; flip < 4; ++flip)
+        r.prefetch_pipeline<DirectionalParams>(
+            "gi_directional.comp", {.proxies = (flip & 1) != 0, .walls = (flip & 2) != 0,
+                                    .features = directional_features(in, in.settings.sun_shadow_method ==
+                                                                             scene::SunShadowMethod::shadow_map),
+                                    .faces = faces});
 }
 
 void reference_direct_row(ReferenceContext& c) {
@@ -360,12 +372,10 @@ void record_directional(PassRecorder& r) {
             if (r.has(t)) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
     }
-    r.cmd.bind(
-        r.pipeline<DirectionalParams>("gi_directional.comp", {.proxies = !in.proxies.empty(),
-                                                               .walls = r.plan.has_walls_in_window,
-                                                               .features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
-                                                                           (sun_map ? feature_sun_map : 0u),
-                                                               .faces = faces}));
+    r.cmd.bind(r.pipeline<DirectionalParams>("gi_directional.comp", {.proxies = !in.proxies.empty(),
+                                                                      .walls = r.plan.has_walls_in_window,
+                                                                      .features = directional_features(in, sun_map),
+                                                                      .faces = faces}));
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
     // Reads the point-light results, writes the contract textures (never in place).

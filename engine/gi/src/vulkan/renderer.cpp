@@ -226,11 +226,22 @@ void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const P
         if (plan.run.has(row->pass) && subset.has(row->pass)) record(cmd, row->pass, in, plan);
 }
 
+namespace {
+// A spec with the renderer's block and workgroup sizes filled in.
+ResolvedSpec resolve(const PipelineSpec& spec, std::uint32_t block_h, std::uint32_t gx, std::uint32_t gy) {
+    return {spec.block_h ? spec.block_h : block_h, spec.group_x ? spec.group_x : gx, spec.group_y ? spec.group_y : gy,
+            spec.proxies, spec.walls, spec.per_channel, spec.segment_check, spec.features, spec.faces};
+}
+} // namespace
+
 const gpu::ComputePipeline& Renderer::pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
                                                std::span<const gpu::ScalarKind> kinds) {
-    return pipelines_->get(shaders, shader, kinds, spec.block_h ? spec.block_h : block_h_, spec.group_x ? spec.group_x : group_x_,
-                           spec.group_y ? spec.group_y : group_y_, spec.proxies, spec.walls, spec.per_channel,
-                           spec.segment_check, spec.features, spec.faces);
+    return pipelines_->get(shaders, shader, kinds, resolve(spec, block_h_, group_x_, group_y_));
+}
+
+void Renderer::prefetch_pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
+                                 std::span<const gpu::ScalarKind> kinds) {
+    pipelines_->prefetch(shaders, shader, kinds, resolve(spec, block_h_, group_x_, group_y_));
 }
 
 } // namespace lantern::gi::vk

@@ -3,6 +3,12 @@
 // renderer_read_back.cpp (read back and the copy baseline).
 #pragma once
 
+#include "lantern/profile/profiler.hpp"
+
+#include <future>
+#include <map>
+#include <string>
+#include <tuple>
 #include "lantern/gi/vulkan/pass_params.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gpu/reflect.hpp"
@@ -30,35 +36,89 @@ inline std::span<const std::byte> bytes_of(const void* data, std::size_t size) {
 void check_params_layout(const char* shader, std::span<const std::uint32_t> spirv,
                          std::span<const gpu::ScalarKind> kinds);
 
-// Pipelines by (shader, specialisation), created on first use and kept.
-struct Renderer::Pipelines {
-    gpu::Device* device = nullptr;
-    std::map<std::tuple<ShaderLookup, std::string, bool, bool, bool, bool, std::uint32_t, std::uint32_t>, gpu::ComputePipeline>
-        cache;
+// Pipelines by (shader, specialisation), created on first use and kept. lavapipe compiles a
+// pipeline in 50-100 ms, so a variant first needed mid-game (the first shadow proxy, the
+// first sunrise) was a frame hitch: creating a pipeline on the frame's thread also starts
+// its likely siblings (proxies and walls flipped) on background threads, and rows prefetch
+// what a later frame may need (the direct row: the suns' pipelines). A frame that needs a
+// pipeline still in flight waits for it.
+using PipelineKey = std::tuple<ShaderLookup, std::string, bool, bool, bool, bool, std::uint32_t, std::uint32_t>;
 
-    const gpu::ComputePipeline& get(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds,
-                                    std::uint32_t block_h, std::uint32_t gx, std::uint32_t gy, bool proxies = true,
-                                    bool walls = true, bool per_channel = true, bool segment_check = true,
-                                    std::uint32_t features = 0, std::uint32_t faces = 15) {
-        if (!shaders) shaders = lantern_gi_shaders_spirv;
-        auto key = std::make_tuple(shaders, std::string(shader), proxies, walls, per_channel, segment_check, features, faces);
-        auto it = cache.find(key);
-        if (it != cache.end()) return it->second;
+// A PipelineSpec with the renderer's block and workgroup sizes filled in.
+struct ResolvedSpec {
+    std::uint32_t block_h, gx, gy;
+    bool proxies, walls, per_channel, segment_check;
+    std::uint32_t features, faces;
+    PipelineKey key(ShaderLookup shaders, const char* shader) const {
+        return {shaders, std::string(shader), proxies, walls, per_channel, segment_check, features, faces};
+    }
+};
+
+struct Renderer::Pipelines {
+    using Key = PipelineKey;
+    using Spec = ResolvedSpec;
+
+    gpu::Device* device = nullptr;
+    std::map<Key, gpu::ComputePipeline> cache;
+    std::map<Key, std::future<gpu::ComputePipeline>> pending;
+
+    ~Pipelines() {
+        for (auto& [key, f] : pending)
+            if (f.valid()) f.wait();
+    }
+
+    gpu::ComputePipelineDesc describe(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds,
+                                      const Spec& s) const {
         gpu::ComputePipelineDesc desc;
         desc.spirv = shaders(shader);
         LANTERN_VERIFY(!desc.spirv.empty(), (std::string("GI shader '") + shader + "' missing from its pass row's "
                                              "shader library").c_str());
         check_params_layout(shader, desc.spirv, kinds); // the bindings come from the shader itself
-        desc.specialization = {{spec_block_h, block_h},       {spec_group_x, gx},
-                               {spec_group_y, gy},            {spec_has_proxies, proxies ? 1u : 0u},
-                               {spec_has_walls, walls ? 1u : 0u}, {spec_per_channel, per_channel ? 1u : 0u},
-                               {spec_segment_check, segment_check ? 1u : 0u}, {spec_features, features},
-                               {spec_faces, faces}};
+        desc.specialization = {{spec_block_h, s.block_h},       {spec_group_x, s.gx},
+                               {spec_group_y, s.gy},            {spec_has_proxies, s.proxies ? 1u : 0u},
+                               {spec_has_walls, s.walls ? 1u : 0u}, {spec_per_channel, s.per_channel ? 1u : 0u},
+                               {spec_segment_check, s.segment_check ? 1u : 0u}, {spec_features, s.features},
+                               {spec_faces, s.faces}};
         if (std::string(shader) == "gi_direct.comp" || std::string(shader) == "gi_light_bins.comp")
             desc.specialization.push_back({spec_max_lights, max_gpu_lights});
         desc.push_constant_size = sizeof(GiPassParams);
         desc.name = shader;
-        return cache.emplace(key, device->create_compute_pipeline(desc)).first->second;
+        return desc;
+    }
+
+    // Starts creating the pipeline on a background thread unless it exists or is under way.
+    void prefetch(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds, const Spec& s) {
+        if (!shaders) shaders = lantern_gi_shaders_spirv;
+        const Key key = s.key(shaders, shader);
+        if (cache.count(key) || pending.count(key)) return;
+        gpu::ComputePipelineDesc desc = describe(shaders, shader, kinds, s);
+        gpu::Device* d = device;
+        pending.emplace(key, std::async(std::launch::async, [d, desc = std::move(desc)] {
+                                 return d->create_compute_pipeline(desc);
+                             }));
+    }
+
+    const gpu::ComputePipeline& get(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds,
+                                    const Spec& s) {
+        if (!shaders) shaders = lantern_gi_shaders_spirv;
+        const Key key = s.key(shaders, shader);
+        if (auto it = cache.find(key); it != cache.end()) return it->second;
+        if (auto it = pending.find(key); it != pending.end()) { // started earlier: wait for it
+            LANTERN_PROFILE_SCOPE("gi.pipeline_wait");
+            gpu::ComputePipeline p = it->second.get();
+            pending.erase(it);
+            return cache.emplace(key, std::move(p)).first->second;
+        }
+        LANTERN_PROFILE_SCOPE("gi.create_pipeline");
+        const gpu::ComputePipeline& made =
+            cache.emplace(key, device->create_compute_pipeline(describe(shaders, shader, kinds, s))).first->second;
+        for (int flip = 1; flip < 4; ++flip) { // its siblings: proxies and walls come and go
+            Spec sibling = s;
+            sibling.proxies = (flip & 1) ? !s.proxies : s.proxies;
+            sibling.walls = (flip & 2) ? !s.walls : s.walls;
+            prefetch(shaders, shader, kinds, sibling);
+        }
+        return made;
     }
 };
 

@@ -1,5 +1,6 @@
 // Read back of the renderer's textures and wall buffer (tests and tools: blocking), and
 // the copy-kernel baseline the GI benchmark compares each pass with.
+#include "lantern/gi/vulkan/pass_recorder.hpp"
 #include "vulkan/renderer_internal.hpp"
 
 #include "lantern/gi/reference_indirect.hpp"
@@ -97,7 +98,7 @@ double Renderer::time_copy_dispatches(const std::vector<std::uint64_t>& bytes_wr
     auto queries = device_.create_timestamp_queries(1, "copy");
     if (!queries) return 0.0;
     const auto kinds = field_kinds<NoParams>();
-    const auto& pipeline = pipelines_->get(nullptr, "gi_copy.comp", kinds, block_h_, group_x_, group_y_, false);
+    const auto& pipeline = this->pipeline(nullptr, "gi_copy.comp", PipelineSpec{.proxies = false}, kinds);
     std::vector<double> samples;
     for (int rep = 0; rep < repeats + 1; ++rep) { // the first run warms up
         gpu::CommandList cmd = device_.begin("copy baseline");

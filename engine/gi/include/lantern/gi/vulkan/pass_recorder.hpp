@@ -72,6 +72,13 @@ class PassRecorder {
         const std::array<gpu::ScalarKind, 8> kinds = field_kinds<P>();
         return r_.pipeline(row_.shaders, shader, spec, kinds);
     }
+    // Starts creating that pipeline on a background thread (a variant a later frame may need:
+    // creating it then would stall that frame).
+    template <typename P = NoParams>
+    void prefetch_pipeline(const char* shader, const PipelineSpec& spec = {}) {
+        const std::array<gpu::ScalarKind, 8> kinds = field_kinds<P>();
+        r_.prefetch_pipeline(row_.shaders, shader, spec, kinds);
+    }
     // The push constants of a width x height texture: the shared fields (window, grid,
     // counts) filled, `pass` for the caller.
     template <typename P = NoParams>

@@ -152,6 +152,8 @@ class Renderer {
     void dispatch_blocks(gpu::CommandList& cmd, int width, int height);
     const gpu::ComputePipeline& pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
                                          std::span<const gpu::ScalarKind> kinds);
+    void prefetch_pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
+                           std::span<const gpu::ScalarKind> kinds);
     static FrameTimings collect_timings(const QuerySet& set, const gpu::TimestampResult& result);
 
     gpu::Device& device_;
