@@ -41,9 +41,10 @@ scene::GiSettings default_game_gi() {
     // docs/game.md "Performance": what keeps the whole frame within 33 ms at p95 on lavapipe.
     gi.resolution = 4;
     gi.heat_scale = scene::HeatScale::half;
-    gi.heat_rounds = 16;
+    gi.heat_rounds = 20; // the seed's
     gi.padding = 1.25f;
-    gi.max_lights = 32;
+    gi.max_lights = 256; // light caps are what users of 2D lighting hit first
+
     gi.max_shadow_proxies = 32;
     // The camera looks towards -z from behind the player (CameraRig): a -z face always faces
     // away from it, so the GI neither traces nor stores those faces (docs/gi.md).

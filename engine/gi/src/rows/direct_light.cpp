@@ -292,10 +292,10 @@ void record_direct(PassRecorder& r) {
 
     const bool point_map =
         upload_point_maps(r, s, in.settings.shadow_method == scene::ShadowMethod::shadow_map && !in.point_lights.empty());
+    const std::uint32_t features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (point_map ? feature_point_map : 0u);
     r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
                                                           .walls = r.plan.has_walls_in_window,
-                                                          .features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
-                                                                      (point_map ? feature_point_map : 0u),
+                                                          .features = features,
                                                           .faces = faces}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
@@ -322,13 +322,16 @@ void record_direct(PassRecorder& r) {
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
-    // The suns' pipelines, before a sunrise needs them (with and without proxies and walls).
-    for (int flip = 0; flip < 4; ++flip)
+    // What a later frame may need, before it does (creating it then stalls that frame): this
+    // pass with proxies and walls come or gone, and the suns' pass.
+    const bool sun_map = in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map;
+    for (int flip = 0; flip < 4; ++flip) {
+        const bool proxies = (flip & 1) != 0, walls = (flip & 2) != 0;
+        r.prefetch_pipeline<DirectParams>("gi_direct.comp", {.proxies = proxies, .walls = walls, .features = features, .faces = faces});
         r.prefetch_pipeline<DirectionalParams>(
-            "gi_directional.comp", {.proxies = (flip & 1) != 0, .walls = (flip & 2) != 0,
-                                    .features = directional_features(in, in.settings.sun_shadow_method ==
-                                                                             scene::SunShadowMethod::shadow_map),
-                                    .faces = faces});
+            "gi_directional.comp",
+            {.proxies = proxies, .walls = walls, .features = directional_features(in, sun_map), .faces = faces});
+    }
 }
 
 void reference_direct_row(ReferenceContext& c) {

@@ -5,7 +5,11 @@
 
 #include "lantern/profile/profiler.hpp"
 
+#include <condition_variable>
+#include <deque>
 #include <future>
+#include <mutex>
+#include <thread>
 #include <map>
 #include <string>
 #include <tuple>
@@ -38,10 +42,10 @@ void check_params_layout(const char* shader, std::span<const std::uint32_t> spir
 
 // Pipelines by (shader, specialisation), created on first use and kept. lavapipe compiles a
 // pipeline in 50-100 ms, so a variant first needed mid-game (the first shadow proxy, the
-// first sunrise) was a frame hitch: creating a pipeline on the frame's thread also starts
-// its likely siblings (proxies and walls flipped) on background threads, and rows prefetch
-// what a later frame may need (the direct row: the suns' pipelines). A frame that needs a
-// pipeline still in flight waits for it.
+// first sunrise) was a frame hitch: rows prefetch on background threads the variants a later
+// frame may need (the direct row: its own with proxies and walls flipped, and the suns'). A
+// frame that needs a pipeline still in flight waits for it. Each lavapipe pipeline holds
+// about 5 MB of JIT code, so only those are prefetched.
 using PipelineKey = std::tuple<ShaderLookup, std::string, bool, bool, bool, bool, std::uint32_t, std::uint32_t>;
 
 // A PipelineSpec with the renderer's block and workgroup sizes filled in.
@@ -61,10 +65,35 @@ struct Renderer::Pipelines {
     gpu::Device* device = nullptr;
     std::map<Key, gpu::ComputePipeline> cache;
     std::map<Key, std::future<gpu::ComputePipeline>> pending;
+    // One background thread creates the prefetched pipelines in turn: a thread per pipeline
+    // left a malloc arena per thread holding the compiler's scratch (about 18 MB each).
+    std::mutex mutex;
+    std::condition_variable wake;
+    std::deque<std::packaged_task<gpu::ComputePipeline()>> queue;
+    bool stopping = false;
+    std::thread worker;
 
     ~Pipelines() {
-        for (auto& [key, f] : pending)
-            if (f.valid()) f.wait();
+        {
+            std::lock_guard lock(mutex);
+            stopping = true;
+        }
+        wake.notify_one();
+        if (worker.joinable()) worker.join(); // runs what was queued, so every future is ready
+    }
+
+    void work() {
+        for (;;) {
+            std::packaged_task<gpu::ComputePipeline()> task;
+            {
+                std::unique_lock lock(mutex);
+                wake.wait(lock, [&] { return stopping || !queue.empty(); });
+                if (queue.empty()) return;
+                task = std::move(queue.front());
+                queue.pop_front();
+            }
+            task();
+        }
     }
 
     gpu::ComputePipelineDesc describe(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds,
@@ -93,9 +122,14 @@ struct Renderer::Pipelines {
         if (cache.count(key) || pending.count(key)) return;
         gpu::ComputePipelineDesc desc = describe(shaders, shader, kinds, s);
         gpu::Device* d = device;
-        pending.emplace(key, std::async(std::launch::async, [d, desc = std::move(desc)] {
-                                 return d->create_compute_pipeline(desc);
-                             }));
+        std::packaged_task<gpu::ComputePipeline()> task([d, desc = std::move(desc)] { return d->create_compute_pipeline(desc); });
+        pending.emplace(key, task.get_future());
+        {
+            std::lock_guard lock(mutex);
+            queue.push_back(std::move(task));
+        }
+        if (!worker.joinable()) worker = std::thread([this] { work(); });
+        wake.notify_one();
     }
 
     const gpu::ComputePipeline& get(ShaderLookup shaders, const char* shader, std::span<const gpu::ScalarKind> kinds,
@@ -110,15 +144,7 @@ struct Renderer::Pipelines {
             return cache.emplace(key, std::move(p)).first->second;
         }
         LANTERN_PROFILE_SCOPE("gi.create_pipeline");
-        const gpu::ComputePipeline& made =
-            cache.emplace(key, device->create_compute_pipeline(describe(shaders, shader, kinds, s))).first->second;
-        for (int flip = 1; flip < 4; ++flip) { // its siblings: proxies and walls come and go
-            Spec sibling = s;
-            sibling.proxies = (flip & 1) ? !s.proxies : s.proxies;
-            sibling.walls = (flip & 2) ? !s.walls : s.walls;
-            prefetch(shaders, shader, kinds, sibling);
-        }
-        return made;
+        return cache.emplace(key, device->create_compute_pipeline(describe(shaders, shader, kinds, s))).first->second;
     }
 };
 
