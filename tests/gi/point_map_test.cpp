@@ -100,8 +100,6 @@ void report(const char* what, const Tally& t) {
                 t.asked, t.lit, t.shadowed, t.different, t.handed, 100.0 * double(t.handed) / double(std::max(t.asked, 1LL)));
 }
 
-std::vector<std::string> grid(int w, int h, char fill) { return std::vector<std::string>(std::size_t(h), std::string(std::size_t(w), fill)); }
-
 } // namespace
 
 TEST(PointMap, PseudoAngleIsMonotoneAndWraps) {
@@ -132,34 +130,8 @@ TEST(PointMap, EqualsTheDdaOnTheComparisonScenes) {
 
 TEST(PointMap, EqualsTheDdaOnTheStabilityGrids) {
     Tally t;
-    {   // Checkerboard: rays through tile corners everywhere (every close call is the DDA's).
-        auto rows = grid(16, 16, '.');
-        for (int z = 0; z < 16; ++z)
-            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
-        scene::Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = gi_test::grid_from_rows(rows);
-        compare(s, "checkerboard", 1.5f, t);
-    }
-    {   // giRes 1, one-tile corridors.
-        auto rows = grid(64, 64, '#');
-        for (int x = 1; x < 63; ++x) rows[10][std::size_t(x)] = '.';
-        for (int z = 10; z < 40; ++z) rows[std::size_t(z)][62] = '.';
-        for (int x = 5; x < 63; ++x) rows[40][std::size_t(x)] = '.';
-        scene::Scene s = gi_test::open_scene({32, 32}, {64, 64}, 1);
-        s.walls = gi_test::grid_from_rows(rows);
-        compare(s, "one-tile corridors", 3.0f, t);
-    }
-    {   // All walls, and no walls (an empty grid), and giRes 32.
-        scene::Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = gi_test::grid_from_rows(grid(16, 16, '#'));
-        compare(s, "all walls", 3.0f, t);
-        s.walls = gi_test::grid_from_rows(grid(16, 16, '.'));
-        compare(s, "no walls", 3.0f, t);
-        scene::Scene fine = gi_test::comparison_scene("rooms").scene;
-        fine.gi.resolution = 32;
-        fine.view = scene::OrthoView{{6.0f, 5.0f}, {8.0f, 6.0f}};
-        compare(fine, "rooms at giRes 32", 2.0f, t);
-    }
+    for (const gi_test::GridScene& g : gi_test::shadow_stability_grids())
+        compare(g.named.scene, g.named.name, g.dense ? 1.5f : 2.5f, t);
     {   // A cave 700 tiles from the origin: coarser floats, wider margins.
         scene::Scene s = gi_test::open_scene({712, -688}, {24, 24}, 8);
         s.walls = gi_test::cave(24, 24, 7u);

@@ -99,8 +99,6 @@ void report(const char* what, const Tally& t) {
                 t.asked, t.lit, t.shadowed, t.different, t.handed, 100.0 * double(t.handed) / double(std::max(t.asked, 1LL)));
 }
 
-std::vector<std::string> grid(int w, int h, char fill) { return std::vector<std::string>(std::size_t(h), std::string(std::size_t(w), fill)); }
-
 } // namespace
 
 TEST(SunMap, EqualsTheDdaOnTheComparisonScenes) {
@@ -115,34 +113,7 @@ TEST(SunMap, EqualsTheDdaOnTheComparisonScenes) {
 
 TEST(SunMap, EqualsTheDdaOnTheStabilityGrids) {
     Tally t;
-    {   // Checkerboard: rays through tile corners everywhere (every close call is the DDA's).
-        auto rows = grid(16, 16, '.');
-        for (int z = 0; z < 16; ++z)
-            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
-        scene::Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = gi_test::grid_from_rows(rows);
-        compare(s, "checkerboard", 16, t);
-    }
-    {   // giRes 1, one-tile corridors.
-        auto rows = grid(64, 64, '#');
-        for (int x = 1; x < 63; ++x) rows[10][std::size_t(x)] = '.';
-        for (int z = 10; z < 40; ++z) rows[std::size_t(z)][62] = '.';
-        for (int x = 5; x < 63; ++x) rows[40][std::size_t(x)] = '.';
-        scene::Scene s = gi_test::open_scene({32, 32}, {64, 64}, 1);
-        s.walls = gi_test::grid_from_rows(rows);
-        compare(s, "one-tile corridors", 16, t);
-    }
-    {   // All walls, and no walls (an empty grid), at giRes 32 and 1.
-        scene::Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = gi_test::grid_from_rows(grid(16, 16, '#'));
-        compare(s, "all walls", 8, t);
-        s.walls = gi_test::grid_from_rows(grid(16, 16, '.'));
-        compare(s, "no walls", 8, t);
-        scene::Scene fine = gi_test::comparison_scene("rooms").scene;
-        fine.gi.resolution = 32;
-        fine.view = scene::OrthoView{{6.0f, 5.0f}, {8.0f, 6.0f}};
-        compare(fine, "rooms at giRes 32", 8, t);
-    }
+    for (const gi_test::GridScene& g : gi_test::shadow_stability_grids()) compare(g.named.scene, g.named.name, g.dense ? 16 : 8, t);
     report("stability grids", t);
     EXPECT_EQ(t.different, 0);
 }

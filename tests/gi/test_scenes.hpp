@@ -272,6 +272,45 @@ inline std::vector<std::string> comparison_scene_names() {
     return names;
 }
 
+// The shadow-map stability grids (sun_map_test, point_map_test): a checkerboard (rays through
+// tile corners everywhere), one-tile corridors at giRes 1, all walls, no walls, and the rooms
+// at giRes 32. `dense` is true for the first two, which deserve more rays.
+struct GridScene {
+    NamedScene named;
+    bool dense = false;
+};
+inline std::vector<GridScene> shadow_stability_grids() {
+    auto grid = [](int w, int h, char fill) { return std::vector<std::string>(std::size_t(h), std::string(std::size_t(w), fill)); };
+    std::vector<GridScene> out;
+    {
+        auto rows = grid(16, 16, '.');
+        for (int z = 0; z < 16; ++z)
+            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
+        Scene s = open_scene({8, 8}, {16, 16}, 4);
+        s.walls = grid_from_rows(rows);
+        out.push_back({{"checkerboard", s}, true});
+    }
+    {
+        auto rows = grid(64, 64, '#');
+        for (int x = 1; x < 63; ++x) rows[10][std::size_t(x)] = '.';
+        for (int z = 10; z < 40; ++z) rows[std::size_t(z)][62] = '.';
+        for (int x = 5; x < 63; ++x) rows[40][std::size_t(x)] = '.';
+        Scene s = open_scene({32, 32}, {64, 64}, 1);
+        s.walls = grid_from_rows(rows);
+        out.push_back({{"one-tile corridors", s}, true});
+    }
+    Scene s = open_scene({8, 8}, {16, 16}, 4);
+    s.walls = grid_from_rows(grid(16, 16, '#'));
+    out.push_back({{"all walls", s}, false});
+    s.walls = grid_from_rows(grid(16, 16, '.'));
+    out.push_back({{"no walls", s}, false});
+    Scene fine = comparison_scene("rooms").scene;
+    fine.gi.resolution = 32;
+    fine.view = lantern::scene::OrthoView{{6.0f, 5.0f}, {8.0f, 6.0f}};
+    out.push_back({{"rooms at giRes 32", fine}, false});
+    return out;
+}
+
 inline std::optional<NamedScene> map_scene(const std::string& file, glm::vec2 center, std::uint32_t seed) {
     auto shared = lantern::test::shared_dir();
     if (shared.empty()) return std::nullopt;
