@@ -9,6 +9,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -55,6 +58,49 @@ void BM_SpawnAndWaitOne(benchmark::State& state) {
 
 void BM_MillionSingleTasks(benchmark::State& state) {
     JobSystem& jobs = system_with(int(state.range(0)));
+    for (auto _ : state) {
+        Counter c;
+        for (int i = 0; i < 1'000'000; ++i) jobs.spawn(&empty_job, nullptr, &c);
+        jobs.wait(c);
+    }
+}
+
+// One busy loop per core for the benchmark's lifetime: the contention the game's workers see
+// from lavapipe's own threads (issue 15). Measured in the same run as the quiet rows.
+class BusyCores {
+  public:
+    BusyCores() {
+        const unsigned n = std::max(1u, std::thread::hardware_concurrency());
+        for (unsigned i = 0; i < n; ++i)
+            threads_.emplace_back([this] {
+                volatile std::uint64_t x = 0;
+                while (!stop_.load(std::memory_order_relaxed)) x = x + 1;
+            });
+    }
+    ~BusyCores() {
+        stop_.store(true);
+        for (std::thread& t : threads_) t.join();
+    }
+
+  private:
+    std::atomic<bool> stop_{false};
+    std::vector<std::thread> threads_;
+};
+
+void BM_SpawnAndWaitOneContended(benchmark::State& state) {
+    JobSystem& jobs = system_with(int(state.range(0)));
+    BusyCores busy;
+    for (auto _ : state) {
+        Counter c;
+        jobs.spawn(&empty_job, nullptr, &c);
+        jobs.wait(c);
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+
+void BM_MillionSingleTasksContended(benchmark::State& state) {
+    JobSystem& jobs = system_with(int(state.range(0)));
+    BusyCores busy;
     for (auto _ : state) {
         Counter c;
         for (int i = 0; i < 1'000'000; ++i) jobs.spawn(&empty_job, nullptr, &c);
@@ -146,7 +192,9 @@ void BM_ScheduleFrameOverhead12Systems(benchmark::State& state) {
 
 const int W = default_workers();
 BENCHMARK(BM_SpawnAndWaitOne)->Arg(0)->Arg(W)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_SpawnAndWaitOneContended)->Arg(0)->Arg(W)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_MillionSingleTasks)->Arg(0)->Arg(W)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_MillionSingleTasksContended)->Arg(0)->Arg(W)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_MillionNodeGraph)->Arg(0)->Arg(W)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_LayeredGraph1000x1000)->Arg(0)->Arg(W)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_ParallelSum64M)->DenseRange(0, W)->Unit(benchmark::kMillisecond)->MinTime(1.0);
