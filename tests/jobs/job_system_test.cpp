@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <numeric>
 #include <set>
@@ -165,6 +166,32 @@ TEST(JobSystem, EveryParallelForIsSharedAcrossThreads) {
         int threads_used = 0;
         for (auto& c : per_thread) threads_used += c.load() > 0;
         EXPECT_GE(threads_used, 2) << "round " << round;
+    }
+}
+
+TEST(JobSystem, ABurstOfSpawnsWakesEverySleepingWorker) {
+    // One wake-up is issued per burst (wake_one skips while one is pending); the woken thread
+    // passes it on. Each job holds its thread until every thread holds one, so a worker left
+    // asleep is a failure at the deadline, not a hang. A tiny spin budget sends the workers
+    // to sleep between rounds, which is the case under test.
+    JobSystem::Config config = workers(4);
+    config.spin_iterations = 1;
+    JobSystem jobs(config);
+    const std::uint32_t n = jobs.thread_count();
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    for (int round = 0; round < 50; ++round) {
+        std::atomic<std::uint32_t> holding{0};
+        std::vector<std::atomic<int>> per_thread(n);
+        Counter c;
+        for (std::uint32_t i = 0; i < n; ++i)
+            jobs.spawn(&c, {}, [&](std::uint32_t w) {
+                per_thread[w].fetch_add(1);
+                holding.fetch_add(1);
+                while (holding.load() < n && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+            });
+        jobs.wait(c);
+        ASSERT_EQ(holding.load(), n);
+        for (std::uint32_t w = 0; w < n; ++w) ASSERT_EQ(per_thread[w].load(), 1) << "round " << round << " thread " << w;
     }
 }
 

@@ -177,7 +177,7 @@ void JobSystem::submit(Job* job, ThreadState& t) {
             main_queue_->jobs.push_back(job);
             main_queue_->size.store(std::uint32_t(main_queue_->jobs.size()), std::memory_order_release);
         }
-        signal(true); // only the main thread can run it: wake everyone rather than guess
+        signal_all(); // only the main thread can run it: wake everyone rather than guess
         return;
     }
     if (!t.deques[std::size_t(job->priority)].push(job)) {
@@ -185,21 +185,44 @@ void JobSystem::submit(Job* job, ThreadState& t) {
         execute(job, t); // deque full: run inline, memory stays bounded
         return;
     }
-    // The push's seq_cst store of bottom precedes this seq_cst load (see idle_sleep).
-    if (sleepers_.load(std::memory_order_seq_cst) != 0) {
-        epoch_.fetch_add(1, std::memory_order_seq_cst);
-        epoch_.notify_one();
-    }
+    // The push's seq_cst store of bottom precedes these seq_cst loads (see idle_sleep).
+    if (sleepers_.load(std::memory_order_seq_cst) != 0) wake_one();
 }
 
-void JobSystem::signal(bool all) {
+// Wakes one sleeper for new work, unless a wake-up is already on its way: the thread it
+// wakes will search the deques before it can sleep again, so it finds this job too, and a
+// second futex call would only cost the spawner a system call. Where other threads hold the
+// cores (lavapipe's, in the game), a woken worker can wait milliseconds to run, and without
+// this every spawn in between paid for a wake-up: spawn+wait took ~0.9 us instead of tens
+// of ns (benchmarks/jobs_bench.cpp, the Contended rows).
+//
+// Why no job is lost: `wake_pending_` is cleared by every thread entering idle_sleep (before
+// it announces itself and re-checks the deques) and leaving it (before it searches again).
+// A spawner that finds it set comes, in the seq_cst order, after its own push and before
+// the next clear; some thread reaches that clear (the woken one, or one that left the sleep
+// on its own) and then searches, at the latest in idle_sleep's seq_cst re-check. A burst of
+// spawns faster than a wake-up thus wakes one thread; that thread wakes the next when it
+// finds more work than it took (run_or_idle), so the wake-ups fan out.
+void JobSystem::wake_one() {
+    if (wake_pending_.load(std::memory_order_seq_cst) || wake_pending_.exchange(true, std::memory_order_seq_cst))
+        return;
     epoch_.fetch_add(1, std::memory_order_seq_cst);
-    if (sleepers_.load(std::memory_order_seq_cst) != 0) {
-        if (all)
-            epoch_.notify_all();
-        else
-            epoch_.notify_one();
-    }
+    epoch_.notify_one();
+}
+
+void JobSystem::signal_all() {
+    epoch_.fetch_add(1, std::memory_order_seq_cst);
+    if (sleepers_.load(std::memory_order_seq_cst) != 0) epoch_.notify_all();
+}
+
+// A counter reached zero: only threads sleeping in wait() care (idle workers do not), and
+// only they are counted in `waiters_`. The decrement and this load are seq_cst, and a
+// waiter announces itself before it re-checks its counter, so either it sees the counter
+// done or the completer sees the waiter and moves the epoch its futex wait compares.
+void JobSystem::signal_waiters() {
+    if (waiters_.load(std::memory_order_seq_cst) == 0) return;
+    epoch_.fetch_add(1, std::memory_order_seq_cst);
+    epoch_.notify_all();
 }
 
 JobSystem::Job* JobSystem::find_job(ThreadState& t) {
@@ -250,7 +273,7 @@ void JobSystem::execute(Job* job, ThreadState& t) {
     Counter* counter = job->counter;
     free_job(job, t); // before the decrement: a waiter may tear everything down after it
     t.jobs_run.fetch_add(1, std::memory_order_relaxed);
-    if (counter && counter->value_.fetch_sub(1, std::memory_order_acq_rel) == 1) signal(true);
+    if (counter && counter->value_.fetch_sub(1, std::memory_order_seq_cst) == 1) signal_waiters();
 }
 
 // Sleeps until the epoch moves. Lost wake-ups are impossible. The sleeper announces itself
@@ -259,25 +282,34 @@ void JobSystem::execute(Job* job, ThreadState& t) {
 // In the single total order of seq_cst operations, either the spawner's read comes before
 // the sleeper's announcement (so the sleeper's re-check comes after the publish and sees
 // the job), or it sees the sleeper and bumps the epoch, which the futex wait compares
-// against the value read before the re-check. Counter completion and main-thread jobs
-// always bump the epoch (signal).
-void JobSystem::idle_sleep(ThreadState& t, const Counter* counter) {
+// against the value read before the re-check (or finds a wake-up pending, see wake_one).
+// A thread waiting for a counter also announces itself in waiters_ (see signal_waiters);
+// main-thread jobs always bump the epoch (signal_all).
+bool JobSystem::idle_sleep(ThreadState& t, const Counter* counter) {
+    wake_pending_.store(false, std::memory_order_seq_cst);
     sleepers_.fetch_add(1, std::memory_order_seq_cst);
+    if (counter) waiters_.fetch_add(1, std::memory_order_seq_cst);
     std::uint32_t epoch = epoch_.load(std::memory_order_seq_cst);
     bool wake = !running_.load(std::memory_order_seq_cst) || has_visible_work(t) || (counter && counter->done());
     if (!wake) epoch_.wait(epoch, std::memory_order_seq_cst);
+    if (counter) waiters_.fetch_sub(1, std::memory_order_seq_cst);
     sleepers_.fetch_sub(1, std::memory_order_seq_cst);
+    wake_pending_.store(false, std::memory_order_seq_cst);
+    return !wake;
 }
 
 void JobSystem::run_or_idle(ThreadState& t, std::uint32_t& idle, const Counter* counter) {
     if (Job* job = find_job(t)) {
+        // Woken from a sleep and there is more: pass the wake-up on (see wake_one).
+        if (idle == woken && sleepers_.load(std::memory_order_seq_cst) != 0 && has_visible_work(t)) wake_one();
         execute(job, t);
         idle = 0;
+    } else if (idle == woken) {
+        idle = config_.spin_iterations / 2; // spin a little after each wake-up
     } else if (idle < config_.spin_iterations) {
         idle += backoff(idle);
     } else {
-        idle_sleep(t, counter);
-        idle = config_.spin_iterations / 2; // spin a little after each wake-up
+        idle = idle_sleep(t, counter) ? woken : config_.spin_iterations / 2;
     }
 }
 

@@ -130,10 +130,15 @@ class JobSystem {
     Job* find_job(ThreadState& t);
     bool has_visible_work(const ThreadState& t) const;
     void execute(Job* job, ThreadState& t);
-    void signal(bool all);
+    void wake_one();
+    void signal_all();
+    void signal_waiters();
     void worker_main(std::uint32_t index);
-    void idle_sleep(ThreadState& t, const Counter* counter);
-    // Runs one job if there is one; otherwise backs off, then sleeps (`idle` counts pauses).
+    // Returns whether the thread slept (false: it found a reason not to).
+    bool idle_sleep(ThreadState& t, const Counter* counter);
+    // Runs one job if there is one; otherwise backs off, then sleeps (`idle` counts pauses,
+    // or is `woken` right after a sleep).
+    static constexpr std::uint32_t woken = ~0u;
     void run_or_idle(ThreadState& t, std::uint32_t& idle, const Counter* counter);
     ThreadState& this_thread();
     void run_for_loop(void* state, std::uint32_t worker);
@@ -147,7 +152,9 @@ class JobSystem {
     std::atomic<bool> running_{true};
     std::atomic<std::uint32_t> started_{0};
     alignas(64) std::atomic<std::uint32_t> epoch_{0};
-    alignas(64) std::atomic<std::uint32_t> sleepers_{0};
+    alignas(64) std::atomic<std::uint32_t> sleepers_{0}; // threads in idle_sleep
+    std::atomic<std::uint32_t> waiters_{0};               // of which waiting for a counter
+    std::atomic<bool> wake_pending_{false};               // a wake_one() not yet answered
     struct SharedPool;
     std::unique_ptr<SharedPool> pool_;
     struct MainQueue;
