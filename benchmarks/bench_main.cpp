@@ -6,6 +6,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 
 namespace lantern::bench {
@@ -13,6 +15,20 @@ namespace lantern::bench {
 std::vector<std::string>& reference_lines() {
     static std::vector<std::string> lines;
     return lines;
+}
+
+BusyCores::BusyCores() {
+    const unsigned n = std::max(1u, std::thread::hardware_concurrency());
+    for (unsigned i = 0; i < n; ++i)
+        threads_.emplace_back([this] {
+            volatile std::uint64_t x = 0;
+            while (!stop_.load(std::memory_order_relaxed)) x = x + 1;
+        });
+}
+
+BusyCores::~BusyCores() {
+    stop_.store(true);
+    for (std::thread& t : threads_) t.join();
 }
 
 } // namespace lantern::bench

@@ -1,7 +1,8 @@
 // lantern-bench-ecs: the ECS operations of issue 2, per 1M entities, for Lantern's sparse-set
 // World next to an archetype-table prototype (archetype_prototype.hpp), to justify the
-// storage choice (docs/ecs.md). EnTT v3.16 figures measured on a similar machine are printed
-// first for comparison (EnTT is not packaged in Debian, so it is not built here).
+// storage choice (docs/ecs.md). EnTT figures are printed first for comparison (EnTT is not
+// packaged in Debian, so it is not built here; lantern-bench-peers, benchmarks/peers/, puts
+// Lantern and EnTT in one binary when a checkout is at hand).
 #include "archetype_prototype.hpp"
 #include "bench_main.hpp"
 
@@ -35,6 +36,9 @@ lantern::bench::Reference reference{
     "EnTT v3.16 reference (2-core Xeon 2.5 GHz VM, g++ 12 -O2), ms per 1M entities:",
     "  create with 2 components 108 | view<P> 2.6 | view<P,V> 7.9 (owning group 3.4) | view<P,V,E> 14.7",
     "  add then remove one component 55 | get by shuffled handle 114 | destroy 89",
+    "EnTT 4.0.0 in one binary with Lantern (lantern-bench-peers, 2-core AMD EPYC VM, 2026-11-25), ms, medians:",
+    "  create with 2 components 72-101 (Lantern 92-116, noisy) | registry.get shuffled 121-134 (Lantern",
+    "  World::get 87) | storage.get shuffled 33-35 (Lantern pool.get 35-38) | view<P,V> 3.9 (Lantern 2.9)",
 };
 
 void make_world(World& w, std::vector<Entity>* out, bool third = false) {
@@ -110,6 +114,20 @@ void BM_Lantern_GetShuffled(benchmark::State& state) {
     for (auto _ : state) {
         std::uint64_t sum = 0;
         for (Entity e : es) sum += w.get<Position>(e).x;
+        benchmark::DoNotOptimize(sum);
+    }
+}
+
+// The hot-loop form: the pool fetched once (EnTT's registry.storage<T>()), then get by handle.
+void BM_Lantern_GetShuffledPool(benchmark::State& state) {
+    World w;
+    std::vector<Entity> es;
+    make_world(w, &es);
+    std::shuffle(es.begin(), es.end(), std::mt19937(42));
+    auto& pool = w.assure<Position>();
+    for (auto _ : state) {
+        std::uint64_t sum = 0;
+        for (Entity e : es) sum += pool.get(e).x;
         benchmark::DoNotOptimize(sum);
     }
 }
@@ -215,6 +233,7 @@ LANTERN_ECS_BENCH(BM_Archetype_Iterate3);
 LANTERN_ECS_BENCH(BM_Lantern_AddRemove);
 LANTERN_ECS_BENCH(BM_Archetype_AddRemove);
 LANTERN_ECS_BENCH(BM_Lantern_GetShuffled);
+LANTERN_ECS_BENCH(BM_Lantern_GetShuffledPool);
 LANTERN_ECS_BENCH(BM_Archetype_GetShuffled);
 LANTERN_ECS_BENCH(BM_Lantern_Destroy);
 LANTERN_ECS_BENCH(BM_Archetype_Destroy);

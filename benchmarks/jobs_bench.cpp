@@ -25,6 +25,9 @@ using lantern::jobs::JobSystem;
 lantern::bench::Reference reference{
     "Reference (2-core Xeon VM): enkiTS spawn-and-wait of one empty task 235 ns; 1M single-item tasks 211 ms;",
     "  Taskflow 1M-task prebuilt graph 145 ms; both reach 1.86x on 2 threads for a 64M-float sum.",
+    "enkiTS 771a087 in one binary with Lantern (lantern-bench-peers, 2-core AMD EPYC VM, 2026-11-25), one worker:",
+    "  spawn+wait quiet 67-107 ns (Lantern 25-27), one busy loop per core 114-140 ns (Lantern 37-61);",
+    "  1M tasks quiet 58-102 ms (Lantern 14-82), busy 50-110 ms (Lantern 16-28).",
 };
 
 JobSystem& system_with(int workers) {
@@ -65,31 +68,9 @@ void BM_MillionSingleTasks(benchmark::State& state) {
     }
 }
 
-// One busy loop per core for the benchmark's lifetime: the contention the game's workers see
-// from lavapipe's own threads (issue 15). Measured in the same run as the quiet rows.
-class BusyCores {
-  public:
-    BusyCores() {
-        const unsigned n = std::max(1u, std::thread::hardware_concurrency());
-        for (unsigned i = 0; i < n; ++i)
-            threads_.emplace_back([this] {
-                volatile std::uint64_t x = 0;
-                while (!stop_.load(std::memory_order_relaxed)) x = x + 1;
-            });
-    }
-    ~BusyCores() {
-        stop_.store(true);
-        for (std::thread& t : threads_) t.join();
-    }
-
-  private:
-    std::atomic<bool> stop_{false};
-    std::vector<std::thread> threads_;
-};
-
 void BM_SpawnAndWaitOneContended(benchmark::State& state) {
     JobSystem& jobs = system_with(int(state.range(0)));
-    BusyCores busy;
+    lantern::bench::BusyCores busy;
     for (auto _ : state) {
         Counter c;
         jobs.spawn(&empty_job, nullptr, &c);
@@ -100,7 +81,7 @@ void BM_SpawnAndWaitOneContended(benchmark::State& state) {
 
 void BM_MillionSingleTasksContended(benchmark::State& state) {
     JobSystem& jobs = system_with(int(state.range(0)));
-    BusyCores busy;
+    lantern::bench::BusyCores busy;
     for (auto _ : state) {
         Counter c;
         for (int i = 0; i < 1'000'000; ++i) jobs.spawn(&empty_job, nullptr, &c);

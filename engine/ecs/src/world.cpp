@@ -30,7 +30,8 @@ void World::set_free(std::uint32_t index, bool free) {
 }
 
 Entity World::create() {
-    flush_reserved();
+    if (reserved_.load(std::memory_order_relaxed) != slots_.size()) [[unlikely]]
+        flush_reserved();
     std::uint32_t index;
     if (!free_list_.empty()) {
         index = free_list_.back();

@@ -31,18 +31,37 @@ using TypeId = std::uint32_t;
 namespace detail {
 inline std::atomic<TypeId> next_component_id{0};
 inline std::atomic<TypeId> next_resource_id{0};
+inline constexpr TypeId unassigned_id = ~0u;
+
+// A type's id lives in a constant-initialised atomic (no guard variable, no order of
+// initialisation to respect): reading it is one relaxed load and a predictable branch, which
+// matters in World::get's hot loops. The first use assigns it; racing first uses agree
+// through the compare-exchange, and the losers' numbers are simply never used.
+template <typename T, bool Resource>
+struct TypeSlot {
+    static inline std::atomic<TypeId> id{unassigned_id};
+};
+
+template <typename T, bool Resource>
+[[gnu::noinline]] TypeId assign_id() {
+    std::atomic<TypeId>& counter = Resource ? next_resource_id : next_component_id;
+    TypeId expected = unassigned_id;
+    TypeId fresh = counter.fetch_add(1, std::memory_order_relaxed);
+    TypeSlot<T, Resource>::id.compare_exchange_strong(expected, fresh, std::memory_order_relaxed);
+    return TypeSlot<T, Resource>::id.load(std::memory_order_relaxed);
+}
 } // namespace detail
 
 template <typename T>
-TypeId component_id() {
-    static const TypeId id = detail::next_component_id.fetch_add(1, std::memory_order_relaxed);
-    return id;
+inline TypeId component_id() {
+    TypeId id = detail::TypeSlot<T, false>::id.load(std::memory_order_relaxed);
+    return id != detail::unassigned_id ? id : detail::assign_id<T, false>();
 }
 
 template <typename T>
-TypeId resource_id() {
-    static const TypeId id = detail::next_resource_id.fetch_add(1, std::memory_order_relaxed);
-    return id;
+inline TypeId resource_id() {
+    TypeId id = detail::TypeSlot<T, true>::id.load(std::memory_order_relaxed);
+    return id != detail::unassigned_id ? id : detail::assign_id<T, true>();
 }
 
 // Change ticks: the world's tick advances at sync points; "changed since t" means the

@@ -13,6 +13,7 @@
 
 #include "lantern/core/assert.hpp"
 #include "lantern/ecs/entity.hpp"
+#include "lantern/ecs/pod_vector.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -134,8 +135,8 @@ class PoolBase {
     }
 
     std::vector<std::unique_ptr<SparseEntry[]>> pages_;
-    std::vector<std::uint32_t> dense_;
-    std::vector<ComponentTicks> ticks_;
+    PodVector<std::uint32_t> dense_;
+    PodVector<ComponentTicks> ticks_;
     Tick last_added_ = 0, last_changed_ = 0, last_removed_ = 0;
     std::atomic<std::int32_t> iterating_{0};
 };
@@ -223,7 +224,8 @@ class Pool final : public PoolBase {
     }
 
   private:
-    std::vector<T> data_;
+    // Trivially copyable components grow without copies (see PodVector).
+    std::conditional_t<pod_vector_compatible<T> && !is_tag, PodVector<T>, std::vector<T>> data_;
     struct NoTag {};
     [[no_unique_address]] std::conditional_t<is_tag, T, NoTag> tag_{};
 };

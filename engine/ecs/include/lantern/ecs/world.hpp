@@ -287,9 +287,9 @@ class World {
     bool is_free(std::uint32_t index) const { return (free_bits_[index >> 6] >> (index & 63)) & 1; }
     void set_free(std::uint32_t index, bool free);
 
-    std::vector<std::uint32_t> slots_;     // generation per slot
-    std::vector<std::uint64_t> free_bits_; // 1 = slot not alive
-    std::vector<std::uint32_t> free_list_; // reusable slots, LIFO
+    PodVector<std::uint32_t> slots_;     // generation per slot
+    PodVector<std::uint64_t> free_bits_; // 1 = slot not alive
+    PodVector<std::uint32_t> free_list_; // reusable slots, LIFO
     std::atomic<std::uint32_t> reserved_{0};
     std::uint32_t alive_count_ = 0;
     std::vector<std::unique_ptr<PoolBase>> pools_;
