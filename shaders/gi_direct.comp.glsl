@@ -58,11 +58,6 @@ int proxy_next(int i) {
 #include "lantern/gi_shadow.glsl"
 #include "lantern/gi_point_map.glsl"
 
-// Point light l's grid visibility of target: its shadow map's, or the seed's DDA (equal).
-float grid_visibility(GpuPointLight l, vec2 target) {
-    return POINT_MAP ? point_map_visibility(l, target) : shadow_dda(l.position_radius.xy, target, l.position_radius.z);
-}
-
 #include "lantern/gi_texel_light.glsl"
 
 float light_distance(vec2 p, vec2 pos) {
@@ -99,8 +94,11 @@ uint light_word_mask(int w, int first, int end) {
 
 // Point light i at a texel: on the ground its colour and shadow; on a wall each face that
 // can face the light (one across x, one across z), shadowed by its own traversal to just
-// outside the face.
-void point_light(int i, bool wall, ivec2 cell, vec2 p, vec4 mask, float softness, inout TexelLight t) {
+// outside the face. Grid shadows by the seed's DDA, or by the light's map (POINT_MAP): a
+// target the map cannot decide adds nothing and sets its bit in `later` (bit s: target
+// s); the caller calls again with `deferred` and those bits in `only`, and the DDA decides.
+void point_light(int i, const bool deferred, uint only, bool wall, ivec2 cell, vec2 p, vec4 mask, float softness,
+                 inout TexelLight t, inout uint later) {
     if (pc.pass.proxy_per_light != 0) // this light's proxies in this bin (gi_light_bins)
         g_proxy_base = (g_bins_total + g_bin * pc.counts.x + i) * g_proxy_words;
     GpuPointLight l = u_lights.lights[i];
@@ -115,17 +113,27 @@ void point_light(int i, bool wall, ivec2 cell, vec2 p, vec4 mask, float softness
         int f = s == 0 ? fx : fz;
         float w = s == 0 ? (fx == 0 ? weight.x : weight.y) : (fz == 2 ? weight.z : weight.w);
         vec2 target = wall ? face_position(f, cell, p) : p;
-        float grid = grid_visibility(l, target);
+        float grid;
+        bool skip = false;
+        if (!POINT_MAP || deferred) {
+            grid = shadow_dda(pos, target, radius);
+            skip = deferred && ((only >> uint(s)) & 1u) == 0u;
+        } else {
+            grid = point_map_lookup(l, target);
+            skip = grid < 0.0;
+            later |= skip ? 1u << uint(s) : 0u;
+        }
+        vec3 light = skip ? vec3(0.0) : contribution; // adding 0 leaves every sum as it is
         if (UPPER && wall) {
-            add_face(t, f, contribution * w, grid, point_proxy_face_shadow(pos, target, pc.pass.wall_height));
+            add_face(t, f, light * w, grid, point_proxy_face_shadow(pos, target, pc.pass.wall_height));
             continue;
         }
-        float shadow = min(grid, point_proxy_shadow(pos, target));
+        float shadow = skip ? 0.0 : min(grid, point_proxy_shadow(pos, target));
         if (wall) {
-            add_face_light(t, f, contribution * (w * shadow)); // w = 0: adds 0, as the reference's skip
+            add_face_light(t, f, light * (w * shadow)); // w = 0: adds 0, as the reference's skip
         } else {
             t.shadow = max(t.shadow, shadow);
-            t.color += contribution * shadow; // (colour x falloff) x shadow, as the reference
+            t.color += light * shadow; // (colour x falloff) x shadow, as the reference
         }
     }
 }
@@ -153,7 +161,25 @@ void texel_light(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
     float softness = pc.pass.light_softness;
     int points = pc.counts.x, lights = pc.counts.x + pc.counts.y;
-    FOR_EACH_BIN_LIGHT(i, 0, points) point_light(i, wall, cell, p, mask, softness, t);
+    // Point lights 32 at a time (a word of the bin's mask): first every target the map (or
+    // the DDA) decides, then, in a loop of their own, the map's close calls by the DDA. The
+    // reference adds in the same order (reference_passes.cpp, PendingTargets).
+    for (int w = 0; w < (points + 31) >> 5; ++w) {
+        uint later0 = 0u, later1 = 0u;
+        for (uint bits = u_bins.masks[g_bin_base + w] & light_word_mask(w, 0, points); bits != 0u; bits &= bits - 1u) {
+            int j = findLSB(bits);
+            uint later = 0u;
+            point_light(w * 32 + j, false, 0u, wall, cell, p, mask, softness, t, later);
+            later0 |= (later & 1u) << uint(j);
+            later1 |= ((later >> 1u) & 1u) << uint(j);
+        }
+        if (POINT_MAP)
+            for (uint bits = later0 | later1; bits != 0u; bits &= bits - 1u) {
+                int j = findLSB(bits);
+                uint only = ((later0 >> uint(j)) & 1u) | (((later1 >> uint(j)) & 1u) << 1u), unused = 0u;
+                point_light(w * 32 + j, true, only, wall, cell, p, mask, softness, t, unused);
+            }
+    }
     FOR_EACH_BIN_LIGHT(i, points, lights) emissive_light(i, wall, p, mask, softness, t);
 }
 

@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lantern::bench {
@@ -56,6 +57,8 @@ std::vector<SeedRow> seed_rows() {
         {16, HeatScale::full, 32, 256, 0},  {16, HeatScale::full, 64, 256, 0}, {16, HeatScale::half, 64, 256, 0},
         {16, HeatScale::quarter, 64, 256, 0}, {8, HeatScale::full, 64, 256, 0}, {8, HeatScale::half, 64, 256, 0},
         {8, HeatScale::quarter, 64, 256, 0},
+        // Many lights (issue 15): the cost of one more light, from the slope between rows.
+        {8, HeatScale::quarter, 256, 256, 0}, {8, HeatScale::quarter, 1024, 256, 0},
     };
 }
 
@@ -68,7 +71,7 @@ scene::Scene seed_scene(const SeedRow& row) {
     s.gi.padding = padding;
     s.gi.heat_rounds = 20;
     s.gi.heat_scale = row.scale;
-    s.gi.max_lights = 256;
+    s.gi.max_lights = std::max(256, row.points + row.emissives);
     s.gi.max_shadow_proxies = 64;
     int k = 0;
     for (glm::vec2 p : spread(s.walls, row.points, 17u)) {

@@ -158,6 +158,39 @@ std::string markdown(const std::vector<RowResult>& rows, const std::string& devi
     return md;
 }
 
+// The cost of one more point light: the slope between rows that differ only in their count
+// of point lights (the many-light rows), for each method.
+std::string light_slopes(const std::vector<RowResult>& rows) {
+    std::string out;
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        for (std::size_t j = i + 1; j < rows.size(); ++j) {
+            const SeedRow &a = rows[i].row, &b = rows[j].row;
+            if (a.resolution != b.resolution || a.scale != b.scale || a.emissives != b.emissives ||
+                a.directionals != b.directionals || b.points <= a.points)
+                continue;
+            // Only the nearest larger count, so each step is reported once.
+            bool nearer = false;
+            for (std::size_t k = i + 1; k < j; ++k) {
+                const SeedRow& c = rows[k].row;
+                nearer |= c.resolution == a.resolution && c.scale == a.scale && c.emissives == a.emissives &&
+                          c.directionals == a.directionals && c.points > a.points && c.points < b.points;
+            }
+            if (nearer) continue;
+            const double n = double(b.points - a.points);
+            auto slope = [&](double x, double y) { return fmt("%.3f", (y - x) / n); };
+            const auto &da = rows[i].passes.at(gi::Pass::direct), &db = rows[j].passes.at(gi::Pass::direct);
+            out += "| " + std::to_string(a.resolution) + " | " + std::to_string(a.points) + " -> " +
+                   std::to_string(b.points) + " | " + slope(da.gpu_ms, db.gpu_ms) + " | " +
+                   slope(rows[i].direct_by_dda.gpu_ms, rows[j].direct_by_dda.gpu_ms) + " | " +
+                   slope(rows[i].total_gpu, rows[j].total_gpu) + " |";
+            out += da.cpp_ms > 0 ? " " + slope(da.cpp_ms, db.cpp_ms) + " |\n" : " - |\n";
+        }
+    if (out.empty()) return out;
+    return "\nCost of one more point light in view (ms per light, slope between rows):\n\n"
+           "| giRes | point lights | direct | direct by DDA | total | C++ direct |\n|---|---|---|---|---|---|\n" +
+           out;
+}
+
 } // namespace
 
 int seed_table(const SeedTableOptions& o) {
@@ -194,7 +227,7 @@ int seed_table(const SeedTableOptions& o) {
         print_row(*r, o.reference);
         rows.push_back(std::move(r.value()));
     }
-    const std::string md = markdown(rows, (*device)->name(), o.reference);
+    const std::string md = markdown(rows, (*device)->name(), o.reference) + light_slopes(rows);
     std::printf("\n%s", md.c_str());
     if (!o.markdown_out.empty()) {
         if (auto ok = write_file_atomic(o.markdown_out, md); !ok) {

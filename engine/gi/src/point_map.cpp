@@ -316,13 +316,12 @@ PointMaps build_point_maps(const FrameInputs& in) {
     return out;
 }
 
-float point_map_visibility(const PointMaps& maps, const WallView& walls, std::size_t light, glm::vec2 pos,
-                           glm::vec2 target, float radius, int* handed_to_dda) {
+float point_map_lookup(const PointMaps& maps, std::size_t light, glm::vec2 pos, glm::vec2 target, float radius) {
     const glm::vec2 h = maps.headers[light];
-    if (h.x < 0.0f) return hand_to_dda(walls, pos, target, radius, handed_to_dda);
+    if (h.x < 0.0f) return -1.0f;
     const glm::vec2 d = target - pos;
     const float dist = std::sqrt(d.x * d.x + d.y * d.y);
-    if (dist < 2e-4f) return hand_to_dda(walls, pos, target, radius, handed_to_dda);
+    if (dist < 2e-4f) return -1.0f;
     const int bins = point_map_bins(radius, maps.resolution);
     int b = int(pseudo_angle(d) * (float(bins) * 0.25f));
     if (b >= bins) b -= bins;
@@ -334,7 +333,13 @@ float point_map_visibility(const PointMaps& maps, const WallView& walls, std::si
     const int r1 = run_test(e.y & 0xffffffu, pos, d, h.y);
     if (r1 == 0) return 0.0f;
     if (r1 > 0 && dist < float(e.y >> 24) * ((radius + 3.0f) / 255.0f)) return 1.0f;
-    return hand_to_dda(walls, pos, target, radius, handed_to_dda);
+    return -1.0f;
+}
+
+float point_map_visibility(const PointMaps& maps, const WallView& walls, std::size_t light, glm::vec2 pos,
+                           glm::vec2 target, float radius, int* handed_to_dda) {
+    const float v = point_map_lookup(maps, light, pos, target, radius);
+    return v >= 0.0f ? v : hand_to_dda(walls, pos, target, radius, handed_to_dda);
 }
 
 } // namespace lantern::gi

@@ -68,13 +68,27 @@ struct TexelLight {
     float edge(int f) const { return edge_weight[f] > 0.0f ? edge_sum[f] / edge_weight[f] : 0.0f; }
 };
 
-// Point and emissive lights at one wall texel: per-face light, each face shadowed by its
-// own traversal to just outside it.
-// A point light's grid visibility of `target`: by its shadow map when the frame has them
-// (gi.shadow_method = shadow_map), else by the DDA.
+// Point light i's grid visibility of `target`: by the seed's DDA, or (gi.shadow_method =
+// shadow_map, `maps` set) by its map, which returns -1 for a close call unless `deferred`:
+// then the DDA decides it later (see for_each_point_light).
 float point_visibility(const FrameInputs& in, const PointMaps* maps, std::size_t i, glm::vec2 pos, glm::vec2 target,
-                       float radius) {
-    return maps ? point_map_visibility(*maps, in.walls, i, pos, target, radius) : shadow_dda(in.walls, pos, target, radius);
+                       float radius, bool deferred) {
+    return maps && !deferred ? point_map_lookup(*maps, i, pos, target, radius) : shadow_dda(in.walls, pos, target, radius);
+}
+
+// Calls visit(i, deferred) for every point light in the direct pass's order of addition:
+// 32 lights at a time (a word of the GPU's bin masks); visit returns the bits of the
+// targets its map could not decide (added nothing), which are visited again, with
+// `deferred` and those bits, after the 32. Without maps every call returns 0: light order.
+template <typename Visit>
+void for_each_point_light(const FrameInputs& in, Visit&& visit) {
+    std::uint32_t later[32];
+    for (std::size_t group = 0; group < in.point_lights.size(); group += 32) {
+        const std::size_t end = std::min(in.point_lights.size(), group + 32);
+        for (std::size_t i = group; i < end; ++i) later[i - group] = visit(i, 0u);
+        for (std::size_t i = group; i < end; ++i)
+            if (later[i - group] != 0u) visit(i, later[i - group]);
+    }
 }
 
 void wall_texel(const FrameInputs& in, const PointMaps* maps, glm::ivec2 cell, glm::vec2 p, TexelLight& out) {
@@ -86,28 +100,34 @@ void wall_texel(const FrameInputs& in, const PointMaps* maps, glm::ivec2 cell, g
         const float inv_len = 1.0f / std::sqrt(std::max(glm::dot(to_light, to_light), 1e-6f));
         return mask * wall_facing(to_light * inv_len, in.settings.wall_face_exponent);
     };
-    for (std::size_t i = 0; i < in.point_lights.size(); ++i) {
+    // Point light i at this texel; `only`: bit f set for the faces deferred to the DDA (0: all).
+    for_each_point_light(in, [&](std::size_t i, std::uint32_t only) -> std::uint32_t {
         const GpuPointLight& l = in.point_lights[i];
         const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
         const float radius = l.position_radius.z;
         const float dist = glm::distance(p, pos);
-        if (dist > radius) continue;
+        if (dist > radius) return 0u;
         const glm::vec4 weight = face_weights(pos);
-        if (weight == glm::vec4(0.0f)) continue;
+        if (weight == glm::vec4(0.0f)) return 0u;
         const glm::vec3 contribution = glm::vec3(l.color) * light_falloff(dist, radius, softness);
+        std::uint32_t later = 0u;
         for (int f = 0; f < 4; ++f) {
-            if (!(weight[f] > 0.0f)) continue;
+            if (!(weight[f] > 0.0f) || (only != 0u && !((only >> f) & 1u))) continue;
             const glm::vec2 target = face_position(f, cell, p);
-            if (unfold) {
-                out.add_face(f, contribution * weight[f], point_visibility(in, maps, i, pos, target, radius),
-                             point_proxy_face_shadow(proxies_of(in), pos, target, in.wall_height));
+            const float grid = point_visibility(in, maps, i, pos, target, radius, only != 0u);
+            if (grid < 0.0f) {
+                later |= 1u << f;
                 continue;
             }
-            const float shadow = std::min(point_visibility(in, maps, i, pos, target, radius),
-                                          point_proxy_shadow(proxies_of(in), pos, target));
+            if (unfold) {
+                out.add_face(f, contribution * weight[f], grid, point_proxy_face_shadow(proxies_of(in), pos, target, in.wall_height));
+                continue;
+            }
+            const float shadow = std::min(grid, point_proxy_shadow(proxies_of(in), pos, target));
             out.face[f] += contribution * (weight[f] * shadow);
         }
-    }
+        return later;
+    });
     for (const GpuPointLight& l : in.emissive_lights) {
         const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
         const float radius = l.position_radius.z;
@@ -124,17 +144,19 @@ void wall_texel(const FrameInputs& in, const PointMaps* maps, glm::ivec2 cell, g
 
 void ground_texel(const FrameInputs& in, const PointMaps* maps, glm::vec2 p, TexelLight& out) {
     const float softness = in.settings.light_softness;
-    for (std::size_t i = 0; i < in.point_lights.size(); ++i) {
+    for_each_point_light(in, [&](std::size_t i, std::uint32_t only) -> std::uint32_t {
         const GpuPointLight& l = in.point_lights[i];
         const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
         const float radius = l.position_radius.z;
         const float dist = glm::distance(p, pos);
-        if (dist > radius) continue;
-        const float shadow =
-            std::min(point_visibility(in, maps, i, pos, p, radius), point_proxy_shadow(proxies_of(in), pos, p));
+        if (dist > radius) return 0u;
+        const float grid = point_visibility(in, maps, i, pos, p, radius, only != 0u);
+        if (grid < 0.0f) return 1u;
+        const float shadow = std::min(grid, point_proxy_shadow(proxies_of(in), pos, p));
         out.shadow = std::max(out.shadow, shadow);
         out.color += glm::vec3(l.color) * light_falloff(dist, radius, softness) * shadow;
-    }
+        return 0u;
+    });
     for (const GpuPointLight& l : in.emissive_lights) {
         const glm::vec2 pos(l.position_radius.x, l.position_radius.y);
         const float radius = l.position_radius.z;

@@ -4,7 +4,9 @@
 // spare, and close calls go to shadow_dda itself.
 //
 // lavapipe runs both sides of every branch and gathers every loaded component per lane, so
-// the lookup is straight-line code around one 64-bit load; only the DDA is a loop.
+// the lookup is straight-line code around one 64-bit load, and the DDA for its close calls
+// is not behind an `if` here (it would run, masked, for every lookup): the caller collects
+// them and runs the DDA in a loop that only their lanes extend.
 //
 // Requires before inclusion: gi_shadow.glsl and a storage buffer u_point_map.bins (uvec2
 // per bin). A light's header rides in its spare fields: position_radius.w = first bin (-1:
@@ -48,8 +50,10 @@ int run_test(uint code, vec2 pos, vec2 d, float margin) {
     return code == GI_NO_RUN ? -1 : (misses ? 1 : (crosses ? 0 : -1));
 }
 
-// Light l's grid visibility of target: 0 blocked, 1 lit (shadow_dda's meaning).
-float point_map_visibility(GpuPointLight l, vec2 target) {
+// Light l's grid visibility of target from its map: 0 blocked, 1 lit (shadow_dda's
+// meaning), -1 when the map cannot tell (close calls, no map): then shadow_dda decides. The
+// direct pass defers those to a loop of their own (point_map.cpp point_map_lookup).
+float point_map_lookup(GpuPointLight l, vec2 target) {
     vec2 pos = l.position_radius.xy;
     float radius = l.position_radius.z, base = l.position_radius.w, margin = l.color.w;
     precise vec2 d = target - pos;
@@ -67,7 +71,6 @@ float point_map_visibility(GpuPointLight l, vec2 target) {
               : (r1 > 0 && dist < float(e.y >> 24) * (reach / 255.0))        ? 1.0
                                                                             : -1.0;
     if (base < 0.0 || dist < 2e-4) v = -1.0;
-    if (v < 0.0) v = shadow_dda(pos, target, radius);
     return v;
 }
 

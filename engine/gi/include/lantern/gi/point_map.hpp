@@ -63,6 +63,12 @@ int point_map_bins(float radius, int res);
 // The maps of every point light of `in` (its window and walls), in its order.
 PointMaps build_point_maps(const FrameInputs& in);
 
+// Light `light`'s grid visibility of `target` from its map alone: 0 blocked, 1 lit, -1 when
+// the map cannot tell (a close call, or no map): shadow_dda decides those. The direct pass
+// adds the lights the map decides first and the close calls after them, 32 lights at a time
+// (gi_direct.comp.glsl; reference_passes.cpp follows the same order).
+float point_map_lookup(const PointMaps& maps, std::size_t light, glm::vec2 pos, glm::vec2 target, float radius);
+
 // Light `light`'s grid visibility of `target`: 0 blocked, 1 lit. Same meaning as
 // shadow_dda(walls, pos, target, radius), which decides the close calls (counted in
 // *handed_to_dda when given).
