@@ -179,15 +179,20 @@ std::string light_slopes(const std::vector<RowResult>& rows) {
             const double n = double(b.points - a.points);
             auto slope = [&](double x, double y) { return fmt("%.3f", (y - x) / n); };
             const auto &da = rows[i].passes.at(gi::Pass::direct), &db = rows[j].passes.at(gi::Pass::direct);
+            // The machine's speed drifts between rows (the copy kernel with it): the slope of
+            // "x copy" is the steadier figure.
+            auto per_copy = [](const PassNumbers& x) { return x.copy_ms > 0 ? x.gpu_ms / x.copy_ms : 0.0; };
             out += "| " + std::to_string(a.resolution) + " | " + std::to_string(a.points) + " -> " +
                    std::to_string(b.points) + " | " + slope(da.gpu_ms, db.gpu_ms) + " | " +
+                   slope(per_copy(da), per_copy(db)) + " | " +
                    slope(rows[i].direct_by_dda.gpu_ms, rows[j].direct_by_dda.gpu_ms) + " | " +
                    slope(rows[i].total_gpu, rows[j].total_gpu) + " |";
             out += da.cpp_ms > 0 ? " " + slope(da.cpp_ms, db.cpp_ms) + " |\n" : " - |\n";
         }
     if (out.empty()) return out;
     return "\nCost of one more point light in view (ms per light, slope between rows):\n\n"
-           "| giRes | point lights | direct | direct by DDA | total | C++ direct |\n|---|---|---|---|---|---|\n" +
+           "| giRes | point lights | direct | direct x copy | direct by DDA | total | C++ direct |\n"
+           "|---|---|---|---|---|---|---|\n" +
            out;
 }
 

@@ -85,9 +85,11 @@ void for_each_point_light(const FrameInputs& in, Visit&& visit) {
     std::uint32_t later[32];
     for (std::size_t group = 0; group < in.point_lights.size(); group += 32) {
         const std::size_t end = std::min(in.point_lights.size(), group + 32);
-        for (std::size_t i = group; i < end; ++i) later[i - group] = visit(i, 0u);
-        for (std::size_t i = group; i < end; ++i)
-            if (later[i - group] != 0u) visit(i, later[i - group]);
+        std::uint32_t any = 0u;
+        for (std::size_t i = group; i < end; ++i) any |= later[i - group] = visit(i, 0u);
+        if (any != 0u)
+            for (std::size_t i = group; i < end; ++i)
+                if (later[i - group] != 0u) visit(i, later[i - group]);
     }
 }
 
