@@ -367,6 +367,12 @@ TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
     const json::Value* frame_ms = timings->find("frame_ms");
     ASSERT_TRUE(frame_ms && frame_ms->find("p95"));
     EXPECT_GT(frame_ms->find("p95")->as_number(), 0.0);
+    // Hitches: frames above 3x the p50, listed (their number depends on the machine).
+    const json::Value* hitches = timings->find("hitches");
+    ASSERT_TRUE(hitches && hitches->find("count") && hitches->find("frames") && hitches->find("above_ms"));
+    EXPECT_NEAR(hitches->find("above_ms")->as_number(), 3.0 * frame_ms->find("p50")->as_number(), 0.01);
+    EXPECT_EQ(hitches->find("count")->as_number(), double(hitches->find("frames")->as_array().size()));
+    EXPECT_NE(log.find("frames above 3x p50"), std::string::npos) << log;
     // Every system and GPU pass of the frame shows up in the report.
     std::set<std::string> names;
     for (const json::Value& s : timings->find("scopes")->as_array()) names.insert(s.find("name")->as_string());

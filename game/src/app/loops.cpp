@@ -107,12 +107,20 @@ Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, co
                                          const std::vector<std::string>& screenshots,
                                          const std::vector<MemorySample>& memory, double seconds) {
     std::vector<double> all, walk;
+    std::vector<std::size_t> counted; // frame index of each entry of `all`
     for (std::size_t i = std::size_t(warm_up_frames); i < frame_ms.size(); ++i) {
         if (frame_ms[i] < 0 || (i > 0 && frame_ms[i - 1] < 0)) continue;
         all.push_back(frame_ms[i]);
+        counted.push_back(i);
         if (walking[i]) walk.push_back(frame_ms[i]);
     }
     const profile::Percentiles pa = profile::percentiles(all), pw = profile::percentiles(walk);
+    // Hitches: counted frames above 3x the p50 (the measure; their scopes are in the
+    // trace and profile.txt).
+    const double hitch_ms = 3.0 * pa.p50;
+    std::vector<std::size_t> hitches;
+    for (std::size_t k = 0; k < all.size(); ++k)
+        if (all[k] > hitch_ms) hitches.push_back(counted[k]);
     const auto stats = profile::stats();
     const scene::GiSettings& gi = session_->world.resource<systems::GiConfig>().settings;
 
@@ -141,6 +149,10 @@ Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, co
     w.field("heat_scale", int(gi.heat_scale)).field("padding", gi.padding).field("max_lights", gi.max_lights).end();
     pct("frame_ms", pa);
     pct("frame_ms_walking", pw);
+    w.key("hitches").begin_object(json::Layout::one_line).field("above_ms", hitch_ms, 3).field("count", hitches.size());
+    w.key("frames").begin_array(json::Layout::one_line);
+    for (std::size_t f : hitches) w.value(f);
+    w.end().end();
     w.key("memory").begin_object().field("from_frame", from.frame).field("to_frame", to.frame);
     w.key("resident_mib").begin_object(json::Layout::one_line).field("from", double(from.resident_bytes) / mib, 3);
     w.field("to", double(to.resident_bytes) / mib, 3).field("max", double(peak_resident) / mib, 3);
@@ -175,6 +187,9 @@ Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, co
                 warm_up_frames, pa.p50, pa.p95, pa.p99, pa.max, pa.count);
     std::printf("frame ms while walking:               p50 %6.2f  p95 %6.2f  p99 %6.2f  max %6.2f  (%u frames) -> %.1f fps at p95\n",
                 pw.p50, pw.p95, pw.p99, pw.max, pw.count, pw.p95 > 0 ? 1000.0 / pw.p95 : 0.0);
+    std::printf("frames above 3x p50 (%.1f ms): %zu", hitch_ms, hitches.size());
+    for (std::size_t k = 0; k < hitches.size() && k < 10; ++k) std::printf("%s%zu", k == 0 ? " (frames " : ", ", hitches[k]);
+    std::printf("%s\n", hitches.empty() ? "" : hitches.size() > 10 ? ", ...)" : ")");
     std::printf("memory from frame %d to %d: resident %.1f -> %.1f MiB (%+.2f), device %.1f -> %.1f MiB (%+.2f)\n",
                 from.frame, to.frame, double(from.resident_bytes) / mib, double(to.resident_bytes) / mib,
                 resident_growth, double(from.device_bytes) / mib, double(to.device_bytes) / mib, device_growth);
