@@ -75,10 +75,10 @@ class PodVector {
     template <typename... Args>
     T& emplace_back(Args&&... args) {
         if (size_ == capacity_) {
-            push_back(T(std::forward<Args>(args)...));
+            push_back(make(std::forward<Args>(args)...));
             return back();
         }
-        T* slot = ::new (static_cast<void*>(data_ + size_)) T(std::forward<Args>(args)...);
+        T* slot = ::new (static_cast<void*>(data_ + size_)) T(make(std::forward<Args>(args)...));
         ++size_;
         return *slot;
     }
@@ -95,6 +95,16 @@ class PodVector {
     }
 
   private:
+    // Aggregates by braces (parenthesised aggregate initialisation is not in every compiler
+    // Lantern builds with), other types by their constructors.
+    template <typename... Args>
+    static T make(Args&&... args) {
+        if constexpr (std::is_aggregate_v<T>)
+            return T{std::forward<Args>(args)...};
+        else
+            return T(std::forward<Args>(args)...);
+    }
+
     void grow(std::size_t at_least) {
         std::size_t n = capacity_ < 16 ? 16 : capacity_ * 2;
         reallocate(n < at_least ? at_least : n);
