@@ -161,20 +161,19 @@ std::string markdown(const std::vector<RowResult>& rows, const std::string& devi
 // The cost of one more point light: the slope between rows that differ only in their count
 // of point lights (the many-light rows), for each method.
 std::string light_slopes(const std::vector<RowResult>& rows) {
+    // b has more point lights than a and is otherwise the same row.
+    auto more_lights = [](const SeedRow& a, const SeedRow& b) {
+        return a.resolution == b.resolution && a.scale == b.scale && a.emissives == b.emissives &&
+               a.directionals == b.directionals && b.points > a.points;
+    };
     std::string out;
     for (std::size_t i = 0; i < rows.size(); ++i)
         for (std::size_t j = i + 1; j < rows.size(); ++j) {
             const SeedRow &a = rows[i].row, &b = rows[j].row;
-            if (a.resolution != b.resolution || a.scale != b.scale || a.emissives != b.emissives ||
-                a.directionals != b.directionals || b.points <= a.points)
-                continue;
+            if (!more_lights(a, b)) continue;
             // Only the nearest larger count, so each step is reported once.
             bool nearer = false;
-            for (std::size_t k = i + 1; k < j; ++k) {
-                const SeedRow& c = rows[k].row;
-                nearer |= c.resolution == a.resolution && c.scale == a.scale && c.emissives == a.emissives &&
-                          c.directionals == a.directionals && c.points > a.points && c.points < b.points;
-            }
+            for (std::size_t k = i + 1; k < j; ++k) nearer |= more_lights(a, rows[k].row) && more_lights(rows[k].row, b);
             if (nearer) continue;
             const double n = double(b.points - a.points);
             auto slope = [&](double x, double y) { return fmt("%.3f", (y - x) / n); };
