@@ -69,6 +69,15 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"directional_angle_scale", {0.5, "0.5"}},
         {"max_lights", {1, "1"}},
         {"max_shadow_proxies", {0, "0"}},
+        {"method", {double(int(scene::GiMethod::radiosity)), "radiosity"}},
+        {"radiosity.scale", {double(int(scene::HeatScale::half)), "half"}},
+        {"radiosity.rays", {7, "7"}},
+        {"radiosity.steps", {9, "9"}},
+        {"radiosity.epsilon", {1.5, "1.5"}},
+        {"radiosity.feedback", {0.25, "0.25"}},
+        {"radiosity.accumulate", {3, "3"}},
+        {"radiosity.noise", {double(int(scene::NoiseShift::golden)), "golden"}},
+        {"radiosity.frames", {5, "5"}},
     };
     const std::map<std::string, std::string> second = {
         {"resolution", "5"}, {"padding", "1.5"}, {"window_snap", "tile"}, {"sun_shadow_method", "dda"}, {"shadow_method", "shadow_map"}, {"proxy_wall_shadows", "full"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
@@ -76,11 +85,12 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"range_boost", "0.8"}, {"intensity_multiplier", "1.6"}, {"light_softness", "3.0"},
         {"wall_face_exponent", "3.0"}, {"ao.radius", "3.0"}, {"ao.power", "3.5"}, {"ao.strength", "0.7"}, {"tone_map", "aces"},
         {"white_point", "3.0"}, {"directional_angle_scale", "0.8"}, {"max_lights", "2"},
-        {"max_shadow_proxies", "1"},
+        {"max_shadow_proxies", "1"}, {"method", "heat"}, {"radiosity.scale", "quarter"}, {"radiosity.rays", "5"},
+        {"radiosity.steps", "11"}, {"radiosity.epsilon", "2.5"}, {"radiosity.feedback", "0.75"},
+        {"radiosity.accumulate", "5"}, {"radiosity.noise", "off"}, {"radiosity.frames", "7"},
     };
     if (auto it = values.find(key); it != values.end())
         return it->second.first != v ? it->second.second : second.at(key);
-    if (key == "method") return std::nullopt; // one method so far
     for (const char* toggle : {"per_channel", "segment_check", "ao.enabled", "ao.dither", "ao.walls", "blur",
                                "wall_lighting", "wall_faces.px", "wall_faces.nx", "wall_faces.pz", "wall_faces.nz"})
         if (key == toggle) return v != 0.0 ? "false" : "true";
@@ -176,16 +186,27 @@ TEST(PassTable, EverySettingHasAPerturbationAndEveryRowSettingExists) {
         EXPECT_TRUE(!p || !p->empty()) << "gi." << key << " has no perturbation in this test: add one";
     }
     const auto keys = scene::gi_setting_keys();
-    for (const PassRow* row : method(scene::GiMethod::heat).rows)
-        for (std::string_view k : row->settings)
-            EXPECT_NE(std::find(keys.begin(), keys.end(), std::string(k)), keys.end())
-                << row->name << " lists '" << k << "', which is not a gi key";
+    for (const Method* m : methods())
+        for (const PassRow* row : m->rows)
+            for (std::string_view k : row->settings)
+                EXPECT_NE(std::find(keys.begin(), keys.end(), std::string(k)), keys.end())
+                    << row->name << " lists '" << k << "', which is not a gi key";
 }
 
-TEST(PassTable, EverySettingChangesExactlyTheKeysOfThePassesItAffects) {
-    const scene::Scene base_scene = every_pass_scene();
+// The passes of a method, as a set.
+PassSet rows_of(const Method& m) {
+    PassSet set;
+    for (const PassRow* row : m.rows) set.add(row->pass);
+    return set;
+}
+
+class PassTableMethods : public ::testing::TestWithParam<scene::GiMethod> {};
+
+TEST_P(PassTableMethods, EverySettingChangesExactlyTheKeysOfThePassesItAffects) {
+    scene::Scene base_scene = every_pass_scene();
+    base_scene.gi.method = GetParam();
     const FrameRun base = run(base_scene);
-    for (int p = 0; p < registered_pass_count(); ++p) EXPECT_TRUE(base.plan.run.has(Pass(p))) << pass_name(Pass(p)) << " does not run";
+    EXPECT_EQ(base.plan.run, rows_of(method(GetParam()))) << "every row of the method runs";
     for (const std::string& key : scene::gi_setting_keys()) {
         const auto value = perturbed(key, base_scene.gi);
         if (!value || value->empty()) continue;
@@ -207,6 +228,10 @@ TEST(PassTable, EverySettingChangesExactlyTheKeysOfThePassesItAffects) {
         }
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, PassTableMethods,
+                         ::testing::Values(scene::GiMethod::heat, scene::GiMethod::radiosity),
+                         [](const auto& p) { return std::string(method(p.param).name); });
 
 TEST(PassTable, ARowMissingASettingIsCaught) {
     // The direct row without light_softness: its key ignores the setting, its output does not.
@@ -268,7 +293,7 @@ TEST(PassTable, TextureBudget) {
     ASSERT_TRUE(window);
     FrameInputs in = gather_frame_inputs(s, *window);
     const PassPlan plan = plan_passes(in, true);
-    ASSERT_EQ(plan.run.bits, (1u << builtin_pass_count) - 1) << "every pass runs";
+    ASSERT_EQ(plan.run, rows_of(method(scene::GiMethod::heat))) << "every pass runs";
     const std::uint64_t texels = std::uint64_t(in.window.width) * std::uint64_t(in.window.height);
     ASSERT_EQ(in.window.width % 4, 0); // no row padding in the per-texel figure
     EXPECT_EQ(texture_bytes(in, plan, TextureStorage::gpu), 166 * texels);

@@ -91,7 +91,12 @@ INSTANTIATE_TEST_SUITE_P(
                                            "\"reinhard\", \"reinhard_white\", \"aces\", got "
                                            "\"filmic\""},
         OverrideCase{"gi.ao.radius=9", "--set gi.ao.radius: must be in (0, 8], got 9"},
-        OverrideCase{"gi.method=radiosity", "--set gi.method: expected one of \"heat\", got \"radiosity\""},
+        OverrideCase{"gi.method=cascades", "--set gi.method: expected one of \"heat\", \"radiosity\", got \"cascades\""},
+        OverrideCase{"gi.radiosity.feedback=1", "--set gi.radiosity.feedback: must be in [0, 1), got 1 (at 1 a "
+                                                "closed room's light grows without bound; see docs/gi.md)"},
+        OverrideCase{"gi.radiosity.rays=0", "--set gi.radiosity.rays: must be an integer in [1, 256], got 0"},
+        OverrideCase{"gi.radiosity.noise=white", "--set gi.radiosity.noise: expected one of \"rotate\", \"golden\", "
+                                                 "\"off\", got \"white\""},
         OverrideCase{
             "gi.resoluton=8",
             "--set gi.resoluton: unknown key 'resoluton' in gi (did you mean 'resolution'?)"},

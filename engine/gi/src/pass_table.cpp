@@ -6,6 +6,7 @@
 #include "lantern/core/clock.hpp"
 #include "lantern/core/hash.hpp"
 #include "lantern/gi/reference_indirect.hpp"
+#include "lantern/gi/radiosity.hpp"
 #include "lantern/scene/loader.hpp"
 #include "rows/rows.hpp"
 
@@ -19,6 +20,11 @@ namespace lantern::gi {
 namespace {
 
 using enum Tex;
+
+glm::ivec2 radiosity_grid_size(const FrameInputs& in) {
+    const HeatGrid g = radiosity_grid(in);
+    return {g.width, g.height};
+}
 
 constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {conduction, "conduction", TexFormat::r8},
@@ -54,6 +60,12 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {wall_upper_point_nx, "wall_upper_point_nx", TexFormat::rgba16f, TexScale::window, false, true},
     {wall_upper_point_pz, "wall_upper_point_pz", TexFormat::rgba16f, TexScale::window, false, true},
     {wall_upper_point_nz, "wall_upper_point_nz", TexFormat::rgba16f, TexScale::window, false, true},
+    {jfa_a, "jfa_a", TexFormat::r8, TexScale::custom, true, true, radiosity_grid_size},
+    {jfa_b, "jfa_b", TexFormat::r8, TexScale::custom, true, true, radiosity_grid_size},
+    {distance_field, "distance_field", TexFormat::rgba16f, TexScale::custom, false, false, radiosity_grid_size},
+    {distance_steps, "distance_steps", TexFormat::r8, TexScale::custom, true, true, radiosity_grid_size},
+    {radiosity_light, "radiosity_light", TexFormat::rgba16f, TexScale::custom, false, true, radiosity_grid_size},
+    {radiosity, "radiosity", TexFormat::rgba16f, TexScale::custom, false, false, radiosity_grid_size},
 };
 
 constexpr bool rows_in_order() {
@@ -67,6 +79,12 @@ static_assert(rows_in_order(), "builtin_textures must list the textures in the o
 constexpr const PassRow* heat_rows[] = {
     &rows::conduction, &rows::ao,   &rows::direct,        &rows::directional, &rows::emission,
     &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::lit,
+};
+// Seed 003's radiosity: the same direct light and emission, then the distance field and the
+// raymarch in place of heat; the blur is the seed's denoiser.
+constexpr const PassRow* radiosity_rows[] = {
+    &rows::conduction,     &rows::ao,        &rows::direct, &rows::directional,   &rows::emission,
+    &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::lit,
 };
 
 // The registry: the built-in textures, rows and methods, then what add_texture/add_row
@@ -90,6 +108,8 @@ struct Registry {
     Registry() {
         for (const TextureRow& t : builtin_textures) textures[std::size_t(texture_count++)] = t;
         methods.push_back({{scene::GiMethod::heat, "heat", {}}, {std::begin(heat_rows), std::end(heat_rows)}});
+        methods.push_back(
+            {{scene::GiMethod::radiosity, "radiosity", {}}, {std::begin(radiosity_rows), std::end(radiosity_rows)}});
         const std::vector<std::string> keys = scene::gi_setting_keys();
         for (MethodRows& m : methods) {
             m.method.rows = m.rows;
@@ -340,9 +360,11 @@ InputKeys input_keys_of(const FrameInputs& in) {
 }
 
 void Convergence::advance(PassSet ran) {
-    for (int p = 0; p < pass_count; ++p)
-        if (ran.has(Pass(p)) && settled_key[std::size_t(p)] != 0 && frames[std::size_t(p)] < 0xFFFF)
-            ++frames[std::size_t(p)];
+    for (std::size_t p = 0; p < std::size_t(pass_count); ++p) {
+        if (!ran.has(Pass(p)) || settled_key[p] == 0) continue;
+        if (frames[p] < 0xFFFF) ++frames[p];
+        if (age[p] < 0xFFFF) ++age[p];
+    }
 }
 
 std::array<std::uint64_t, pass_count> derive_keys(const FrameInputs& in, PassPlan& plan, const InputKeys& inputs,
@@ -373,29 +395,45 @@ std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameIn
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const PassRow& row = *rows[i];
         if (!plan.run.has(row.pass)) continue;
-        Hasher h(own[int(row.pass)]);
-        for (Tex t : row.reads) h.add(producer[int(t)]);
+        // `reset` is the same key without the reads whose changes keep a converging row's
+        // history (PassRow::history_keeps).
+        Hasher h(own[int(row.pass)]), reset(own[int(row.pass)]);
+        for (Tex t : row.reads) {
+            h.add(producer[int(t)]);
+            const bool keeps = std::find(row.history_keeps.begin(), row.history_keeps.end(), t) != row.history_keeps.end();
+            reset.add(keeps ? 0 : producer[int(t)]);
+        }
         const TexSet out = outputs[int(row.pass)];
         // Later rows that overwrite an output in place change what this row leaves behind.
         for (std::size_t j = i + 1; j < rows.size(); ++j) {
             const Pass later = rows[j]->pass;
-            if (plan.run.has(later) && (outputs[int(later)].bits & out.bits)) h.add(own[int(later)]);
+            if (plan.run.has(later) && (outputs[int(later)].bits & out.bits)) {
+                h.add(own[int(later)]);
+                reset.add(own[int(later)]);
+            }
         }
         keys[int(row.pass)] = h.value();
         if (row.converge_frames) {
-            // Settled key = without history; the history counts frames since it changed.
+            // Settled key = without history; `frames` counts the frames run since it changed,
+            // `age` those since the history started afresh (what the row sees).
             const std::size_t p = std::size_t(row.pass);
-            int history = 0;
+            int frames = 0, age = 0;
             if (convergence) {
-                if (convergence->settled_key[p] != keys[p]) {
+                if (convergence->reset_key[p] != reset.value()) {
+                    convergence->reset_key[p] = reset.value();
+                    convergence->age[p] = 0;
+                    convergence->settled_key[p] = keys[p];
+                    convergence->frames[p] = 0;
+                } else if (convergence->settled_key[p] != keys[p]) {
                     convergence->settled_key[p] = keys[p];
                     convergence->frames[p] = 0;
                 }
-                history = convergence->frames[p];
+                frames = convergence->frames[p];
+                age = convergence->age[p];
             }
-            plan.history[p] = std::uint16_t(history);
+            plan.history[p] = std::uint16_t(age);
             const int last = std::max(1, row.converge_frames(in)) - 1;
-            keys[p] = Hasher(keys[p]).add(std::min(history, last)).value();
+            keys[p] = Hasher(keys[p]).add(std::min(frames, last)).value();
         }
         for (std::uint64_t bits = out.bits; bits; bits &= bits - 1)
             producer[std::size_t(std::countr_zero(bits))] = keys[int(row.pass)];

@@ -1,7 +1,7 @@
 // Reference of the indirect half of the pipeline. See reference_indirect.hpp.
 #include "lantern/gi/reference_indirect.hpp"
 
-#include "lantern/jobs/job_system.hpp"
+#include "reference_util.hpp"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -12,35 +12,15 @@
 namespace lantern::gi {
 namespace {
 
+using ref_util::air_at;
+using ref_util::for_each_row;
+using ref_util::load4;
+using ref_util::store4;
+
 constexpr glm::vec3 luma(0.299f, 0.587f, 0.114f);
 constexpr float soft_cap = 2.0f;
 
 float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
-
-template <typename F>
-void for_each_row(int height, const RefOptions& options, F&& row) {
-    if (options.jobs) {
-        options.jobs->parallel_for("gi.reference", 0, std::uint32_t(height), 8,
-                                   [&](std::uint32_t b, std::uint32_t e, std::uint32_t) {
-                                       for (std::uint32_t y = b; y < e; ++y) row(int(y));
-                                   });
-    } else {
-        for (int y = 0; y < height; ++y) row(y);
-    }
-}
-
-glm::vec4 load4(const Texture& t, int x, int y) {
-    const float* v = t.at(x, y);
-    return {v[0], v[1], v[2], v[3]};
-}
-void store4(Texture& t, int x, int y, glm::vec4 v) {
-    const float values[4] = {v.x, v.y, v.z, v.w};
-    t.store(x, y, values);
-}
-
-bool air_at(const WallView& walls, glm::vec2 p) {
-    return !walls.is_wall(int(std::floor(p.x)), int(std::floor(p.y)));
-}
 
 // The eight neighbour directions with their distance weights (diagonals 1/sqrt(2)).
 struct Direction {
@@ -160,9 +140,11 @@ glm::vec4 heat_texel(const FrameInputs& in, const HeatGrid& g, const std::vector
     return glm::vec4(next, center.a);
 }
 
+} // namespace
+
 // Full-resolution indirect light from the heat grid: copy at scale 1, otherwise bilinear
 // over the conductive heat texels around the texel centre (nearest when none conducts).
-Texture upsample(const FrameInputs& in, const HeatGrid& g, const Texture& heat, const RefOptions& options) {
+Texture reference_upsample(const FrameInputs& in, const HeatGrid& g, const Texture& heat, const RefOptions& options) {
     const GiWindow& w = in.window;
     Texture out("indirect", TexFormat::rgba16f, w.width, w.height);
     for_each_row(w.height, options, [&](int y) {
@@ -199,8 +181,6 @@ Texture upsample(const FrameInputs& in, const HeatGrid& g, const Texture& heat, 
     return out;
 }
 
-} // namespace
-
 Texture reference_heat(const FrameInputs& in, const Texture& emission, const Texture& shadow, const RefOptions& options,
                        int rounds_override) {
     Texture heat = reference_heat_seed(in, emission, shadow, options);
@@ -225,7 +205,7 @@ Texture reference_heat_round(const FrameInputs& in, const Texture& heat, const R
 }
 
 Texture reference_heat_upsample(const FrameInputs& in, const Texture& heat, const RefOptions& options) {
-    return upsample(in, heat_grid(in.window, in.settings.heat_scale), heat, options);
+    return reference_upsample(in, heat_grid(in.window, in.settings.heat_scale), heat, options);
 }
 
 Texture reference_blur(const FrameInputs& in, const Texture& indirect, const RefOptions& options) {

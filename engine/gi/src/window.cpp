@@ -82,7 +82,9 @@ std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float paddin
 int window_snap_texels(const scene::GiSettings& gi) {
     const int res = std::max(1, gi.resolution);
     if (gi.window_snap == scene::WindowSnap::tile) return res;
-    return std::min(res, int(gi.heat_scale)); // heat texels (1, 2 or 4 texels) stay whole
+    // The indirect grid's texels (1, 2 or 4 window texels) stay whole.
+    const int grid = gi.method == scene::GiMethod::radiosity ? int(gi.radiosity.scale) : int(gi.heat_scale);
+    return std::min(res, grid);
 }
 
 std::optional<GiWindow> compute_window(const scene::ViewSpec& view, const scene::GiSettings& gi, std::string* reason,

@@ -52,9 +52,24 @@ constexpr std::array<EnumName<ProxyWallShadows>, 2> proxy_wall_shadows_names{{
     {"unfold", ProxyWallShadows::unfold},
 }};
 
-constexpr std::array<EnumName<GiMethod>, 1> method_names{{
+constexpr std::array<EnumName<GiMethod>, 2> method_names{{
     {"heat", GiMethod::heat},
+    {"radiosity", GiMethod::radiosity},
 }};
+
+constexpr std::array<EnumName<NoiseShift>, 3> noise_shift_names{{
+    {"rotate", NoiseShift::rotate},
+    {"golden", NoiseShift::golden},
+    {"off", NoiseShift::off},
+}};
+
+constexpr Range radiosity_epsilon_range{.min = 0.0, .max = 64.0, .min_open = true};
+constexpr Range radiosity_feedback_range{
+    .min = 0.0,
+    .max = 1.0,
+    .max_open = true,
+    .note = "at 1 a closed room's light grows without bound; see docs/gi.md",
+};
 
 constexpr Range diffusion_rate_range{
     .min = 0.0,
@@ -83,7 +98,7 @@ struct EnumField {
 };
 using FieldTarget = std::variant<FloatField, IntField, BoolField, EnumField<HeatScale>, EnumField<ToneMap>,
                                  EnumField<GiMethod>, EnumField<WindowSnap>, EnumField<ShadowMethod>, EnumField<SunShadowMethod>,
-                                 EnumField<ProxyWallShadows>>;
+                                 EnumField<ProxyWallShadows>, EnumField<NoiseShift>>;
 
 struct GiField {
     std::string_view key; // below "gi"; keys of nested objects joined by dots ("ao.radius")
@@ -92,7 +107,7 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 35> gi_fields(GiSettings& gi) {
+std::array<GiField, 43> gi_fields(GiSettings& gi) {
     return {{
         {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
@@ -129,6 +144,14 @@ std::array<GiField, 35> gi_fields(GiSettings& gi) {
         {"max_lights", IntField{&gi.max_lights, {0, 4096}}},
         {"max_shadow_proxies", IntField{&gi.max_shadow_proxies, {0, 256}}},
         {"proxy_wall_shadows", EnumField<ProxyWallShadows>{&gi.proxy_wall_shadows, proxy_wall_shadows_names}},
+        {"radiosity.scale", EnumField<HeatScale>{&gi.radiosity.scale, heat_scale_names}},
+        {"radiosity.rays", IntField{&gi.radiosity.rays, {1, 256}}},
+        {"radiosity.steps", IntField{&gi.radiosity.steps, {1, 256}}},
+        {"radiosity.epsilon", FloatField{&gi.radiosity.epsilon, radiosity_epsilon_range}},
+        {"radiosity.feedback", FloatField{&gi.radiosity.feedback, radiosity_feedback_range}},
+        {"radiosity.accumulate", IntField{&gi.radiosity.accumulate, {1, 1024}}},
+        {"radiosity.noise", EnumField<NoiseShift>{&gi.radiosity.noise, noise_shift_names}},
+        {"radiosity.frames", IntField{&gi.radiosity.frames, {1, 4096}}},
     }};
 }
 

@@ -112,20 +112,7 @@ void record_heat(PassRecorder& r) {
         r.dispatch(g.width, g.height);
         r.cmd.barrier_compute_to_compute();
     } else {
-        // Upsample (or copy) into the indirect texture.
-        const Tex src = heat_result(rounds);
-        r.cmd.bind(r.pipeline<UpsampleParams>("gi_upsample.comp", {.proxies = false}));
-        r.cmd.push_descriptors(gpu::DescriptorWrites()
-                                   .uniform_texel_buffer(0, r.walls())
-                                   .uniform_buffer(1, r.proxies())
-                                   .uniform_texel_buffer(2, r.view(src))
-                                   .storage_buffer(3, r.buffer(Tex::indirect)));
-        auto up = r.params<UpsampleParams>(w.width, w.height);
-        up.pass = {.heat_width = g.width, .heat_height = g.height, .heat_pitch = r.pitch(src),
-                   .texels_per_unit = g.texels_per_unit, .scale = g.scale};
-        r.cmd.push_constants(up);
-        r.dispatch(w.width, w.height);
-        r.cmd.barrier_compute_to_compute();
+        record_upsample(r, heat_result(rounds), g);
     }
 }
 
@@ -227,6 +214,22 @@ constexpr std::string_view wall_indirect_settings[] = {"wall_lighting", "wall_fa
                                                        "wall_faces.pz", "wall_faces.nz"};
 
 } // namespace
+
+void record_upsample(PassRecorder& r, Tex src, const HeatGrid& g) {
+    const GiWindow& w = r.in.window;
+    r.cmd.bind(r.pipeline<UpsampleParams>("gi_upsample.comp", {.proxies = false}));
+    r.cmd.push_descriptors(gpu::DescriptorWrites()
+                               .uniform_texel_buffer(0, r.walls())
+                               .uniform_buffer(1, r.proxies())
+                               .uniform_texel_buffer(2, r.view(src))
+                               .storage_buffer(3, r.buffer(Tex::indirect)));
+    auto up = r.params<UpsampleParams>(w.width, w.height);
+    up.pass = {.heat_width = g.width, .heat_height = g.height, .heat_pitch = r.pitch(src),
+               .texels_per_unit = g.texels_per_unit, .scale = g.scale};
+    r.cmd.push_constants(up);
+    r.dispatch(w.width, w.height);
+    r.cmd.barrier_compute_to_compute();
+}
 
 constinit const PassRow emission{
     .pass = Pass::emission,

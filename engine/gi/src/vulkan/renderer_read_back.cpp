@@ -3,6 +3,7 @@
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 #include "vulkan/renderer_internal.hpp"
 
+#include "lantern/gi/radiosity.hpp"
 #include "lantern/gi/reference_indirect.hpp"
 
 #include <algorithm>
@@ -77,6 +78,18 @@ std::vector<std::uint64_t> Renderer::pass_bytes_written(Pass pass, const FrameIn
     case Pass::blur: return {texels * 8, texels * 8};
     case Pass::wall_indirect: return {texels * 4 * 8};
     case Pass::lit: return {texels * 4};
+    case Pass::distance_field: {
+        const HeatGrid r = radiosity_grid(in);
+        const std::uint64_t grid = std::uint64_t(pitch_of(r.width)) * std::uint64_t(r.height);
+        std::vector<std::uint64_t> out(jump_flood_offsets({r.width, r.height}).size() + 1, grid * 4);
+        out.push_back(grid * (4 + 8));
+        return out;
+    }
+    case Pass::radiosity: {
+        const HeatGrid r = radiosity_grid(in);
+        const std::uint64_t grid = std::uint64_t(pitch_of(r.width)) * std::uint64_t(r.height);
+        return {grid * 8, grid * 8, texels * 8};
+    }
     default: break; // rows added at run time: no copy baseline
     }
     return {};

@@ -81,6 +81,13 @@ enum class Tex : std::uint8_t {
     wall_upper_point_nx,
     wall_upper_point_pz,
     wall_upper_point_nz,
+    // gi.method = radiosity (seed 003), on the radiosity grid (gi.radiosity.scale):
+    jfa_a, // jump flood ping-pong: the nearest wall texel's coordinate (internal)
+    jfa_b,
+    distance_field, // rgba16f: distance to the nearest wall texel (grid texels), unit direction to it
+    distance_steps, // 32-bit words: floor(256 x distance), what the raymarch steps by (internal)
+    radiosity_light, // this frame's emitters: the direct light + feedback x last frame's (internal)
+    radiosity,       // the raymarched light, accumulated over frames
     builtin_count
 };
 // Texture ids: the built-ins above, then textures added at run time (add_texture) up to
@@ -210,6 +217,10 @@ struct PassRow {
     // still scene then stops submitting. Its outputs persist between frames (both backends
     // keep every texture); history 0 means "start afresh". nullptr: not converging.
     int (*converge_frames)(const FrameInputs& in) = nullptr;
+    // A converging row's reads whose changes rerun it (and restart its count towards
+    // converge_frames) but keep its history: bounce feedback goes on from last frame's light
+    // when a light moves. Changes to anything else it depends on start it afresh.
+    std::span<const Tex> history_keeps{};
     void (*record)(vk::PassRecorder& recorder) = nullptr;
     void (*reference)(ReferenceContext& context) = nullptr;
     // Where the recorder's shaders come from; nullptr: the engine's lantern_gi_shaders.
@@ -264,7 +275,9 @@ Result<void> check_texture_budget(const FrameInputs& in, const PassPlan& plan, T
 // (the frame systems, a tool's frame loop). One per view.
 struct Convergence {
     std::array<std::uint64_t, pass_count> settled_key{}; // the row's key without its history
-    std::array<std::uint16_t, pass_count> frames{};      // frames accumulated since it changed
+    std::array<std::uint64_t, pass_count> reset_key{};   // the same without its history_keeps reads
+    std::array<std::uint16_t, pass_count> frames{};      // frames run since its key changed
+    std::array<std::uint16_t, pass_count> age{};         // frames of history (since reset_key changed)
     // After a frame ran: counts one more frame for each converging row in `ran`.
     void advance(PassSet ran);
     // Forget everything (a failed frame: every row starts afresh).
@@ -277,8 +290,10 @@ struct Convergence {
 // rows that overwrite its outputs in place (so that turning such a row on or off, or
 // changing it, reruns the producer). A pass whose key is unchanged keeps last frame's
 // outputs. With `convergence`, a converging row whose key without history changed starts
-// afresh, plan.history is set for every converging row, and its key includes
-// min(history, converge_frames - 1): it changes every frame until the row has converged.
+// afresh, plan.history is set for every converging row (its age: frames since it started
+// afresh), and its key includes min(frames since its key changed, converge_frames - 1): it
+// changes every frame until the row has converged. A change only in a history_keeps read
+// restarts that count but not the history.
 // Without it, converging rows have history 0 (one frame: tools' single frames).
 std::array<std::uint64_t, pass_count> derive_keys(const FrameInputs& in, PassPlan& plan, const InputKeys& inputs,
                                                   Convergence* convergence = nullptr);

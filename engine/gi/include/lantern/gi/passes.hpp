@@ -20,6 +20,8 @@ enum class Pass : std::uint8_t {
     blur,
     wall_indirect,
     lit,         // the lit image (tools; the game shades in its raster pass instead)
+    distance_field, // radiosity: jump flood from the walls to a distance field (seed 003)
+    radiosity,      // radiosity: light image, raymarch, accumulation, upsample (seed 003)
     builtin_count
 };
 // Pass ids: the built-in rows above, then rows registered at run time (add_row in

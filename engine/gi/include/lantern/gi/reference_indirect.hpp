@@ -47,6 +47,12 @@ Texture reference_heat_seed(const FrameInputs& in, const Texture& emission, cons
 Texture reference_heat_round(const FrameInputs& in, const Texture& heat, const RefOptions& options = {});
 Texture reference_heat_upsample(const FrameInputs& in, const Texture& heat, const RefOptions& options = {});
 
+// A grid texture (the heat grid's, the radiosity grid's) at full resolution as the indirect
+// light: a copy at scale 1, else bilinear over the grid texels whose centres are not in a
+// wall (nearest when none is).
+Texture reference_upsample(const FrameInputs& in, const HeatGrid& grid, const Texture& texture,
+                           const RefOptions& options = {});
+
 // Two-pass separable blur (5 taps, Gaussian sigma 1) that only mixes texels of the same
 // conduction class and renormalises, so a uniform region keeps its brightness.
 Texture reference_blur(const FrameInputs& in, const Texture& indirect, const RefOptions& options = {});

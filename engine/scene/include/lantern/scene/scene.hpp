@@ -56,7 +56,30 @@ struct WallFaces {
 
 // Every key of a scene's "gi" object; the defaults are the documented defaults.
 // The GI method: which rows of the pass table a frame runs (engine/gi pass_table.hpp).
-enum class GiMethod : std::uint8_t { heat = 0 }; // seed 000's heat diffusion
+enum class GiMethod : std::uint8_t {
+    heat = 0,      // seed 000's heat diffusion
+    radiosity = 1, // seed 003's jump-flood distance field and raymarched radiosity
+};
+
+// How the radiosity method's rays turn from frame to frame (seed 003, "Noise & Hacks"):
+// the seed's rotation of the blue noise by t / 2pi radians per frame, the golden-ratio
+// shift fract(noise + PHI * t), or no noise at all (every texel casts the same directions:
+// the banding the seed warns of).
+enum class NoiseShift : std::uint8_t { rotate, golden, off };
+
+// gi.radiosity.* (docs/gi.md, "The radiosity method").
+struct RadiositySettings {
+    HeatScale scale = HeatScale::quarter; // the radiosity grid: the GI window at 1/scale
+    int rays = 16;                        // rays per texel, equally spaced
+    int steps = 32;                       // distance-field steps per ray
+    float epsilon = 0.5f;                 // hit when the distance to a wall texel's centre < epsilon (grid texels)
+    float feedback = 0.5f;                // weight of last frame's light as this frame's emitter (a bounce per frame)
+    int accumulate = 1;                   // temporal accumulation: running mean over up to this many frames (1: off)
+    NoiseShift noise = NoiseShift::rotate;
+    int frames = 16;                      // frames a still scene refines before it stops submitting
+
+    friend bool operator==(const RadiositySettings&, const RadiositySettings&) = default;
+};
 
 struct GiSettings {
     GiMethod method = GiMethod::heat;
@@ -86,6 +109,7 @@ struct GiSettings {
     int max_lights = 256;                  // point lights kept per frame (emissives bypass it)
     int max_shadow_proxies = 64;
     ProxyWallShadows proxy_wall_shadows = ProxyWallShadows::full;
+    RadiositySettings radiosity; // gi.method = radiosity
 
     friend bool operator==(const GiSettings&, const GiSettings&) = default;
 };
