@@ -47,7 +47,8 @@ std::vector<glm::vec2> spread(const scene::WallGrid& g, int n, std::uint32_t sal
 std::string SeedRow::label() const {
     const char* s = scale == scene::HeatScale::full ? "full" : scale == scene::HeatScale::half ? "half" : "quarter";
     return "giRes " + std::to_string(resolution) + " " + s + ", " + std::to_string(points) + " point, " +
-           std::to_string(emissives) + " emissive, " + std::to_string(directionals) + " directional";
+           std::to_string(emissives) + " emissive, " + std::to_string(directionals) + " directional" +
+           (method == scene::GiMethod::radiosity ? ", radiosity" : "");
 }
 
 std::vector<SeedRow> seed_rows() {
@@ -59,6 +60,11 @@ std::vector<SeedRow> seed_rows() {
         {8, HeatScale::quarter, 64, 256, 0},
         // Many lights (issue 15): the cost of one more light, from the slope between rows.
         {8, HeatScale::quarter, 256, 256, 0}, {8, HeatScale::quarter, 1024, 256, 0},
+        // Seed 003's radiosity beside the heat rows above (issue 16): the same scene and lights.
+        {16, HeatScale::quarter, 64, 256, 0, scene::GiMethod::radiosity},
+        {8, HeatScale::full, 64, 256, 0, scene::GiMethod::radiosity},
+        {8, HeatScale::half, 64, 256, 0, scene::GiMethod::radiosity},
+        {8, HeatScale::quarter, 64, 256, 0, scene::GiMethod::radiosity},
     };
 }
 
@@ -71,6 +77,8 @@ scene::Scene seed_scene(const SeedRow& row) {
     s.gi.padding = padding;
     s.gi.heat_rounds = 20;
     s.gi.heat_scale = row.scale;
+    s.gi.method = row.method;
+    s.gi.radiosity.scale = row.scale;
     s.gi.max_lights = std::max(256, row.points + row.emissives);
     s.gi.max_shadow_proxies = 64;
     int k = 0;

@@ -17,10 +17,13 @@ struct SeedRow {
     int points = 1;
     int emissives = 0;
     int directionals = 0;
+    // heat (seed 000) or radiosity (seed 003, its grid at `scale`, default rays and steps)
+    scene::GiMethod method = scene::GiMethod::heat;
     std::string label() const;
 };
 
-// The rows of the seed's giResolution 16 and 8 tables, in its order.
+// The rows of the seed's giResolution 16 and 8 tables, in its order, then the many-light
+// rows and seed 003's radiosity beside them.
 std::vector<SeedRow> seed_rows();
 scene::Scene seed_scene(const SeedRow& row);
 

@@ -164,7 +164,7 @@ std::string light_slopes(const std::vector<RowResult>& rows) {
     // b has more point lights than a and is otherwise the same row.
     auto more_lights = [](const SeedRow& a, const SeedRow& b) {
         return a.resolution == b.resolution && a.scale == b.scale && a.emissives == b.emissives &&
-               a.directionals == b.directionals && b.points > a.points;
+               a.directionals == b.directionals && a.method == b.method && b.points > a.points;
     };
     std::string out;
     for (std::size_t i = 0; i < rows.size(); ++i)
@@ -192,6 +192,47 @@ std::string light_slopes(const std::vector<RowResult>& rows) {
     return "\nCost of one more point light in view (ms per light, slope between rows):\n\n"
            "| giRes | point lights | direct | direct x copy | direct by DDA | total | C++ direct |\n"
            "|---|---|---|---|---|---|---|\n" +
+           out;
+}
+
+// Seed 003's radiosity beside seed 000's heat on the same row (resolution, scale, lights):
+// the indirect passes each method runs instead of the other's, in ms and x copy.
+std::string methods_table(const std::vector<RowResult>& rows) {
+    auto get = [](const RowResult& r, gi::Pass p) {
+        auto it = r.passes.find(p);
+        return it == r.passes.end() ? PassNumbers{} : it->second;
+    };
+    auto cell = [&](const RowResult& r, gi::Pass p) {
+        const PassNumbers n = get(r, p);
+        return n.ran ? fmt("%.2f", n.gpu_ms) + " (" + (n.copy_ms > 0 ? fmt("%.1f", n.gpu_ms / n.copy_ms) : "-") + ")"
+                     : std::string("-");
+    };
+    std::string out;
+    for (const RowResult& rad : rows) {
+        if (rad.row.method != scene::GiMethod::radiosity) continue;
+        for (const RowResult& heat : rows) {
+            const SeedRow &a = heat.row, &b = rad.row;
+            if (a.method != scene::GiMethod::heat || a.resolution != b.resolution || a.scale != b.scale ||
+                a.points != b.points || a.emissives != b.emissives || a.directionals != b.directionals)
+                continue;
+            const char* scale = b.scale == scene::HeatScale::full ? "full" : b.scale == scene::HeatScale::half ? "half" : "quarter";
+            const double heat_ms = get(heat, gi::Pass::heat).gpu_ms;
+            const double rad_ms = get(rad, gi::Pass::distance_field).gpu_ms + get(rad, gi::Pass::radiosity).gpu_ms;
+            out += "| " + std::to_string(b.resolution) + " | " + scale + " | " + cell(heat, gi::Pass::heat) + " | " +
+                   cell(rad, gi::Pass::distance_field) + " | " + cell(rad, gi::Pass::radiosity) + " | " +
+                   (heat_ms > 0 ? fmt("%.2f", rad_ms / heat_ms) : std::string("-")) + " | " +
+                   fmt("%.2f", heat.total_gpu) + " | " + fmt("%.2f", rad.total_gpu) + " | " +
+                   (get(rad, gi::Pass::radiosity).cpp_ms > 0 ? fmt("%.1f", get(rad, gi::Pass::radiosity).cpp_ms)
+                                                              : std::string("-")) +
+                   " |\n";
+        }
+    }
+    if (out.empty()) return out;
+    return "\nSeed 003's radiosity beside seed 000's heat (ms, x copy in brackets; radiosity: 16 rays, 32 steps, its "
+           "grid at the row's scale; the distance field reruns only when walls or the window change):\n\n"
+           "| giRes | scale | heat | distance field | radiosity | (field + radiosity) / heat | total, heat | "
+           "total, radiosity | C++ radiosity |\n"
+           "|---|---|---|---|---|---|---|---|---|\n" +
            out;
 }
 
@@ -231,7 +272,7 @@ int seed_table(const SeedTableOptions& o) {
         print_row(*r, o.reference);
         rows.push_back(std::move(r.value()));
     }
-    const std::string md = markdown(rows, (*device)->name(), o.reference) + light_slopes(rows);
+    const std::string md = markdown(rows, (*device)->name(), o.reference) + light_slopes(rows) + methods_table(rows);
     std::printf("\n%s", md.c_str());
     if (!o.markdown_out.empty()) {
         if (auto ok = write_file_atomic(o.markdown_out, md); !ok) {

@@ -13,6 +13,7 @@ namespace {
 
 constexpr const char* tone_maps[] = {"none", "reinhard", "reinhard_white", "aces"};
 constexpr const char* heat_scales[] = {"full", "half", "quarter"};
+constexpr const char* noise_shifts[] = {"rotate", "golden", "off"}; // scene::NoiseShift order
 
 void stat_row(const profile::ScopeStats& s) {
     ImGui::TableNextRow();
@@ -157,10 +158,27 @@ HudActions Hud::draw(const HudInputs& in) {
             ImGui::EndCombo();
         }
         ImGui::SliderInt("resolution", &g.resolution, 1, 16);
-        ImGui::SliderInt("heat rounds", &g.heat_rounds, 0, 64);
-        int scale = g.heat_scale == scene::HeatScale::full ? 0 : g.heat_scale == scene::HeatScale::half ? 1 : 2;
-        if (ImGui::Combo("heat scale", &scale, heat_scales, 3))
-            g.heat_scale = scale == 0 ? scene::HeatScale::full : scale == 1 ? scene::HeatScale::half : scene::HeatScale::quarter;
+        const auto scale_combo = [](const char* label, scene::HeatScale& value) {
+            int scale = value == scene::HeatScale::full ? 0 : value == scene::HeatScale::half ? 1 : 2;
+            if (ImGui::Combo(label, &scale, heat_scales, 3))
+                value = scale == 0 ? scene::HeatScale::full : scale == 1 ? scene::HeatScale::half : scene::HeatScale::quarter;
+        };
+        if (g.method == scene::GiMethod::radiosity) {
+            // gi.radiosity.*: seed 003's raymarch (docs/gi.md, "The radiosity method").
+            scene::RadiositySettings& r = g.radiosity;
+            scale_combo("radiosity scale", r.scale);
+            ImGui::SliderInt("rays", &r.rays, 1, 64);
+            ImGui::SameLine();
+            ImGui::SliderInt("steps", &r.steps, 1, 128);
+            ImGui::SliderFloat("bounce feedback", &r.feedback, 0.0f, 0.95f);
+            ImGui::SliderFloat("epsilon", &r.epsilon, 0.05f, 4.0f);
+            ImGui::SliderInt("accumulate frames", &r.accumulate, 1, 64);
+            int noise = int(r.noise);
+            if (ImGui::Combo("noise", &noise, noise_shifts, 3)) r.noise = scene::NoiseShift(noise);
+        } else {
+            ImGui::SliderInt("heat rounds", &g.heat_rounds, 0, 64);
+            scale_combo("heat scale", g.heat_scale);
+        }
         ImGui::Checkbox("blur", &g.blur);
         ImGui::SameLine();
         ImGui::Checkbox("AO", &g.ao.enabled);
