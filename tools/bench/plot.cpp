@@ -12,8 +12,7 @@
 namespace lantern::bench {
 namespace {
 
-constexpr std::uint32_t black = 0x000000, grid_grey = 0xE4E4E4, axis_grey = 0x606060,
-                        front_grey = 0x303030;
+constexpr std::uint32_t black = 0x000000, grid_grey = 0xE4E4E4, axis_grey = 0x606060;
 constexpr int text_scale = 2; // stb_easy_font glyphs are ~6 x 7 pixels
 constexpr int title_band = 40;
 constexpr int legend_row = 30;
@@ -93,6 +92,8 @@ class Canvas {
             return (std::abs(dx) + std::abs(dy)) / 1.2 - r;
         case Marker::triangle: // pointing up, centred
             return std::max(dy - r * 0.8, (std::abs(dx) * 1.7 - dy) / 2.0 - r * 0.55);
+        case Marker::triangle_down:
+            return std::max(-dy - r * 0.8, (std::abs(dx) * 1.7 + dy) / 2.0 - r * 0.55);
         }
         return 0.0;
     }
@@ -182,16 +183,18 @@ void draw_points(Canvas& c, const Panel& p, const Axes& a) {
     std::vector<const PlotPoint*> front;
     for (const PlotPoint& pt : p.points)
         if (pt.front) front.push_back(&pt);
-    std::sort(front.begin(), front.end(),
-              [](const PlotPoint* l, const PlotPoint* r) { return l->x < r->x; });
+    std::sort(front.begin(), front.end(), [](const PlotPoint* l, const PlotPoint* r) {
+        return l->series != r->series ? l->series < r->series : l->x < r->x;
+    });
     for (std::size_t i = 1; i < front.size(); ++i) { // a staircase: what each cost buys at best
+        if (front[i - 1]->series != front[i]->series) continue;
         const double x0 = a.px(front[i - 1]->x), y0 = a.py(front[i - 1]->y), x1 = a.px(front[i]->x),
                      y1 = a.py(front[i]->y);
-        c.line(x0, y0, x1, y0, front_grey, 2);
-        c.line(x1, y0, x1, y1, front_grey, 2);
+        c.line(x0, y0, x1, y0, front[i]->front_color, 2);
+        c.line(x1, y0, x1, y1, front[i]->front_color, 2);
     }
     for (const PlotPoint* pt : front)
-        c.marker(a.px(pt->x), a.py(pt->y), Marker::circle, 10.0, front_grey, true);
+        c.marker(a.px(pt->x), a.py(pt->y), Marker::circle, 10.0, pt->front_color, true);
     for (const PlotPoint& pt : p.points) {
         c.marker(a.px(pt.x), a.py(pt.y), pt.marker, 5.5, pt.color, pt.hollow);
         if (!pt.tag.empty()) c.text(int(a.px(pt.x)) + 8, int(a.py(pt.y)) - 12, pt.tag, pt.color, 1);

@@ -11,7 +11,7 @@
 
 namespace lantern::bench {
 
-enum class Marker : std::uint8_t { circle, square, triangle, diamond };
+enum class Marker : std::uint8_t { circle, square, triangle, diamond, triangle_down };
 
 struct PlotPoint {
     double x = 0.0, y = 0.0;
@@ -20,6 +20,10 @@ struct PlotPoint {
     bool hollow = false;
     std::string tag;    // a few characters drawn next to the marker ("" for none)
     bool front = false; // on the Pareto front: ringed and joined by the front line
+    // Fronts are drawn per series (a method): the front points of one series are joined,
+    // ring and line in the series' front colour.
+    int series = 0;
+    std::uint32_t front_color = 0x303030;
 };
 
 struct LegendEntry {
