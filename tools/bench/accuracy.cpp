@@ -79,7 +79,39 @@ class LanternRunner {
         r.direct_ms = median(passes[gi::Pass::direct]) + median(passes[gi::Pass::directional]);
         r.heat_ms = median(passes[gi::Pass::heat]);
         r.blur_ms = median(passes[gi::Pass::blur]);
+        r.distance_ms = median(passes[gi::Pass::distance_field]);
+        r.radiosity_ms = median(passes[gi::Pass::radiosity]);
         return r;
+    }
+
+    // The `frames`-th frame since the scene appeared: `frames` frames of a still scene with
+    // the converging rows' history kept (gi::Convergence), as a player sees them. The GPU
+    // renderer keeps its textures between frames; the reference keeps them in one store.
+    Result<gi::FrameResult> converged(const gi::FrameInputs& in, int frames) {
+        gi::Convergence convergence;
+        gi::ReferenceStore store;
+        const gi::InputKeys keys = gi::input_keys_of(in);
+        gi::FrameResult frame;
+        for (int f = 0; f < frames; ++f) {
+            const bool last = f == frames - 1;
+            gi::PassPlan plan = gi::plan_passes(in, false);
+            gi::derive_keys(in, plan, keys, &convergence);
+            if (gpu()) {
+                auto r = gi::run_vulkan_frame(*renderer_, in, plan, last);
+                if (!r) return r.error();
+                if (last) frame = std::move(r.value());
+            } else {
+                gi::execute_reference(in, plan, plan.run, {&jobs_}, store);
+            }
+            convergence.advance(plan.run);
+        }
+        if (!gpu()) { // the store's contract textures, as run_reference_frame returns them
+            for (gi::Tex t :
+                 gi::contract_textures([&](gi::Tex held) { return store.find(held) != nullptr; }))
+                frame.textures.emplace(gi::tex_name(t), *store.find(t));
+            frame.lit = store.lit;
+        }
+        return frame;
     }
 
   private:
@@ -140,26 +172,48 @@ Result<SceneReport> run_scene(const AccuracyScene& s, const AccuracyOptions& o,
     if (!ref) return ref.error();
     SceneReport report{s.name, s.description, ref->stats, reference_noise(*ref, s.scene), {}};
     const std::vector<SweepSetting> settings = sweep(o.quick);
+    // A radiosity frame costs the same whatever K (accumulate only sets a weight): settings
+    // with K > 1 take the timing of their K = 1 twin, so that timer noise does not reorder
+    // points that differ only in error.
+    std::map<std::string, SweepRun> timed; // by the label without K
+    auto twin_key = [](SweepSetting set) {
+        set.frames = 1;
+        return set.label();
+    };
     transport::ProgressBar bar("lantern " + s.name);
     for (std::size_t i = 0; i < settings.size(); ++i) {
         const scene::Scene lit = settings[i].apply(s.scene);
-        bar.update(double(i) / double(settings.size()),
-                   "giRes " + std::to_string(settings[i].resolution) + " (" +
-                       std::to_string(i + 1) + "/" + std::to_string(settings.size()) + ")");
+        const std::string count =
+            " (" + std::to_string(i + 1) + "/" + std::to_string(settings.size()) + ")";
+        bar.update(double(i) / double(settings.size()), settings[i].label() + count);
         std::string why;
         auto window = gi::compute_window(lit.view, lit.gi.padding, lit.gi.resolution, &why);
         if (!window) return make_error(s.name + ": no GI window: " + why, 1);
         const gi::FrameInputs in = gi::gather_frame_inputs(lit, *window);
+        const bool converging = settings[i].is_radiosity() && settings[i].frames > 1;
+        const auto twin = timed.find(twin_key(settings[i]));
         gi::FrameResult frame;
-        auto run = lantern.run(in, o.repeats, frame);
-        if (!run) return make_error(s.name + ": " + run.error().message, 1);
-        run->setting = settings[i];
-        run->error = compare_to_reference(*ref, lit, in, frame);
+        SweepRun run;
+        if (converging && twin != timed.end()) {
+            run = twin->second;
+        } else {
+            auto r = lantern.run(in, o.repeats, frame); // one frame's passes, history 0
+            if (!r) return make_error(s.name + ": " + r.error().message, 1);
+            run = *r;
+            if (settings[i].is_radiosity()) timed[twin_key(settings[i])] = run;
+        }
+        run.setting = settings[i];
+        if (converging) { // scored at its K-th frame
+            auto converged = lantern.converged(in, settings[i].frames);
+            if (!converged) return make_error(s.name + ": " + converged.error().message, 1);
+            frame = std::move(converged.value());
+        }
+        run.error = compare_to_reference(*ref, lit, in, frame);
         if (o.images && settings[i].is_default()) {
             if (auto ok = write_images(o, s.name, view_images(*ref, lit, in, frame)); !ok)
                 return ok.error();
         }
-        report.runs.push_back(*run);
+        report.runs.push_back(run);
     }
     bar.finish(std::to_string(settings.size()) + " settings");
     return report;
@@ -189,20 +243,55 @@ std::string SweepSetting::taps() const {
     return heat_texels_per_tile > 2 ? "rings" : "8 @ 1 tile"; // rings beyond 2.5 heat texels
 }
 
+SweepSetting SweepSetting::radiosity(int resolution, scene::HeatScale scale, int rays, int steps,
+                                     int frames) {
+    SweepSetting s;
+    s.method = scene::GiMethod::radiosity;
+    s.resolution = resolution;
+    s.scale = scale;
+    s.rays = rays;
+    s.steps = steps;
+    s.frames = frames;
+    return s;
+}
+
 bool SweepSetting::is_default() const {
     return apply(scene::Scene{}).gi == scene::GiSettings{};
 }
 
 std::string SweepSetting::variant() const {
+    if (is_radiosity()) return "R";
     if (!hierarchical) return "H";
     if (!per_channel) return "P";
     if (!blur) return "B";
     return "";
 }
 
+std::string SweepSetting::label() const {
+    const char* grid = scale == scene::HeatScale::full   ? "full"
+                       : scale == scene::HeatScale::half ? "half"
+                                                         : "quarter";
+    const std::string base = "giRes " + std::to_string(resolution) + " " + grid;
+    if (is_radiosity())
+        return "R " + base + " " + std::to_string(rays) + "x" + std::to_string(steps) + " K" +
+               std::to_string(frames) + (blur ? "" : " B");
+    const std::string v = variant();
+    return base + " " + std::to_string(rounds) + "r" + (v.empty() ? "" : " " + v);
+}
+
 scene::Scene SweepSetting::apply(const scene::Scene& s) const {
     scene::Scene out = s;
     out.gi.resolution = resolution;
+    if (is_radiosity()) { // the heat keys stay the scene's: the method does not read them
+        out.gi.method = scene::GiMethod::radiosity;
+        out.gi.blur = blur;
+        out.gi.radiosity.scale = scale;
+        out.gi.radiosity.rays = rays;
+        out.gi.radiosity.steps = steps;
+        out.gi.radiosity.accumulate = frames;
+        return out;
+    }
+    out.gi.method = scene::GiMethod::heat;
     out.gi.heat_rounds = rounds;
     out.gi.heat_scale = scale;
     out.gi.per_channel = per_channel;
@@ -223,6 +312,8 @@ std::vector<SweepSetting> sweep(bool quick) {
     if (quick) {
         std::vector<SweepSetting> out{{4, 20, HeatScale::full}, {8, 20, HeatScale::full}};
         for (const SweepSetting& v : variants(8)) out.push_back(v);
+        for (int k : {1, 4, 16})
+            out.push_back(SweepSetting::radiosity(8, HeatScale::quarter, 16, 32, k));
         return out;
     }
     std::vector<SweepSetting> out;
@@ -231,6 +322,16 @@ std::vector<SweepSetting> sweep(bool quick) {
             for (int rounds : {10, 20, 40}) out.push_back({res, rounds, scale});
     for (int res : {4, 8, 16})
         for (const SweepSetting& v : variants(res)) out.push_back(v);
+    // Radiosity (seed 003) at Lantern's giRes: its grid at quarter (the default) and half,
+    // rays x steps at one frame, then the cheap and the dear ray counts after 4 and 16
+    // frames of feedback and accumulation.
+    for (HeatScale scale : {HeatScale::quarter, HeatScale::half}) {
+        for (int rays : {8, 16, 32, 64})
+            for (int steps : {32, 64})
+                out.push_back(SweepSetting::radiosity(8, scale, rays, steps, 1));
+        for (int k : {4, 16})
+            for (int rays : {16, 64}) out.push_back(SweepSetting::radiosity(8, scale, rays, 32, k));
+    }
     return out;
 }
 

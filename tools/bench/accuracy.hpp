@@ -16,30 +16,50 @@ namespace lantern::bench {
 struct SweepSetting {
     int resolution = 8;
     int rounds = 20;
-    scene::HeatScale scale = scene::HeatScale::full;
-    bool hierarchical = true; // false: diffusion distance of one heat texel (8 taps, no rings)
-    bool per_channel = true;  // false: physical (scalar) diffusion weights
+    scene::HeatScale scale =
+        scene::HeatScale::full; // heat's grid, or radiosity's (radiosity.scale)
+    bool hierarchical = true;   // false: diffusion distance of one heat texel (8 taps, no rings)
+    bool per_channel = true;    // false: physical (scalar) diffusion weights
     bool blur = true;
+    // gi.method = radiosity (seed 003): the settings below apply, the heat ones above do not
+    // (except resolution, scale and blur).
+    scene::GiMethod method = scene::GiMethod::heat;
+    int rays = 16, steps = 32;
+    // Radiosity: the frames run since the scene appeared (K), with radiosity.accumulate = K:
+    // the frame scored is the K-th (K = 1: one frame, history 0, a single bounce).
+    int frames = 1;
+
+    static SweepSetting radiosity(int resolution, scene::HeatScale scale, int rays, int steps,
+                                  int frames);
+    bool is_radiosity() const { return method == scene::GiMethod::radiosity; }
 
     // The taps the heat pass uses: "rings" (three tiers), "8 @ 1 tile" or "8 @ 1 texel".
     std::string taps() const;
     // Whether these are Lantern's default GI settings (a scene file without a "gi" object).
     bool is_default() const;
-    // "" for the main grid, "H" hierarchical off, "P" physical, "B" blur off.
+    // "" for the main grid, "H" hierarchical off, "P" physical, "B" blur off, "R" radiosity.
     std::string variant() const;
+    // A unique one-line name: "giRes 8 full 20r", "giRes 8 full 20r H", "R giRes 8 quarter 16x32
+    // K4".
+    std::string label() const;
     // The scene with these settings applied.
     scene::Scene apply(const scene::Scene& s) const;
 };
 
-// The default sweep (giRes 4/8/16 x full/half/quarter x 10/20/40 rounds, plus each toggle
-// at 20 rounds, full scale, every resolution) or the --quick one.
+// The default sweep (heat: giRes 4/8/16 x full/half/quarter x 10/20/40 rounds, plus each
+// toggle at 20 rounds, full scale, every resolution; radiosity: giRes 8, quarter and half
+// grid, 8/16/32/64 rays x 32/64 steps at K = 1, 16 and 64 rays x 32 steps at K = 4 and 16)
+// or the --quick one (five heat settings; radiosity quarter 16 x 32 at K = 1, 4, 16).
 std::vector<SweepSetting> sweep(bool quick);
 
 struct SweepRun {
     SweepSetting setting;
     double total_ms = 0.0, direct_ms = 0.0, heat_ms = 0.0, blur_ms = 0.0; // medians
-    ErrorMetrics error;
-    bool front = false; // on the Pareto front of fitted total relative RMSE against time
+    double distance_ms = 0.0, radiosity_ms = 0.0; // radiosity's passes (medians)
+    ErrorMetrics error;                           // radiosity: of the K-th frame
+    // On the Pareto front of fitted total relative RMSE against time among the runs of the
+    // same method.
+    bool front = false;
 };
 
 struct SceneReport {
@@ -61,12 +81,12 @@ struct ReportContext {
 // snprintf of one number.
 std::string fmt(const char* format, double value);
 
-// Marks the Pareto front of every scene's runs.
+// Marks the Pareto front of every scene's runs, one front per method.
 void mark_fronts(std::vector<SceneReport>& scenes);
 std::string markdown_report(const ReportContext& context, const std::vector<SceneReport>& scenes);
 std::string csv_report(const std::vector<SceneReport>& scenes);
-// A PNG of fitted relative RMSE against frame time, Pareto fronts marked: total light, and
-// the ground without direct light (when the scene has some).
+// A PNG of fitted relative RMSE against frame time, Pareto fronts marked (one per method):
+// total light, and the ground without direct light (when the scene has some).
 Result<void> write_plot(const SceneReport& scene, const std::string& device,
                         const std::string& path);
 

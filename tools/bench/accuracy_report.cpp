@@ -25,10 +25,36 @@ Marker scale_marker(scene::HeatScale s) {
                                          : Marker::triangle;
 }
 
-std::vector<std::size_t> front_of(const std::vector<SweepRun>& runs, double ErrorMetrics::*metric) {
+// Radiosity points: coloured by frames (K), shaped by their grid; their front in its own colour.
+std::uint32_t frames_color(int k) {
+    return k <= 1 ? 0xFDB863 : k <= 4 ? 0xE66101 : 0x8C2D04;
+}
+
+Marker radiosity_marker(scene::HeatScale s) {
+    return s == scene::HeatScale::quarter ? Marker::triangle_down : Marker::diamond;
+}
+
+constexpr std::uint32_t heat_front_color = 0x303030, radiosity_front_color = 0xC51B7D;
+
+bool has_radiosity(const SceneReport& s) {
+    for (const SweepRun& r : s.runs)
+        if (r.setting.is_radiosity()) return true;
+    return false;
+}
+
+// The Pareto front of `metric` against time among the runs of one method (indices into runs).
+std::vector<std::size_t> front_of(const std::vector<SweepRun>& runs, double ErrorMetrics::*metric,
+                                  scene::GiMethod method) {
+    std::vector<std::size_t> index;
     std::vector<double> x, y;
-    for (const SweepRun& r : runs) x.push_back(r.total_ms), y.push_back(r.error.*metric);
-    return pareto_front(x, y);
+    for (std::size_t i = 0; i < runs.size(); ++i)
+        if (runs[i].setting.method == method) {
+            index.push_back(i);
+            x.push_back(runs[i].total_ms), y.push_back(runs[i].error.*metric);
+        }
+    std::vector<std::size_t> front;
+    for (std::size_t i : pareto_front(x, y)) front.push_back(index[i]);
+    return front;
 }
 
 Panel panel(const SceneReport& s, const char* title, const std::string& x_label,
@@ -38,33 +64,61 @@ Panel panel(const SceneReport& s, const char* title, const std::string& x_label,
         PlotPoint pt;
         pt.x = r.total_ms;
         pt.y = r.error.*metric;
-        pt.color = resolution_color(r.setting.resolution);
-        pt.marker = scale_marker(r.setting.scale);
-        if (!r.setting.variant().empty()) {
-            pt.marker = Marker::diamond;
-            pt.hollow = true;
-            pt.tag = r.setting.variant();
+        if (r.setting.is_radiosity()) {
+            pt.color = frames_color(r.setting.frames);
+            pt.marker = radiosity_marker(r.setting.scale);
+            pt.series = 1;
+            pt.front_color = radiosity_front_color;
+        } else {
+            pt.color = resolution_color(r.setting.resolution);
+            pt.marker = scale_marker(r.setting.scale);
+            pt.front_color = heat_front_color;
+            if (!r.setting.variant().empty()) {
+                pt.marker = Marker::diamond;
+                pt.hollow = true;
+                pt.tag = r.setting.variant();
+            }
         }
         p.points.push_back(pt);
     }
-    for (std::size_t i : front_of(s.runs, metric)) {
-        PlotPoint& pt = p.points[i];
-        pt.front = true;
-        pt.tag =
-            (pt.tag.empty() ? "" : pt.tag + " ") + std::to_string(s.runs[i].setting.rounds) + "r";
-    }
+    for (scene::GiMethod m : {scene::GiMethod::heat, scene::GiMethod::radiosity})
+        for (std::size_t i : front_of(s.runs, metric, m)) {
+            PlotPoint& pt = p.points[i];
+            const SweepSetting& set = s.runs[i].setting;
+            pt.front = true;
+            pt.tag = set.is_radiosity()
+                         ? std::to_string(set.rays) + "x" + std::to_string(set.steps) + " K" +
+                               std::to_string(set.frames)
+                         : (pt.tag.empty() ? "" : pt.tag + " ") + std::to_string(set.rounds) + "r";
+        }
     return p;
 }
 
-std::vector<LegendEntry> legend() {
-    return {{"giRes 4", 0x1F77B4},
-            {"giRes 8", 0x2CA02C},
-            {"giRes 16", 0xD62728},
-            {"full", 0x000000, Marker::circle},
-            {"half", 0x000000, Marker::square},
-            {"quarter", 0x000000, Marker::triangle},
-            {"H: no rings, P: physical, B: no blur", 0x000000, Marker::diamond, true},
-            {"Pareto front (rounds)", 0x303030, Marker::circle, false, true}};
+std::vector<LegendEntry> legend(bool radiosity) {
+    std::vector<LegendEntry> l{
+        {"heat: giRes 4", 0x1F77B4},
+        {"giRes 8", 0x2CA02C},
+        {"giRes 16", 0xD62728},
+        {"full", 0x000000, Marker::circle},
+        {"half", 0x000000, Marker::square},
+        {"quarter", 0x000000, Marker::triangle},
+        {"H: no rings, P: physical, B: no blur", 0x000000, Marker::diamond, true},
+        {"heat Pareto front (rounds)", heat_front_color, Marker::circle, false, true}};
+    if (!radiosity) {
+        l.front().label = "giRes 4";
+        l.back().label = "Pareto front (rounds)";
+        return l;
+    }
+    for (LegendEntry e :
+         std::vector<LegendEntry>{{"radiosity giRes 8: K = 1 frame", frames_color(1)},
+                                  {"K = 4", frames_color(4)},
+                                  {"K = 16", frames_color(16)},
+                                  {"half grid", 0x000000, Marker::diamond},
+                                  {"quarter grid", 0x000000, Marker::triangle_down},
+                                  {"radiosity Pareto front (rays x steps, K)",
+                                   radiosity_front_color, Marker::circle, false, true}})
+        l.push_back(e);
+    return l;
 }
 
 std::string table_row(const SweepRun& r) {
@@ -80,6 +134,33 @@ std::string table_row(const SweepRun& r) {
            pct(e.max_error) + " | " + fmt("%.3f", e.ssim) + " | " + (r.front ? "yes" : "") + " |\n";
 }
 
+std::string radiosity_row(const SweepRun& r) {
+    const SweepSetting& s = r.setting;
+    const ErrorMetrics& e = r.error;
+    return "| " + std::to_string(s.resolution) + " | " + scale_name(s.scale) + " | " +
+           std::to_string(s.rays) + " | " + std::to_string(s.steps) + " | " +
+           std::to_string(s.frames) + " | " + (s.blur ? "on" : "off") + " | " +
+           fmt("%.1f", r.total_ms) + " | " + pct(e.total_rmse) + " | " + pct(e.total_rmse_fit) +
+           " | " + pct(e.indirect_rmse) + " | " + pct(e.indirect_rmse_fit) + " | " +
+           fmt("%.2f", e.indirect_scale) + " | " +
+           (e.shadow_texels ? pct(e.shadow_rmse_fit) : std::string("-")) + " | " +
+           pct(e.max_error) + " | " + fmt("%.3f", e.ssim) + " | " + (r.front ? "yes" : "") + " |\n";
+}
+
+// "19.4 % (giRes 8 quarter 40r, 61.2 ms, ind. scale 0.66)": the run of `method` with the
+// lowest fitted total rRMSE.
+std::string best_of(const SceneReport& s, scene::GiMethod method) {
+    const SweepRun* best = nullptr;
+    for (const SweepRun& r : s.runs)
+        if (r.setting.method == method &&
+            (!best || r.error.total_rmse_fit < best->error.total_rmse_fit))
+            best = &r;
+    if (!best) return "-";
+    return pct(best->error.total_rmse_fit) + " % (" + best->setting.label() + ", " +
+           fmt("%.1f", best->total_ms) + " ms, ind. scale " +
+           fmt("%.2f", best->error.indirect_scale) + ")";
+}
+
 std::string scene_section(const SceneReport& s) {
     const transport::TransportStats& ref = s.reference;
     std::string md = "\n## " + s.name + "\n\n" + s.description + ".\n\n";
@@ -93,7 +174,23 @@ std::string scene_section(const SceneReport& s) {
           "rRMSE % | fit | "
           "ind. scale | shadow fit % | max err % | SSIM | Pareto |\n";
     md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const SweepRun& r : s.runs) md += table_row(r);
+    for (const SweepRun& r : s.runs)
+        if (!r.setting.is_radiosity()) md += table_row(r);
+    if (!has_radiosity(s)) return md;
+    md += "\nRadiosity (gi.method = radiosity, seed 003): grid = radiosity.scale; K = frames run "
+          "since the scene appeared, with radiosity.accumulate = K (feedback " +
+          fmt("%.2g", double(scene::RadiositySettings{}.feedback)) +
+          ", the other radiosity keys at their defaults); ms: one frame's passes at history 0 "
+          "(K > 1: the K = 1 twin's); the errors are the K-th frame's. Pareto: among the radiosity "
+          "settings.\n\n";
+    md +=
+        "| giRes | grid | rays | steps | K | blur | ms | total rRMSE % | fit | indirect rRMSE % | "
+        "fit | ind. scale | shadow fit % | max err % | SSIM | Pareto |\n";
+    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const SweepRun& r : s.runs)
+        if (r.setting.is_radiosity()) md += radiosity_row(r);
+    md += "\nLowest fitted total rRMSE: heat " + best_of(s, scene::GiMethod::heat) +
+          "; radiosity " + best_of(s, scene::GiMethod::radiosity) + ".\n";
     return md;
 }
 
@@ -107,8 +204,9 @@ std::string fmt(const char* format, double value) {
 
 void mark_fronts(std::vector<SceneReport>& scenes) {
     for (SceneReport& s : scenes)
-        for (std::size_t i : front_of(s.runs, &ErrorMetrics::total_rmse_fit))
-            s.runs[i].front = true;
+        for (scene::GiMethod m : {scene::GiMethod::heat, scene::GiMethod::radiosity})
+            for (std::size_t i : front_of(s.runs, &ErrorMetrics::total_rmse_fit, m))
+                s.runs[i].front = true;
 }
 
 std::string markdown_report(const ReportContext& c, const std::vector<SceneReport>& scenes) {
@@ -128,7 +226,10 @@ std::string markdown_report(const ReportContext& c, const std::vector<SceneRepor
           "over the texels without direct light in the reference; max err: largest luminance error "
           "over the largest "
           "reference luminance. Pareto: no other setting is both faster and closer (fitted total "
-          "rRMSE).\n";
+          "rRMSE)";
+    bool radiosity = false;
+    for (const SceneReport& s : scenes) radiosity = radiosity || has_radiosity(s);
+    md += radiosity ? "; each GI method has its own front.\n" : ".\n";
     for (const std::string& note : c.notes) md += "\nNote: " + note + "\n";
     for (const SceneReport& s : scenes) md += scene_section(s);
     return md;
@@ -139,14 +240,24 @@ std::string csv_report(const std::vector<SceneReport>& scenes) {
         "scene,gi_resolution,heat_scale,heat_rounds,taps,diffusion,blur,total_ms,direct_ms,heat_ms,"
         "blur_ms,"
         "total_rmse,total_rmse_fit,total_scale,indirect_rmse,indirect_rmse_fit,indirect_scale,"
-        "shadow_rmse_fit,shadow_texels,max_error,ssim,pareto,texels,reference_rel_se_indirect\n";
+        "shadow_rmse_fit,shadow_texels,max_error,ssim,pareto,texels,reference_rel_se_indirect,"
+        "method,radiosity_scale,radiosity_rays,radiosity_steps,frames,distance_ms,radiosity_ms\n";
     for (const SceneReport& s : scenes)
         for (const SweepRun& r : s.runs) {
             const ErrorMetrics& e = r.error;
-            csv += s.name + "," + std::to_string(r.setting.resolution) + "," +
-                   scale_name(r.setting.scale) + "," + std::to_string(r.setting.rounds) + "," +
-                   r.setting.taps() + "," + (r.setting.per_channel ? "per-channel" : "physical") +
-                   "," + (r.setting.blur ? "on" : "off") + "," + fmt("%.4f", r.total_ms) + "," +
+            const SweepSetting& set = r.setting;
+            const bool rad = set.is_radiosity(); // the heat columns empty, and the reverse
+            const std::string heat = rad ? std::string(",,,")
+                                         : std::string(scale_name(set.scale)) + "," +
+                                               std::to_string(set.rounds) + "," + set.taps() + "," +
+                                               (set.per_channel ? "per-channel" : "physical");
+            const std::string radiosity = rad ? std::string("radiosity,") + scale_name(set.scale) +
+                                                    "," + std::to_string(set.rays) + "," +
+                                                    std::to_string(set.steps) + "," +
+                                                    std::to_string(set.frames)
+                                              : std::string("heat,,,,1");
+            csv += s.name + "," + std::to_string(set.resolution) + "," + heat + "," +
+                   (set.blur ? "on" : "off") + "," + fmt("%.4f", r.total_ms) + "," +
                    fmt("%.4f", r.direct_ms) + "," + fmt("%.4f", r.heat_ms) + "," +
                    fmt("%.4f", r.blur_ms) + "," + fmt("%.6f", e.total_rmse) + "," +
                    fmt("%.6f", e.total_rmse_fit) + "," + fmt("%.6f", e.total_scale) + "," +
@@ -154,7 +265,9 @@ std::string csv_report(const std::vector<SceneReport>& scenes) {
                    fmt("%.6f", e.indirect_scale) + "," + fmt("%.6f", e.shadow_rmse_fit) + "," +
                    std::to_string(e.shadow_texels) + "," + fmt("%.6f", e.max_error) + "," +
                    fmt("%.6f", e.ssim) + "," + (r.front ? "1" : "0") + "," +
-                   std::to_string(e.texels) + "," + fmt("%.6f", s.noise.indirect) + "\n";
+                   std::to_string(e.texels) + "," + fmt("%.6f", s.noise.indirect) + "," +
+                   radiosity + "," + fmt("%.4f", r.distance_ms) + "," +
+                   fmt("%.4f", r.radiosity_ms) + "\n";
         }
     return csv;
 }
@@ -168,7 +281,7 @@ Result<void> write_plot(const SceneReport& s, const std::string& device, const s
     if (!s.runs.empty() && s.runs.front().error.shadow_texels > 0)
         f.panels.push_back(panel(s, "ground without direct light, fitted", x_label,
                                  &ErrorMetrics::shadow_rmse_fit));
-    f.legend = legend();
+    f.legend = legend(has_radiosity(s));
     return write_figure_png(f, path);
 }
 
