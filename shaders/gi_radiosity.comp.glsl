@@ -12,10 +12,10 @@ struct RadiosityParams {
     int rays, steps;
     int epsilon_steps;     // hit when the distance steps < this
     int shift;             // the frame's angle shift (1/4096 turns)
-    int noise;             // 1: per-texel blue-noise angle
-    int noise_origin_x;    // the grid's global texel origin mod 64
-    int noise_origin_y;
+    int noise_origin;      // the grid's global texel origin mod 64, x | y << 8; -1: no per-texel noise
     float accumulate_weight; // 1: replace; else previous + (new - previous) x weight
+    float own_weight;        // the seed's own term: last frame's light at the texel x this
+    int pad0;
 };
 #define GI_PASS_PARAMS RadiosityParams
 #include "lantern/gi_common.glsl"
@@ -64,13 +64,15 @@ vec3 march(ivec2 start, ivec2 d, int dq0) {
     return vec3(0.0);
 }
 
-vec3 radiosity(int i, int j) {
-    vec3 own = light_at(ivec2(i, j));
+vec3 radiosity(int i, int j, vec3 previous) {
     int dq0 = steps_at(ivec2(i, j));
-    if (dq0 < pc.pass.epsilon_steps) return own; // the seed's early out: inside a wall
+    if (dq0 < pc.pass.epsilon_steps) return light_at(ivec2(i, j)); // the seed's early out: inside a wall
+    // The seed's own term: the texel's last light (its base texture holds the last frame).
+    vec3 own = pc.pass.own_weight > 0.0 ? previous * pc.pass.own_weight : vec3(0.0);
     int base = 0;
-    if (pc.pass.noise != 0)
-        base = int(texelFetch(u_noise, ((j + pc.pass.noise_origin_y) & 63) * 64 + ((i + pc.pass.noise_origin_x) & 63)).r);
+    int origin = pc.pass.noise_origin;
+    if (origin >= 0)
+        base = int(texelFetch(u_noise, ((j + (origin >> 8)) & 63) * 64 + ((i + (origin & 255)) & 63)).r);
     vec3 sum = own;
     float brightness = max3(own);
     for (int k = 0; k < pc.pass.rays; ++k) {
@@ -91,12 +93,14 @@ void main() {
         for (int k = 0; k < 4; ++k) {
             int i = o.x + k;
             if (i >= pc.size.x) break;
-            precise vec3 value = radiosity(i, j);
             float w = pc.pass.accumulate_weight;
-            if (w < 1.0) {
-                precise vec3 previous = unpack_rgba16f(o_radiosity.texels[texel_index(i, j)]).rgb;
-                value = previous + (value - previous) * w;
-            }
+            // Last frame's radiosity at this texel (only read when the own term or the
+            // accumulation needs it: on the first frame the buffer holds nothing yet).
+            precise vec3 previous = w < 1.0 || pc.pass.own_weight > 0.0
+                                        ? unpack_rgba16f(o_radiosity.texels[texel_index(i, j)]).rgb
+                                        : vec3(0.0);
+            precise vec3 value = radiosity(i, j, previous);
+            if (w < 1.0) value = previous + (value - previous) * w;
             o_radiosity.texels[texel_index(i, j)] = pack_rgba16f(vec4(value, 1.0));
         }
     }

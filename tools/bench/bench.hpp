@@ -31,4 +31,11 @@ struct AccuracyOptions {
 };
 int accuracy(const AccuracyOptions& options);
 
+struct RadiosityNoiseOptions {
+    int frames = 32;     // frames per configuration (the last half measured)
+    int resolution = 8;  // gi.resolution of the seed scene
+    int lights = 16;     // point lights
+};
+int radiosity_noise(const RadiosityNoiseOptions& options);
+
 } // namespace lantern::bench

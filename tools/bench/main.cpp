@@ -2,6 +2,7 @@
 // micro-benchmarks are Google Benchmark programs in benchmarks/).
 //
 //   lantern-bench seed-table [--repeats N] [--no-reference] [--row I] [--markdown FILE]
+//   lantern-bench radiosity-noise [--frames N] [--resolution R] [--lights N]
 //   lantern-bench accuracy [--quick] [--repeats N] [--out DIR] [--scenes A,B] [--maps DIR]
 //                          [--albedo A] [--target E] [--cache DIR | --no-cache] [--backend B]
 //                          [--images]
@@ -24,6 +25,9 @@ constexpr const char* commands =
     "              median), each next to a copy kernel writing the same bytes, and the C++ reference\n"
     "  accuracy    error against run time: a sweep of GI settings on procedural scenes and real maps,\n"
     "              each timed (GPU timestamps, median) and compared with the light-transport reference\n"
+    "  radiosity-noise  the radiosity method's noise over frames: temporal noise, error against a\n"
+    "              converged image and the denoiser's banding, for each noise shift, ray count,\n"
+    "              accumulation and blur\n"
     "'lantern-bench COMMAND --help' lists a command's options.\n";
 
 int seed_table_main(int argc, char** argv) {
@@ -75,6 +79,19 @@ int accuracy_main(int argc, char** argv) {
     return lantern::bench::accuracy(o);
 }
 
+int radiosity_noise_main(int argc, char** argv) {
+    lantern::bench::RadiosityNoiseOptions o;
+    Parser p("lantern-bench radiosity-noise", "[options]",
+             "The radiosity method's noise over frames on a still scene (the seed table's caves): temporal\n"
+             "noise, error against a converged image (64 rays, 32 frames) and the share of flat steps\n"
+             "(banding), for each noise shift, ray count, accumulation and blur.");
+    p.integer("--frames", "N", "frames per configuration, the last half measured (default 32)", o.frames, 4, 4096);
+    p.integer("--resolution", "R", "gi.resolution (default 8)", o.resolution, 1, 32);
+    p.integer("--lights", "N", "point lights (default 16)", o.lights, 1, 4096);
+    if (auto exit = p.parse(argc, argv, 2)) return *exit;
+    return lantern::bench::radiosity_noise(o);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -85,6 +102,7 @@ int main(int argc, char** argv) {
     const std::string command = argc >= 2 ? argv[1] : "";
     if (command == "seed-table") return seed_table_main(argc, argv);
     if (command == "accuracy") return accuracy_main(argc, argv);
+    if (command == "radiosity-noise") return radiosity_noise_main(argc, argv);
     if (command.empty() || command.starts_with("-")) {
         if (auto exit = top.parse(argc, argv)) return *exit;
         std::fprintf(stderr, "%s\n", top.message("no command given").c_str());

@@ -172,6 +172,7 @@ RadiosityMarch radiosity_march_params(const FrameInputs& in, int history) {
     m.noise_origin = {origin(g.origin.x), origin(g.origin.y)};
     const int frames = std::min(history + 1, std::max(1, s.accumulate));
     m.accumulate_weight = history == 0 || frames <= 1 ? 1.0f : 1.0f / float(frames);
+    m.own_weight = history > 0 ? s.feedback : 0.0f;
     return m;
 }
 
@@ -201,10 +202,14 @@ Texture reference_radiosity_light(const FrameInputs& in, const Texture& emission
     return light;
 }
 
-glm::vec3 radiosity_texel(const Texture& light, const Texture& steps, const RadiosityMarch& m,
-                          int i, int j) {
-    const glm::vec3 own(load4(light, i, j));
-    if (steps_at(steps, i, j) < m.epsilon_steps) return own; // the seed's early out: inside a wall
+glm::vec3 radiosity_texel(const Texture& light, const Texture& steps, const Texture* previous,
+                          const RadiosityMarch& m, int i, int j) {
+    // The seed's early out: inside a wall, the texel keeps its light image.
+    if (steps_at(steps, i, j) < m.epsilon_steps) return glm::vec3(load4(light, i, j));
+    // The seed's own term: the texel's last light (its base texture holds the last frame).
+    const glm::vec3 own = previous && m.own_weight > 0.0f
+                              ? glm::vec3(load4(*previous, i, j)) * m.own_weight
+                              : glm::vec3(0.0f);
     const std::vector<glm::ivec2>& dirs = radiosity_directions();
     const int w = light.width, h = light.height;
     int base = 0;
@@ -252,7 +257,7 @@ void reference_radiosity_march(const Texture& light, const Texture& steps, const
                                Texture& radiosity, const RefOptions& options) {
     for_each_row(light.height, options, [&](int j) {
         for (int i = 0; i < light.width; ++i) {
-            glm::vec3 value = radiosity_texel(light, steps, m, i, j);
+            glm::vec3 value = radiosity_texel(light, steps, &radiosity, m, i, j);
             if (m.accumulate_weight < 1.0f) {
                 const glm::vec3 previous(load4(radiosity, i, j));
                 value = previous + (value - previous) * m.accumulate_weight;

@@ -26,9 +26,10 @@ struct RadiosityLightParams {
     std::int32_t pad0 = 0, pad1 = 0;
 };
 struct RadiosityParams {
-    std::int32_t rays = 0, steps = 0, epsilon_steps = 0, shift = 0, noise = 0, noise_origin_x = 0,
-                 noise_origin_y = 0;
-    float accumulate_weight = 1;
+    std::int32_t rays = 0, steps = 0, epsilon_steps = 0, shift = 0;
+    std::int32_t noise_origin = -1; // x | y << 8, -1: no per-texel noise
+    float accumulate_weight = 1, own_weight = 0;
+    std::int32_t pad0 = 0;
 };
 
 // ---- distance field: seed, the jump-flood passes, finish
@@ -155,10 +156,9 @@ void record_radiosity(PassRecorder& r) {
                   .steps = m.steps,
                   .epsilon_steps = m.epsilon_steps,
                   .shift = m.shift,
-                  .noise = m.noise ? 1 : 0,
-                  .noise_origin_x = m.noise_origin.x,
-                  .noise_origin_y = m.noise_origin.y,
-                  .accumulate_weight = m.accumulate_weight};
+                  .noise_origin = m.noise ? m.noise_origin.x | (m.noise_origin.y << 8) : -1,
+                  .accumulate_weight = m.accumulate_weight,
+                  .own_weight = m.own_weight};
         r.cmd.push_constants(p);
         r.dispatch(g.width, g.height);
         r.cmd.barrier_compute_to_compute();

@@ -82,9 +82,12 @@ struct RadiosityMarch {
     int epsilon_steps = 128; // hit when distance_steps < this
     int shift = 0;           // radiosity_frame_shift
     bool noise = true;       // per-texel blue-noise angle
-    glm::ivec2 noise_origin{
-        0}; // the grid's global texel origin mod 64 (the noise stays put as the window moves)
+    // The grid's global texel origin mod 64 (the noise stays put as the window moves).
+    glm::ivec2 noise_origin{0};
     float accumulate_weight = 1.0f; // 1: replace; else previous + (new - previous) x weight
+    // The seed's own term: the texel's last light, fed back (feedback once there is a last
+    // frame, else 0).
+    float own_weight = 0.0f;
 };
 RadiosityMarch radiosity_march_params(const FrameInputs& in, int history);
 
@@ -93,9 +96,10 @@ RadiosityMarch radiosity_march_params(const FrameInputs& in, int history);
 Texture reference_radiosity_light(const FrameInputs& in, const Texture& emission,
                                   const Texture* previous, float feedback,
                                   const RefOptions& options = {});
-// One texel's raymarched light (the seed's main()), before accumulation.
-glm::vec3 radiosity_texel(const Texture& light, const Texture& steps, const RadiosityMarch& m,
-                          int i, int j);
+// One texel's raymarched light (the seed's main()), before accumulation; `previous` is last
+// frame's radiosity (the own term; null: none).
+glm::vec3 radiosity_texel(const Texture& light, const Texture& steps, const Texture* previous,
+                          const RadiosityMarch& m, int i, int j);
 // The march over the grid, accumulated into `radiosity` (its previous content is read when
 // m.accumulate_weight < 1).
 void reference_radiosity_march(const Texture& light, const Texture& steps, const RadiosityMarch& m,
