@@ -156,6 +156,7 @@ GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const
     world_.set_resource<GatheredLights>();
     world_.set_resource<GatheredProxies>();
     world_.set_resource<FramePasses>();
+    world_.set_resource<WallDistanceField>();
     gpu_lane_ = profile::add_gpu_lane(profile::intern("GPU: " + backend_->name()));
     if (options.add_game_systems) options.add_game_systems(schedule_);
     add_systems();
@@ -245,6 +246,25 @@ void GiFrame::add_systems() {
         .reads_resource<GiView, GiConfig, GatheredLights, GatheredProxies, Streaming>()
         .reads<GICache, Camera>()
         .writes_resource<FramePasses>();
+
+    schedule_.add("wall_distance", [](ecs::SystemContext& ctx) {
+        ecs::World& w = ctx.world;
+        const GiView& view = w.resource<GiView>();
+        if (!view.window) return;
+        const FramePasses& f = w.resource<FramePasses>();
+        const Streaming& streaming = w.resource<Streaming>();
+        const std::uint64_t key = Hasher(gi::hash_window(*view.window))
+                                      .add(streaming.version())
+                                      .add(int(f.inputs.settings.radiosity.scale))
+                                      .value();
+        WallDistanceField& d = w.resource<WallDistanceField>();
+        if (d.key == key) return;
+        d.field = gi::WallDistance::build(f.inputs);
+        d.key = key;
+        ++d.builds;
+    })
+        .reads_resource<GiView, FramePasses, Streaming>()
+        .writes_resource<WallDistanceField>();
 
     schedule_.add("gpu_submit", [this](ecs::SystemContext& ctx) {
         ecs::World& w = ctx.world;

@@ -11,6 +11,7 @@
 #include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/radiosity.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
+#include "lantern/gi/wall_distance.hpp"
 #include "lantern/jobs/job_system.hpp"
 #include "shared_renderer.hpp"
 
@@ -410,4 +411,27 @@ TEST_F(Radiosity, NoLightThroughASealedWallOnVulkan) {
     const Texture& r = gpu.textures.at("radiosity");
     EXPECT_GT(max_in(r, 0, 0, 10, r.height), 0.0f);
     EXPECT_EQ(max_in(r, 11, 0, 20, r.height), 0.0f);
+}
+
+// The CPU distance field game code queries equals the GPU's, texel by texel.
+TEST_F(Radiosity, TheWallDistanceForGameCodeEqualsTheGpusDistanceField) {
+    for (HeatScale scale : {HeatScale::full, HeatScale::quarter}) {
+        const Scene s = as_radiosity(gi_test::comparison_scene("rooms").scene, scale);
+        const FrameInputs in = inputs_of(s);
+        const PassPlan plan = plan_passes(in, false, Pass::distance_field);
+        auto gpu = run_vulkan_frame(gi_test::shared_renderer(device()), in, plan);
+        ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+        const WallDistance cpu = WallDistance::build(in);
+        const auto diff = gi_test::compare_textures(gpu->textures.at("distance_field"), cpu.field(), 0.0f);
+        EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe("distance_field", diff);
+        // A query: the rooms' wall row at z = 10. From the centre of (4.5, 7.5)'s grid texel to
+        // the nearest wall texel's: 7.625 to 10.125 at full scale (4 texels a tile), 7.5 to
+        // 10.5 at quarter (1 texel a tile).
+        const float expected = scale == HeatScale::full ? 2.5f : 3.0f;
+        EXPECT_FLOAT_EQ(cpu.distance({4.5f, 7.5f}), expected);
+        EXPECT_FLOAT_EQ(cpu.direction({4.5f, 7.5f}).y, 1.0f);
+        EXPECT_EQ(cpu.distance({4.5f, 10.5f}), 0.0f);
+        EXPECT_FALSE(cpu.covers({-100.0f, 0.0f}));
+        EXPECT_TRUE(std::isinf(cpu.distance({-100.0f, 0.0f})));
+    }
 }

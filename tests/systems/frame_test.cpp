@@ -119,6 +119,40 @@ TEST_P(FrameCaching, EachChangeRerunsExactlyItsPasses) {
     EXPECT_EQ(names(h.step()), names(PassSet{})) << "unchanged again";
 }
 
+// Seed 003's radiosity in the frame: it refines for gi.radiosity.frames frames, then a still
+// scene submits nothing; a light move reruns it (history kept), a wall edit reruns the
+// distance field too. The CPU distance field for game code follows the walls.
+TEST_P(FrameCaching, RadiosityConvergesThenStopsAndTheWallDistanceFollowsTheWalls) {
+    scene::Scene s = full_scene();
+    s.gi.method = scene::GiMethod::radiosity;
+    s.gi.radiosity.frames = 4;
+    Harness h(s, 1, device());
+    ecs::World& w = h.world;
+    const PassSet all = set_of({Pass::conduction, Pass::ao, Pass::direct, Pass::directional, Pass::emission,
+                                Pass::distance_field, Pass::radiosity, Pass::blur, Pass::wall_indirect});
+    const PassSet refine = set_of({Pass::radiosity, Pass::blur, Pass::wall_indirect});
+    EXPECT_EQ(names(h.step()), names(all)) << "first frame";
+    for (int f = 1; f < 4; ++f) EXPECT_EQ(names(h.step()), names(refine)) << "refining, frame " << f;
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "converged: a still scene submits nothing";
+    const auto& distance = w.resource<systems::WallDistanceField>();
+    EXPECT_EQ(distance.builds, 1u);
+    const glm::vec2 open_tile(4.5f, 4.5f); // rooms: floor, the wall row at z = 10 is 5.5 away
+    const float before = distance.field.distance(open_tile);
+    EXPECT_GT(before, 1.0f);
+    w.patch<PointLight>(h.sw.point_lights[0]).position.x += 0.5f;
+    EXPECT_EQ(names(h.step()), names(set_of({Pass::direct, Pass::directional, Pass::emission, Pass::radiosity,
+                                             Pass::blur, Pass::wall_indirect})))
+        << "a light moved: the distance field is kept";
+    EXPECT_EQ(distance.builds, 1u);
+    h.frame->streaming().set_wall(w, {4, 5}, true);
+    EXPECT_EQ(names(h.step()), names(all)) << "a wall was edited";
+    EXPECT_EQ(distance.builds, 2u);
+    EXPECT_EQ(distance.field.distance({4.5f, 5.5f}), 0.0f) << "inside the new wall";
+    EXPECT_LT(distance.field.distance(open_tile), before);
+    EXPECT_FLOAT_EQ(distance.field.distance(open_tile), 1.0f) << "the new wall is the next tile along +z";
+    EXPECT_GT(distance.field.direction(open_tile).y, 0.99f) << "towards the new wall";
+}
+
 TEST_P(FrameCaching, ScenesLeaveOutWhatTheyDoNotNeed) {
     gpu::Device* d = device();
     scene::Scene s = gi_test::comparison_scenes()[1].scene; // no proxies

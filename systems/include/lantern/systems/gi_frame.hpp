@@ -17,6 +17,7 @@
 #include "lantern/gi/backend.hpp"
 #include "lantern/gi/frame_inputs.hpp"
 #include "lantern/gi/pass_table.hpp"
+#include "lantern/gi/wall_distance.hpp"
 #include "lantern/systems/streaming.hpp"
 
 #include <array>
@@ -63,6 +64,17 @@ struct FramePasses {
     std::array<std::uint64_t, gi::pass_count> keys{};
     std::array<std::string, gi::pass_count> reason; // for passes that do not run
     gi::FrameInputs inputs;                      // the GPU-ready inputs of this frame
+};
+
+// The distance to the nearest wall over the GI window, for game code (AI, sound): seed 003's
+// distance field on the CPU (gi::WallDistance, equal to the GPU's distance_field texture),
+// rebuilt by the wall_distance system when the walls, the window or gi.radiosity.scale
+// change, whatever the GI method. Read it in a system that declares
+// reads_resource<WallDistanceField>().
+struct WallDistanceField {
+    gi::WallDistance field;
+    std::uint64_t key = 0;    // the window, walls and grid it was built for
+    std::uint64_t builds = 0; // how many times it was rebuilt
 };
 
 struct FrameReport {
