@@ -9,14 +9,14 @@ namespace lantern::bench {
 struct SeedTableOptions {
     int repeats = 5;         // measured frames per row (after one warm-up)
     bool reference = true;   // also time the C++ reference (single thread; slow)
-    int only_row = -1;       // run one row of the table (0-based), -1 = all
+    std::vector<int> rows;   // the rows of the table to run (0-based); empty: all
     std::string markdown_out; // also write the summary table here
     unsigned block_h = 0, group_x = 0, group_y = 0; // 0: the renderer's default for the device
 };
 int seed_table(const SeedTableOptions& options);
 
 struct AccuracyOptions {
-    bool quick = false;            // one scene, five settings, a 5 % reference
+    bool quick = false;            // one scene, eight settings (five heat, three radiosity), a 5 % reference
     int repeats = 5;               // timed frames per setting (after one warm-up); median
     std::string out_dir = "accuracy"; // accuracy.md, accuracy.csv, <scene>.png
     std::string maps_dir = "../shared/maps";

@@ -13,6 +13,7 @@
 
 #include <cstdio>
 #include <sstream>
+#include <cstdlib>
 #include <string>
 
 namespace {
@@ -38,7 +39,18 @@ int seed_table_main(int argc, char** argv) {
              "next to a copy kernel writing the same bytes, and the C++ reference.");
     p.integer("--repeats", "N", "measured frames per row, after one warm-up (default 5)", o.repeats, 1, 1000);
     p.flag("--no-reference", "do not time the C++ reference (single thread; slow)", [&] { o.reference = false; });
-    p.integer("--row", "I", "run one row of the table (0-based)", o.only_row, 0, 1000);
+    p.custom("--row", "I[,J...]", "run these rows of the table only (0-based; repeatable)",
+             [&](std::string_view list) -> std::optional<std::string> {
+                 std::stringstream ss{std::string(list)};
+                 for (std::string item; std::getline(ss, item, ',');) {
+                     char* end = nullptr;
+                     const long v = std::strtol(item.c_str(), &end, 10);
+                     if (item.empty() || *end != '\0' || v < 0 || v > 1000)
+                         return "expected row numbers 0..1000 separated by commas, got '" + item + "'";
+                     o.rows.push_back(int(v));
+                 }
+                 return std::nullopt;
+             });
     p.text("--markdown", "FILE", "also write the summary table here (Markdown)", o.markdown_out);
     p.integer("--block-h", "N", "block height (default: the renderer's for the device)", block_h, 1, 64);
     p.integer("--group-x", "N", "workgroup width (default: the renderer's for the device)", group_x, 1, 64);
@@ -58,7 +70,7 @@ int accuracy_main(int argc, char** argv) {
              "Error against run time: a sweep of GI settings on procedural scenes and real maps, each\n"
              "timed (GPU timestamps, median) and compared with the light-transport reference; writes\n"
              "DIR/accuracy.md, accuracy.csv and one plot per scene.");
-    p.flag("--quick", "one scene, five settings, a 5 % reference", o.quick);
+    p.flag("--quick", "one scene, eight settings (five heat, three radiosity), a 5 % reference", o.quick);
     p.integer("--repeats", "N", "timed frames per setting, after one warm-up; median (default 5)", o.repeats, 1, 1000);
     p.text("--out", "DIR", "accuracy.md, accuracy.csv, <scene>.png go here (default accuracy)", o.out_dir);
     p.custom("--scenes", "A,B,...", "the scenes to run (default: all)", [&](std::string_view list) -> std::optional<std::string> {

@@ -262,7 +262,7 @@ int seed_table(const SeedTableOptions& o) {
     std::vector<RowResult> rows;
     const auto all = seed_rows();
     for (std::size_t i = 0; i < all.size(); ++i) {
-        if (o.only_row >= 0 && int(i) != o.only_row) continue;
+        if (!o.rows.empty() && std::find(o.rows.begin(), o.rows.end(), int(i)) == o.rows.end()) continue;
         std::fprintf(stderr, "lantern-bench: row %zu/%zu: %s ...\n", i + 1, all.size(), all[i].label().c_str());
         auto r = run_row(**renderer, all[i], o);
         if (!r) {
