@@ -54,6 +54,15 @@ inline TexelDiff compare_textures(const lantern::gi::Texture& gpu, const lantern
     return d;
 }
 
+// The largest colour channel over texels [x0, x1) x [y0, y1).
+inline float max_in(const lantern::gi::Texture& t, int x0, int y0, int x1, int y1) {
+    float m = 0.0f;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            for (int c = 0; c < std::min(3, t.channels()); ++c) m = std::max(m, t.at(x, y)[c]);
+    return m;
+}
+
 inline std::string describe(const std::string& what, const TexelDiff& d) {
     std::ostringstream s;
     s << what << ": " << d.mismatches << " of " << d.compared << " values outside tolerance; worst at (" << d.x

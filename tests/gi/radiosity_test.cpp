@@ -21,6 +21,7 @@
 #include <random>
 
 using namespace lantern::gi;
+using gi_test::max_in;
 using gi_test::grid_from_rows;
 using gi_test::NamedScene;
 using lantern::scene::HeatScale;
@@ -138,14 +139,6 @@ struct TwoBackends {
         return {std::move(ref), gpu.ok() ? std::move(gpu.value()) : FrameResult{}};
     }
 };
-
-float max_in(const Texture& t, int x0, int y0, int x1, int y1) {
-    float m = 0.0f;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-            for (int c = 0; c < std::min(3, t.channels()); ++c) m = std::max(m, t.at(x, y)[c]);
-    return m;
-}
 
 } // namespace
 

@@ -13,6 +13,7 @@
 #include <cmath>
 
 using namespace lantern::gi;
+using gi_test::max_in;
 using gi_test::grid_from_rows;
 using lantern::scene::Scene;
 
@@ -78,14 +79,6 @@ void expect_sane(const Frames& f, const std::string& what, float indirect_max = 
         auto d = gi_test::compare_textures(f.gpu->textures.at(name), t, ulps);
         EXPECT_EQ(d.mismatches, 0u) << gi_test::describe(what + " " + name, d);
     }
-}
-
-float max_in(const Texture& t, int x0, int y0, int x1, int y1) {
-    float m = 0.0f;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-            for (int c = 0; c < std::min(3, t.channels()); ++c) m = std::max(m, t.at(x, y)[c]);
-    return m;
 }
 
 // Two rooms side by side split by a one-tile wall at x = 10; a light in the left room.
