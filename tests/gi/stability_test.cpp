@@ -64,9 +64,12 @@ void expect_sane(const Frames& f, const std::string& what, float indirect_max = 
         for (const auto& [name, t] : r.textures) {
             float hi = name == "indirect" || name.rfind("wall_indirect", 0) == 0 ? indirect_max : max_half;
             if (t.format != TexFormat::rgba16f) hi = 1.0f;
+            // The distance field's direction channels (1, 2) are a unit vector.
+            const bool direction = name == "distance_field";
             for (std::size_t i = 0; i < t.texels.size(); ++i) {
                 ASSERT_TRUE(std::isfinite(t.texels[i])) << what << " " << backend << " " << name << " value " << i;
-                ASSERT_GE(t.texels[i], 0.0f) << what << " " << backend << " " << name;
+                const bool signed_channel = direction && (i % 4 == 1 || i % 4 == 2);
+                ASSERT_GE(t.texels[i], signed_channel ? -1.0f : 0.0f) << what << " " << backend << " " << name;
                 ASSERT_LE(t.texels[i], hi) << what << " " << backend << " " << name;
             }
         }
@@ -302,4 +305,66 @@ TEST(GiStability, WindowBeyondTheDeviceLimitIsAClearError) {
     EXPECT_NE(whole.error().message.find("over the budget"), std::string::npos) << whole.error().message;
     EXPECT_EQ(whole.error().exit_code, 2);
     // And a window just inside it still works (allocation only; not rendered here).
+}
+
+// Seed 003's radiosity (gi.method = radiosity) on the stiff cases above: huge and tiny
+// lights, resolutions 1 and 32, one-texel corridors, a checkerboard, all walls and none, a
+// light inside a wall, the minimum window. Finite, bounded and equal on both backends.
+TEST(GiStability, RadiosityOnTheStiffCases) {
+    auto radiosity = [](Scene s, lantern::scene::HeatScale scale = lantern::scene::HeatScale::full) {
+        s.gi.method = lantern::scene::GiMethod::radiosity;
+        s.gi.radiosity.scale = scale;
+        return s;
+    };
+    for (float intensity : {1e-8f, 1e30f}) {
+        Scene s = gi_test::comparison_scene("rooms").scene;
+        for (auto& l : s.point_lights) l.intensity = intensity;
+        for (auto& l : s.emissive_lights) l.intensity = intensity;
+        expect_sane(run_both(radiosity(s, lantern::scene::HeatScale::half)), "radiosity, intensity " + std::to_string(intensity));
+    }
+    for (int res : {1, 32}) {
+        Scene s = gi_test::comparison_scene("rooms").scene;
+        s.gi.resolution = res;
+        if (res == 32) s.view = lantern::scene::OrthoView{{6.0f, 5.0f}, {8.0f, 6.0f}};
+        expect_sane(run_both(radiosity(s, res == 1 ? lantern::scene::HeatScale::full : lantern::scene::HeatScale::quarter)),
+                    "radiosity, resolution " + std::to_string(res));
+    }
+    {
+        std::vector<std::string> rows(64, std::string(64, '#'));
+        for (int x = 1; x < 63; ++x) rows[10][std::size_t(x)] = '.';
+        for (int z = 10; z < 40; ++z) rows[std::size_t(z)][62] = '.';
+        Scene s = gi_test::open_scene({32, 32}, {64, 64}, 1);
+        s.walls = grid_from_rows(rows);
+        s.point_lights.push_back(gi_test::point({50.5f, 10.5f}, {1, 1, 1}, 2.0f, 15.0f));
+        Frames f = run_both(radiosity(s));
+        expect_sane(f, "radiosity, one-texel corridor");
+        EXPECT_EQ(f.ref.textures.at("indirect").at(30, 30)[0], 0.0f) << "the rock stays dark";
+    }
+    {
+        std::vector<std::string> rows(16, std::string(16, '.'));
+        for (int z = 0; z < 16; ++z)
+            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
+        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
+        s.walls = grid_from_rows(rows);
+        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
+        expect_sane(run_both(radiosity(s)), "radiosity, checkerboard");
+    }
+    {
+        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
+        s.walls = grid_from_rows(std::vector<std::string>(16, std::string(16, '#')));
+        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
+        Frames f = run_both(radiosity(s));
+        expect_sane(f, "radiosity, all walls");
+        EXPECT_EQ(max_in(f.ref.textures.at("indirect"), 0, 0, 64, 64), 0.0f);
+        Scene open = gi_test::open_scene({8, 8}, {16, 16}, 4);
+        open.point_lights = s.point_lights;
+        expect_sane(run_both(radiosity(open)), "radiosity, no walls");
+    }
+    expect_sane(run_both(radiosity(gi_test::comparison_scene("light_edge_cases").scene)), "radiosity, light inside a wall");
+    {
+        Scene s = gi_test::open_scene({0.5f, 0.5f}, {1.0f, 1.0f}, 1);
+        s.walls = grid_from_rows({"#.#", "...", "#.#"});
+        s.point_lights.push_back(gi_test::point({1.5f, 1.5f}, {1, 1, 1}, 1.0f, 3.0f));
+        expect_sane(run_both(radiosity(s, lantern::scene::HeatScale::quarter)), "radiosity, 64-texel window");
+    }
 }
