@@ -101,7 +101,56 @@ vec3 apply_art(vec3 c) {
     return srgb_decode(s);
 }
 
+// ---- the HUD's GI views (GI_VIEW != 0)
+
+const float TAU = 6.28318531;
+
+// The view texture's texel under `pos` (seen from above); false when outside the window.
+bool view_texel(vec3 pos, out vec4 v, out ivec2 t) {
+    t = ivec2(floor((pos.xz - pc.window.xy) * pc.view_params.x));
+    v = vec4(0.0);
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, pc.view_tex.xy))) return false;
+    v = texelFetch(u_view, t.y * pc.view_tex.z + t.x);
+    return true;
+}
+
+// Light views return light (tone-mapped by the caller); the others a display colour.
+vec3 gi_view_color(vec3 pos) {
+    vec4 v;
+    ivec2 t;
+    if (!view_texel(pos, v, t)) return vec3(0.03, 0.0, 0.05); // outside the GI window
+    if (GI_VIEW == 1) return v.rgb;
+    if (GI_VIEW == 2) { // distance in grid texels: blue near walls to warm far, a darker band
+                        // every 2 texels, walls black
+        float d = v.r;
+        if (d <= 0.0) return vec3(0.0);
+        vec3 c = mix(vec3(0.95, 0.65, 0.3), vec3(0.1, 0.2, 0.55), exp(-0.3 * d));
+        return c * (fract(d * 0.5) < 0.15 ? 0.55 : 1.0);
+    }
+    if (GI_VIEW == 3) { // direction to the nearest wall: x as red, y (world z) as green
+        if (v.r <= 0.0) return vec3(0.0);
+        return vec3(0.5 + 0.5 * v.g, 0.5 + 0.5 * v.b, 0.5);
+    }
+    // GI_VIEW 4: the RGBA8 view of a 32-bit word, x | y << 16 of the nearest wall texel.
+    uint word = packUnorm4x8(v);
+    if (word == 0xFFFFFFFFu) return vec3(0.0); // no wall in reach
+    ivec2 nearest = ivec2(int(word & 0xFFFFu), int(word >> 16));
+    if (nearest == t) return vec3(1.0);        // a wall texel: its own seed
+    uint h = hash3(ivec3(nearest, 7));
+    return vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) * (0.7 / 255.0) + 0.15;
+}
+
 void main() {
+    if (GI_VIEW != 0) {
+        // Side faces sample just inside their box (their own tile), not the tile boundary.
+        const vec3 normals[4] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1));
+        vec3 pos = clamp(in_position, in_box_min, in_box_max);
+        if (FACE < 4) pos -= normals[min(FACE, 3)] * 1e-3;
+        vec3 c = gi_view_color(pos);
+        if (GI_VIEW == 1) c = tone_map(c, int(pc.config.y), pc.config.z);
+        out_color = vec4(c, 1.0);
+        return;
+    }
     set_gi_shading();
     vec3 color;
     if (in_material == MATERIAL_GLOW) {

@@ -24,10 +24,7 @@ layout(std430, binding = 2) writeonly buffer Out { uint masks[]; } o_mask;
 #include "lantern/gi_shadow.glsl"
 #include "lantern/gi_heat_taps.glsl"
 
-vec2 heat_center(int i, int j) {
-    float tpu = pc.pass.texels_per_unit;
-    return vec2(pc.camera_view.x + (float(i) + 0.5) / tpu, pc.camera_view.y + (float(j) + 0.5) / tpu);
-}
+vec2 heat_center(int i, int j) { return grid_texel_center(i, j, pc.pass.texels_per_unit); }
 
 uint tap_mask(int i, int j) {
     vec2 center = heat_center(i, j);

@@ -39,8 +39,7 @@ uint distance_steps_of(uint d2) {
 }
 
 uint seed(int x, int y) {
-    float tpu = pc.pass.texels_per_unit;
-    vec2 c = vec2(pc.camera_view.x + (float(x) + 0.5) / tpu, pc.camera_view.y + (float(y) + 0.5) / tpu);
+    vec2 c = grid_texel_center(x, y, pc.pass.texels_per_unit);
     return is_wall(ivec2(floor(c))) ? pack_coord(x, y) : NONE;
 }
 

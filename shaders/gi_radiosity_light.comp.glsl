@@ -23,8 +23,7 @@ layout(std430, binding = 4) writeonly buffer Out { uvec2 texels[]; } o_light;
 #include "lantern/gi_shadow.glsl"
 
 vec3 light(int i, int j) {
-    float tpu = pc.pass.texels_per_unit;
-    vec2 c = vec2(pc.camera_view.x + (float(i) + 0.5) / tpu, pc.camera_view.y + (float(j) + 0.5) / tpu);
+    vec2 c = grid_texel_center(i, j, pc.pass.texels_per_unit);
     if (is_wall(ivec2(floor(c)))) return vec3(0.0);
     int scale = pc.pass.scale;
     vec3 sum = vec3(0.0);

@@ -34,7 +34,7 @@ vec3 upsample(int x, int y) {
     for (int dy = 0; dy <= 1; ++dy)
         for (int dx = 0; dx <= 1; ++dx) {
             int hi = clamp(i0.x + dx, 0, hw - 1), hj = clamp(i0.y + dy, 0, hh - 1);
-            vec2 c = vec2(origin.x + (float(hi) + 0.5) / tpu, origin.y + (float(hj) + 0.5) / tpu);
+            vec2 c = grid_texel_center(hi, hj, tpu);
             if (is_wall(ivec2(floor(c)))) continue;
             float wt = (dx == 1 ? f.x : 1.0 - f.x) * (dy == 1 ? f.y : 1.0 - f.y);
             sum += heat_at(hi, hj) * wt;

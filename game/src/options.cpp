@@ -115,6 +115,17 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
     p.integer("--posterize", "N", "posterize to N levels per channel", o.posterize, 2, 64);
     p.flag("--dither", "ordered 4x4 dithering", o.dither);
     p.text("--palette", "NAME", "palette swap (names in docs/game.md)", o.palette);
+    std::string view_list;
+    for (const char* name : gi_debug_view_names()) view_list += std::string(view_list.empty() ? "" : ", ") + name;
+    p.custom("--gi-view", "NAME",
+             "draw a GI texture over the world instead of the lit scene:\n" + view_list +
+                 " (the last five: gi.method=radiosity)",
+             [&](std::string_view v) -> std::optional<std::string> {
+                 const auto view = gi_debug_view_by_name(v);
+                 if (!view) return "must be one of " + view_list + ", got '" + printable(v) + "'";
+                 o.gi_view = *view;
+                 return std::nullopt;
+             });
     p.section("simulation");
     p.custom(
         "--set", "gi.KEY=VALUE", "a GI setting, as in scene files, e.g. --set gi.resolution=8",

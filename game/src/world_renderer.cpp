@@ -1,6 +1,7 @@
 // The game's world renderer: box faces, frame constants, one draw per face group.
 #include "lantern/game/world_renderer.hpp"
 
+#include "lantern/gi/radiosity.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gpu/command_list.hpp"
 #include "lantern/gpu/device.hpp"
@@ -37,10 +38,12 @@ struct alignas(16) WorldFrame {
     glm::ivec4 gi{0};           // pitch, presence bits, sun count, GI on
     glm::ivec4 art{0};          // posterize levels, dither, palette colours, pattern
     glm::vec4 art_params{0.0f}; // dither amplitude
+    glm::ivec4 view_tex{0};     // the GI view's texture: width, height, pitch
+    glm::vec4 view_params{0.0f}; // its texels per world unit
     std::array<glm::vec4, max_palette_colors> palette{};
     std::array<gi::GpuDirectionalLight, 8> suns{};
 };
-static_assert(sizeof(WorldFrame) == 64 + 9 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
+static_assert(sizeof(WorldFrame) == 64 + 11 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
 
 static_assert(offsetof(BoxInstance, half) == 16 && offsetof(BoxInstance, color) == 32,
               "BoxInstance must match game_world.vert.glsl's three texels per box");
@@ -71,6 +74,7 @@ int draw_group(int face, int material) {
 constexpr std::uint32_t binding_frame = 0, binding_walls = 1, binding_first_texture = 2;
 constexpr int gi_texture_count = 16; // GI_DIRECT ... GI_WALL_UPPER + 3 (shading.glsl ids)
 constexpr std::uint32_t binding_boxes = binding_first_texture + gi_texture_count; // the faces' boxes
+constexpr std::uint32_t binding_view = binding_boxes + 1;                           // the GI view's texture
 constexpr VkDeviceSize initial_box_capacity = 4096;
 
 // Shading-library texture ids (shading.glsl GI_*) in binding order.
@@ -104,7 +108,33 @@ std::vector<Palette> make_palettes() {
     };
 }
 
-gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int face, bool gi, bool art, int lookup) {
+// The shader's GI_VIEW modes (lantern/game_world.glsl).
+enum ViewMode : int { view_off = 0, view_light = 1, view_distance = 2, view_direction = 3, view_nearest = 4, view_modes = 5 };
+
+// What a GI view draws: its texture, the shader's mode for it, and the texture's texels per
+// world unit (window textures: the resolution; the radiosity grid's: resolution / scale).
+struct ViewSource {
+    gi::Tex tex;
+    ViewMode mode;
+    float texels_per_unit;
+};
+std::optional<ViewSource> view_source(GiDebugView v, const gi::FrameInputs& in) {
+    const float window_tpu = float(in.window.resolution);
+    const float grid_tpu = gi::radiosity_grid(in).texels_per_unit;
+    switch (v) {
+    case GiDebugView::direct: return ViewSource{gi::Tex::direct, view_light, window_tpu};
+    case GiDebugView::indirect: return ViewSource{gi::Tex::indirect, view_light, window_tpu};
+    case GiDebugView::light_image: return ViewSource{gi::Tex::radiosity_light, view_light, grid_tpu};
+    case GiDebugView::radiosity: return ViewSource{gi::Tex::radiosity, view_light, grid_tpu};
+    case GiDebugView::distance: return ViewSource{gi::Tex::distance_field, view_distance, grid_tpu};
+    case GiDebugView::direction: return ViewSource{gi::Tex::distance_field, view_direction, grid_tpu};
+    case GiDebugView::jump_flood: return ViewSource{gi::jump_flood_result(in), view_nearest, grid_tpu};
+    default: return std::nullopt;
+    }
+}
+
+gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int face, bool gi, bool art, int lookup,
+                                        int view) {
     gpu::GraphicsPipelineDesc p;
     p.vertex_spirv = lantern_game_shaders_spirv("game_world.vert");
     p.fragment_spirv = lantern_game_shaders_spirv("game_world.frag");
@@ -113,8 +143,13 @@ gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int 
     // attributes on lavapipe: the same frame time; pulling keeps the mesh in the shader.)
     p.bindings.push_back(gpu::BindingType::uniform_buffer); // WorldFrames
     p.push_constant_size = sizeof(std::int32_t);            // WorldSlot
-    for (int i = 0; i <= gi_texture_count + 1; ++i) p.bindings.push_back(gpu::BindingType::uniform_texel_buffer);
-    p.specialization = {{0, std::uint32_t(face)}, {1, gi ? 1u : 0u}, {2, art ? 1u : 0u}, {3, std::uint32_t(lookup)}};
+    for (std::uint32_t i = binding_walls; i <= binding_view; ++i)
+        p.bindings.push_back(gpu::BindingType::uniform_texel_buffer);
+    p.specialization = {{0, std::uint32_t(face)},
+                        {1, gi ? 1u : 0u},
+                        {2, art ? 1u : 0u},
+                        {3, std::uint32_t(lookup)},
+                        {4, std::uint32_t(view)}};
     p.cull = VK_CULL_MODE_NONE; // faces turned away are never listed
     p.depth = {true, true, VK_COMPARE_OP_LESS};
     p.color_format = target.color_format();
@@ -181,8 +216,9 @@ std::span<const Palette> builtin_palettes() {
 struct WorldRenderer::Impl {
     gpu::Device* device = nullptr;
     render::RenderTarget target;
-    // By face, wall lookup, GI on, art on (specialisation constants), created on first use.
-    std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4> pipelines;
+    // By face, wall lookup, GI on, art on, GI view mode (specialisation constants), created on
+    // first use.
+    std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4 * view_modes> pipelines;
     render::StreamBuffer instances;
     gpu::BufferView instance_texels; // RGBA32F, three texels per box
     render::StreamBuffer frame;
@@ -193,6 +229,7 @@ struct WorldRenderer::Impl {
     std::array<std::vector<BoxInstance>, draw_groups.size()> faces;
     std::vector<BoxInstance> upload;
     std::size_t faces_drawn = 0;
+    GiDebugView view_drawn = GiDebugView::lit;
 
     void create_instances(VkDeviceSize capacity) {
         instances = render::StreamBuffer::create(*device, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, capacity,
@@ -201,11 +238,13 @@ struct WorldRenderer::Impl {
                                                      VK_WHOLE_SIZE, "game world box texels");
     }
 
-    const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art) {
-        if (!gi) lookup = lookup_grid; // no lighting: the lookup is compiled out anyway
-        const int key = face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0)));
+    const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art, ViewMode view) {
+        if (!gi || view != view_off) lookup = lookup_grid; // compiled out anyway
+        if (view != view_off) art = false;
+        const int key =
+            face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0) + 4 * int(view)));
         gpu::GraphicsPipeline& p = pipelines[std::size_t(key)];
-        if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, gi, art, lookup));
+        if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, gi, art, lookup, view));
         return p;
     }
 };
@@ -215,6 +254,7 @@ WorldRenderer::~WorldRenderer() = default;
 
 render::RenderTarget& WorldRenderer::target() { return impl_->target; }
 std::size_t WorldRenderer::faces_drawn() const { return impl_->faces_drawn; }
+GiDebugView WorldRenderer::gi_view_drawn() const { return impl_->view_drawn; }
 
 Result<std::unique_ptr<WorldRenderer>> WorldRenderer::create(gpu::Device& device, glm::ivec2 size) {
     if (!device.capabilities().graphics)
@@ -226,7 +266,7 @@ Result<std::unique_ptr<WorldRenderer>> WorldRenderer::create(gpu::Device& device
     impl->target = render::RenderTarget::create(
         device, {std::uint32_t(size.x), std::uint32_t(size.y), VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_D32_SFLOAT,
                  "game world"});
-    for (const DrawGroup& g : draw_groups) impl->pipeline(g.face, g.lookup, true, false); // the usual frame
+    for (const DrawGroup& g : draw_groups) impl->pipeline(g.face, g.lookup, true, false, view_off); // the usual frame
     impl->create_instances(initial_box_capacity * sizeof(BoxInstance));
     impl->frame = render::StreamBuffer::create(device, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, 2 * sizeof(WorldFrame),
                                                "game world frame");
@@ -296,6 +336,7 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     f.camera = glm::vec4(view.camera.position, 1.0f);
     gpu::DescriptorWrites writes;
     writes.uniform_buffer(binding_frame, m.frame.buffer());
+    ViewMode view_mode = view_off;
     const bool gi_on = view.gi && view.renderer;
     scene::GiSettings no_gi;
     const scene::GiSettings& settings = gi_on ? view.gi->settings : no_gi;
@@ -328,7 +369,18 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
         const bool walls = bool(r.walls_view());
         writes.uniform_texel_buffer(binding_walls, walls ? r.walls_view() : m.dummy_walls);
         if (!walls) f.grid = glm::ivec4(0); // nothing uploaded: every tile is air
+        // The GI view: its texture when this frame has it, else the lit scene.
+        if (const auto source = view_source(view.gi_view, in); source && r.view(source->tex)) {
+            const glm::ivec2 size = r.size(source->tex);
+            f.view_tex = glm::ivec4(size, r.pitch(source->tex), 0);
+            f.view_params = glm::vec4(source->texels_per_unit, 0.0f, 0.0f, 0.0f);
+            writes.uniform_texel_buffer(binding_view, *r.view(source->tex));
+            view_mode = source->mode;
+        } else {
+            writes.uniform_texel_buffer(binding_view, m.dummy_texels);
+        }
     } else {
+        writes.uniform_texel_buffer(binding_view, m.dummy_texels);
         writes.uniform_texel_buffer(binding_walls, m.dummy_walls);
         for (int i = 0; i < gi_texture_count; ++i)
             writes.uniform_texel_buffer(binding_first_texture + std::uint32_t(i), m.dummy_texels);
@@ -352,13 +404,14 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     writes.uniform_texel_buffer(binding_boxes, m.instance_texels);
 
     const bool art_on = levels || art.dither || colors;
+    m.view_drawn = view_mode == view_off ? GiDebugView::lit : view.gi_view;
     m.target.begin(cmd, {{0.0f, 0.0f, 0.0f, 1.0f}});
     std::uint32_t first = 0;
     bool pushed = false;
     for (std::size_t d = 0; d < m.faces.size(); ++d) {
         const auto count = std::uint32_t(m.faces[d].size());
         if (count) {
-            cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on));
+            cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on, view_mode));
             // Descriptors once: every pipeline here has the same layout, so
             // they stay bound across the binds. (Each push cost lavapipe about 1 ms with the
             // GI texel buffers in it, 10 ms a frame for the 10 groups.)

@@ -229,6 +229,20 @@ void GiFrame::add_systems() {
         in.directional_lights = lights.suns;
         in.proxies = proxies.proxies;
         f.plan = gi::plan_passes(in, config.lit_image);
+        // The bounce stepper: a restart starts the converging rows afresh; while they are held,
+        // a step advances them by one frame (gpu_submit advances them otherwise).
+        const ConvergeControl& control = config.converge;
+        if (control.restarts != restarts_seen_) {
+            convergence_.restart();
+            held_ = {};
+            restarts_seen_ = control.restarts;
+        }
+        if (held_.bits && (!control.hold || steps_seen_ < control.steps)) {
+            convergence_.advance(held_); // what ran while held counts now
+            held_ = {};
+            if (control.hold) ++steps_seen_;
+        }
+        if (!control.hold) steps_seen_ = control.steps;
         f.keys = pass_keys(in, f.plan, streaming.version(), lights.hash, lights.suns_hash, proxies.hash, &convergence_);
         const ecs::Entity cam = camera();
         const GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);
@@ -284,7 +298,8 @@ void GiFrame::add_systems() {
             } else {
                 streaming.clear_dirty();
                 report_.ran = f.run;
-                convergence_.advance(f.run);
+                if (w.resource<GiConfig>().converge.hold) held_.bits |= f.run.bits;
+                else convergence_.advance(f.run);
                 if (cache && f.run.bits) {
                     GICache& c = w.patch<GICache>(cam);
                     for (int p = 0; p < gi::registered_pass_count(); ++p)
@@ -304,7 +319,7 @@ void GiFrame::add_systems() {
                 profile::record_gpu(gpu_lane_, t.frame, gi::pass_name(p.pass), p.cpu_begin_ns, p.cpu_end_ns);
     })
         .main_thread()
-        .reads_resource<FramePasses, GiView>()
+        .reads_resource<FramePasses, GiView, GiConfig>()
         .reads<Camera>()
         .writes<GICache>()
         .writes_resource<Streaming>();

@@ -383,6 +383,26 @@ TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
     EXPECT_NE(log.find("frame ms while walking"), std::string::npos) << log;
 }
 
+// The demo with seed 003's method and one of its HUD views (the distance field over the world).
+TEST(GameHeadless, DemoRunsTheRadiosityMethodWithAGiView) {
+    test::TempDir dir;
+    const std::string out = dir.file("demo");
+    const int status = run_game({"--headless", "--frames", "30", "--screenshots", "1", "--out", out, "--set",
+                                 "gi.method=radiosity", "--gi-view", "distance"},
+                                dir.file("log.txt"));
+    const std::string log = test::read_file(dir.file("log.txt"));
+    if (status == 1 && log.find("no usable Vulkan device") != std::string::npos) LANTERN_SKIP_NO_GPU(log);
+    ASSERT_EQ(status, 0) << log;
+    EXPECT_TRUE(std::filesystem::exists(out + "/frame_00029.png")) << log;
+    auto timings = json::parse(test::read_file(out + "/timings.json"), "timings.json");
+    ASSERT_TRUE(timings) << timings.error().message;
+    std::set<std::string> names;
+    for (const json::Value& s : timings->find("scopes")->as_array()) names.insert(s.find("name")->as_string());
+    for (const char* n : {"distance_field", "radiosity", "world raster"})
+        EXPECT_TRUE(names.count(n)) << "missing from the report: " << n;
+    EXPECT_FALSE(names.count("heat"));
+}
+
 // The soak in short (docs/performance.md, "Soak"): over the last quarter of the demo (from
 // sunrise, the last feature to appear) the resident set may step where something is used for
 // the first time (a chunk streamed in, a shader variant lavapipe compiles: up to ~11 MiB
@@ -441,6 +461,8 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--frames", "0"}, "--frames: must be an integer in [1, 10000000], got '0'"},
         {{"--set", "gi.resolution=99"}, "gi.resolution"},
         {{"--palette", "neon"}, "unknown palette 'neon'"},
+        {{"--gi-view", "heatmap"}, "--gi-view: must be one of lit, direct, indirect, light_image, radiosity, distance, "
+                                   "direction, jump_flood, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},
         // Paths that are not regular files: refused before they are read or block.
         {{"--map", dir.path().string()}, "is a folder, not a regular file"},

@@ -8,6 +8,7 @@
 #include "lantern/game/gameplay.hpp"
 #include "lantern/gi/frame_inputs.hpp"
 #include "lantern/gi/passes.hpp"
+#include "lantern/gi/radiosity.hpp"
 #include "lantern/gi/shading.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gi/window.hpp"
@@ -17,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
 #include <algorithm>
@@ -97,8 +99,9 @@ scene::WallGrid grid_from_rows(const std::vector<std::string>& rows) {
 scene::PerspectiveCamera follow(glm::vec2 player) { return game::follow_camera({player.x, 0.0f, player.y}, game::CameraRig{}); }
 
 // Walls, two point lights, an emissive and a sun, seen by the game's camera.
-std::unique_ptr<GiFrame> lit_room_frame() {
+std::unique_ptr<GiFrame> lit_room_frame(scene::GiMethod method = scene::GiMethod::heat) {
     scene::Scene s;
+    s.gi.method = method;
     // 28 x 20 tiles, row r is z = r. The camera looks towards -z from z + 9: rows near 19 are
     // at the bottom of the screen, so the +z faces of walls show.
     s.walls = grid_from_rows({
@@ -561,6 +564,120 @@ TEST_F(WorldRendererTest, GlowIgnoresLightAndNoGiDrawsEmissionOnly) {
     EXPECT_TRUE(std::all_of(empty.pixels.begin(), empty.pixels.end(), [n = 0](std::uint8_t v) mutable {
         return (n++ % 4 == 3) ? v == 255 : v == 0;
     }));
+}
+
+// ---- GI views (the HUD's): a texture over the world from above
+
+// The distance view's display colour (game_world.frag.glsl gi_view_color, GI_VIEW 2).
+glm::vec3 distance_view_color(float d) {
+    if (d <= 0.0f) return glm::vec3(0.0f);
+    const glm::vec3 c = glm::mix(glm::vec3(0.95f, 0.65f, 0.3f), glm::vec3(0.1f, 0.2f, 0.55f), std::exp(-0.3f * d));
+    const float f = d * 0.5f - std::floor(d * 0.5f);
+    return c * (f < 0.15f ? 0.55f : 1.0f);
+}
+
+// Every top face (ground and wall tops) shows the texel under it: the distance field as the
+// distance ramp, the light image tone-mapped, the jump flood's wall texels as their own seed
+// (white); a view whose texture the frame lacks draws the lit scene.
+TEST_F(WorldRendererTest, GiViewsShowTheRadiosityTexturesFromAbove) {
+    auto frame = lit_room_frame(scene::GiMethod::radiosity);
+    ASSERT_TRUE(frame);
+    ASSERT_TRUE(frame->plan.run.has(gi::Pass::distance_field) && frame->plan.run.has(gi::Pass::radiosity));
+    const DrawList list = world_list(*frame, false);
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+    const gi::HeatGrid grid = gi::radiosity_grid(frame->in);
+    const gi::CameraView& window = frame->in.window.view;
+
+    std::vector<Hit> hits(std::size_t(target_size.x * target_size.y));
+    for (int y = 0; y < target_size.y; ++y)
+        for (int x = 0; x < target_size.x; ++x)
+            hits[std::size_t(y * target_size.x + x)] = trace(game::camera_ray(view.camera, pixel_ndc(x, y)), list);
+    // Each top-face pixel well inside one grid texel, with that texel (or nullopt).
+    auto texel_under = [&](int x, int y) -> std::optional<glm::ivec2> {
+        const Hit& h = hits[std::size_t(y * target_size.x + x)];
+        if (h.box < 0 || h.face != 4) return std::nullopt;
+        const game::Ray ray = game::camera_ray(view.camera, pixel_ndc(x, y));
+        const glm::vec3 hit = ray.origin + ray.direction * h.t;
+        std::optional<glm::ivec2> t;
+        for (float d : {-2e-3f, 2e-3f}) {
+            const glm::vec2 g = (glm::vec2(hit.x + d, hit.z + d) - glm::vec2(window.min_x, window.min_z)) *
+                                grid.texels_per_unit;
+            const glm::ivec2 here(int(std::floor(g.x)), int(std::floor(g.y)));
+            if (t && *t != here) return std::nullopt;
+            t = here;
+        }
+        if (t->x < 0 || t->y < 0 || t->x >= grid.width || t->y >= grid.height) return std::nullopt;
+        return t;
+    };
+    auto compare = [&](game::GiDebugView v, const char* name, auto&& expected) {
+        view.gi_view = v;
+        const render::Rgba8Image image = draw(view, list, frame.get());
+        maybe_write_png(image, std::string("gi_view_") + name);
+        EXPECT_EQ(world().gi_view_drawn(), v) << name;
+        int compared = 0, worst = 0;
+        for (int y = 0; y < target_size.y; ++y)
+            for (int x = 0; x < target_size.x; ++x)
+                if (const auto t = texel_under(x, y)) {
+                    ++compared;
+                    worst = std::max(worst, max_diff(pixel(image, x, y), expected(*t)));
+                }
+        std::printf("[ gi view %s ] %d pixels compared, max error %d/255\n", name, compared, worst);
+        EXPECT_GT(compared, target_size.x * target_size.y / 3) << name;
+        EXPECT_LE(worst, 1) << name;
+    };
+
+    draw(view, list, frame.get()); // the GI textures, to read back (every draw recomputes the same)
+    const gi::Texture field = read(gi::Tex::distance_field);
+    ASSERT_EQ(field.width, grid.width);
+    int walls = 0, open = 0;
+    compare(game::GiDebugView::distance, "distance", [&](glm::ivec2 t) {
+        const float d = field.at(t.x, t.y)[0];
+        (d > 0.0f ? open : walls) += 1;
+        return srgb8(distance_view_color(d));
+    });
+    EXPECT_GT(walls, 500) << "wall tops seen";
+    EXPECT_GT(open, 10000) << "ground seen";
+
+    const gi::Texture light = read(gi::Tex::radiosity_light);
+    const scene::GiSettings& settings = frame->in.settings;
+    int bright = 0;
+    compare(game::GiDebugView::light_image, "light_image", [&](glm::ivec2 t) {
+        const glm::vec3 c = glm::make_vec3(light.at(t.x, t.y));
+        bright += c.r + c.g + c.b > 0.05f;
+        return srgb8(gi::tone_map(c, settings.tone_map, settings.white_point));
+    });
+    EXPECT_GT(bright, 1000) << "the light image has light in it";
+
+    // The jump flood: a wall texel is its own nearest wall (white); open ground is a cell
+    // coloured by its nearest wall texel, never white or black in a closed room.
+    view.gi_view = game::GiDebugView::jump_flood;
+    const render::Rgba8Image cells = draw(view, list, frame.get());
+    maybe_write_png(cells, "gi_view_jump_flood");
+    std::set<std::array<int, 3>> colours;
+    int white_walls = 0, wall_pixels = 0;
+    for (int y = 0; y < target_size.y; ++y)
+        for (int x = 0; x < target_size.x; ++x)
+            if (const auto t = texel_under(x, y)) {
+                const std::array<int, 3> c = pixel(cells, x, y);
+                const bool white = c == std::array<int, 3>{255, 255, 255};
+                if (field.at(t->x, t->y)[0] <= 0.0f) {
+                    ++wall_pixels;
+                    white_walls += white;
+                } else {
+                    EXPECT_FALSE(white || c == (std::array<int, 3>{0, 0, 0})) << "open texel " << t->x << " " << t->y;
+                    colours.insert(c);
+                }
+            }
+    EXPECT_EQ(white_walls, wall_pixels);
+    EXPECT_GT(colours.size(), 50u) << "one cell per nearest wall texel";
+
+    // The heat method has no distance field: the view falls back to the lit scene.
+    auto heat = lit_room_frame();
+    ASSERT_TRUE(heat);
+    view.gi_view = game::GiDebugView::distance;
+    draw(view, world_list(*heat, false), heat.get());
+    EXPECT_EQ(world().gi_view_drawn(), game::GiDebugView::lit);
 }
 
 // ---- 3. art controls

@@ -197,7 +197,9 @@ TEST(RadiosityReference, DistanceStepsAreExactIntegerRoots) {
         }
         const std::uint64_t v = std::uint64_t(d2) * 65536;
         ASSERT_LE(std::uint64_t(s) * s, v) << d2;
-        if (s < 65535) ASSERT_GT(std::uint64_t(s + 1) * (s + 1), v) << d2;
+        if (s < 65535) {
+            ASSERT_GT(std::uint64_t(s + 1) * (s + 1), v) << d2;
+        }
     }
 }
 

@@ -153,6 +153,44 @@ TEST_P(FrameCaching, RadiosityConvergesThenStopsAndTheWallDistanceFollowsTheWall
     EXPECT_GT(distance.field.direction(open_tile).y, 0.99f) << "towards the new wall";
 }
 
+// The HUD's bounce stepper (GiConfig::converge): held, the radiosity does not refine; each
+// step runs it once more with one more frame of history (one more bounce); a restart runs it
+// afresh (history 0) even though nothing changed; released, it refines on to convergence.
+TEST_P(FrameCaching, RadiosityBouncesStepFrameByFrame) {
+    scene::Scene s = full_scene();
+    s.gi.method = scene::GiMethod::radiosity;
+    s.gi.radiosity.frames = 6;
+    Harness h(s, 1, device());
+    systems::ConvergeControl& control = h.frame->config().converge;
+    control.hold = true;
+    const PassSet refine = set_of({Pass::radiosity, Pass::blur, Pass::wall_indirect});
+    const auto history = [&] { return h.world.resource<systems::FramePasses>().plan.history[int(Pass::radiosity)]; };
+    EXPECT_TRUE(h.step().has(Pass::radiosity)) << "first frame";
+    EXPECT_EQ(history(), 0);
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "held: no second bounce";
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "still held";
+    ++control.steps;
+    EXPECT_EQ(names(h.step()), names(refine)) << "one step";
+    EXPECT_EQ(history(), 1) << "the second bounce reads the first";
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "held after the step";
+    control.steps += 2; // two steps: one a frame
+    EXPECT_EQ(names(h.step()), names(refine));
+    EXPECT_EQ(history(), 2);
+    EXPECT_EQ(names(h.step()), names(refine));
+    EXPECT_EQ(history(), 3);
+    EXPECT_EQ(names(h.step()), names(PassSet{}));
+    ++control.restarts;
+    EXPECT_EQ(names(h.step()), names(refine)) << "restart: afresh although nothing changed";
+    EXPECT_EQ(history(), 0);
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "held after the restart";
+    control.hold = false;
+    for (int f = 1; f < 6; ++f) {
+        EXPECT_EQ(names(h.step()), names(refine)) << "released, frame " << f;
+        EXPECT_EQ(history(), f);
+    }
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "converged";
+}
+
 TEST_P(FrameCaching, ScenesLeaveOutWhatTheyDoNotNeed) {
     gpu::Device* d = device();
     scene::Scene s = gi_test::comparison_scenes()[1].scene; // no proxies

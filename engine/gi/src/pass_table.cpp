@@ -433,7 +433,7 @@ std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameIn
             }
             plan.history[p] = std::uint16_t(age);
             const int last = std::max(1, row.converge_frames(in)) - 1;
-            keys[p] = Hasher(keys[p]).add(std::min(frames, last)).value();
+            keys[p] = Hasher(keys[p]).add(std::min(frames, last)).add(convergence ? convergence->epoch : 0u).value();
         }
         for (std::uint64_t bits = out.bits; bits; bits &= bits - 1)
             producer[std::size_t(std::countr_zero(bits))] = keys[int(row.pass)];

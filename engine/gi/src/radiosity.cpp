@@ -69,6 +69,12 @@ std::vector<int> jump_flood_offsets(glm::ivec2 size) {
     return offsets;
 }
 
+Tex jump_flood_result(const FrameInputs& in) {
+    const HeatGrid g = radiosity_grid(in);
+    // Pass 0 seeds jfa_a, pass i (1..offsets) writes jfa_a when i is even (rows/radiosity.cpp).
+    return jump_flood_offsets({g.width, g.height}).size() % 2 == 0 ? Tex::jfa_a : Tex::jfa_b;
+}
+
 std::uint32_t distance_steps_of(std::uint32_t d2) {
     if (d2 > 65535u) return 65535u;
     const std::uint32_t v = d2 * 65536u;

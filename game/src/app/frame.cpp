@@ -86,6 +86,7 @@ void Game::record_world(gpu::CommandList& cmd, Session& s) {
     view.gi = gv.window ? &w.resource<systems::FramePasses>().inputs : nullptr;
     view.renderer = gi_renderer_.get();
     view.art = art_;
+    view.gi_view = gi_view_;
     view.time = float(w.resource<GameClock>().time);
     std::uint32_t region = 0;
     if (timer_) {
@@ -131,6 +132,9 @@ void Game::render_system(Session& s) {
         in.report = &report;
         in.config = &w.resource<systems::GiConfig>();
         in.art = &art_;
+        in.gi_view = &gi_view_;
+        in.gi_view_drawn = world_renderer_->gi_view_drawn();
+        in.radiosity_history = f.plan.history[int(gi::Pass::radiosity)];
         in.day = &w.resource<DayCycle>();
         in.lights = &w.resource<systems::GatheredLights>();
         in.proxies = &w.resource<systems::GatheredProxies>();

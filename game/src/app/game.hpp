@@ -78,6 +78,7 @@ class Game {
     explicit Game(const GameOptions& options) : options_(options), jobs_(job_config(options)) {
         art_.posterize = options.posterize;
         art_.dither = options.dither;
+        gi_view_ = options.gi_view;
     }
     ~Game() {
         if (device_) device_->wait_idle();
@@ -122,6 +123,7 @@ class Game {
     std::unique_ptr<Session> session_;
     std::uint32_t raster_lane_ = 0;
     ArtSettings art_;
+    GiDebugView gi_view_ = GiDebugView::lit; // the HUD's GI views
     Hud hud_;
     render::PresentRect present_rect_;
     std::int64_t last_frame_ns_ = 0;

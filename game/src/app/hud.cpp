@@ -175,6 +175,16 @@ HudActions Hud::draw(const HudInputs& in) {
             ImGui::SliderInt("accumulate frames", &r.accumulate, 1, 64);
             int noise = int(r.noise);
             if (ImGui::Combo("noise", &noise, noise_shifts, 3)) r.noise = scene::NoiseShift(noise);
+            // The bounce stepper (systems::ConvergeControl): each frame adds a bounce; held, it
+            // adds one per click.
+            systems::ConvergeControl& c = in.config->converge;
+            ImGui::Checkbox("hold bounces", &c.hold);
+            ImGui::SameLine();
+            if (ImGui::Button("next bounce")) ++c.steps;
+            ImGui::SameLine();
+            if (ImGui::Button("restart")) ++c.restarts;
+            ImGui::SameLine();
+            ImGui::Text("bounce %d", in.radiosity_history + 1);
         } else {
             ImGui::SliderInt("heat rounds", &g.heat_rounds, 0, 64);
             scale_combo("heat scale", g.heat_scale);
@@ -214,6 +224,14 @@ HudActions Hud::draw(const HudInputs& in) {
         ImGui::SliderFloat("wall face k", &g.wall_face_exponent, 0.25f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
         ImGui::SliderInt("max lights", &g.max_lights, 1, 256);
         ImGui::SliderInt("max proxies", &g.max_shadow_proxies, 0, 256);
+    }
+    if (in.gi_view && ImGui::CollapsingHeader("GI views", ImGuiTreeNodeFlags_DefaultOpen)) {
+        // A GI texture over the world from above (WorldView::gi_view; docs/game.md, "GI views").
+        const auto names = gi_debug_view_names();
+        int view = int(*in.gi_view);
+        if (ImGui::Combo("view", &view, names.data(), int(names.size()))) *in.gi_view = GiDebugView(view);
+        if (*in.gi_view != GiDebugView::lit && in.gi_view_drawn != *in.gi_view)
+            ImGui::TextColored(ImVec4(1, 0.7f, 0.4f, 1), "not in this frame (gi.method = radiosity has it)");
     }
     if (in.art && ImGui::CollapsingHeader("Art")) {
         ImGui::SliderInt("posterize", &in.art->posterize, 0, 32);

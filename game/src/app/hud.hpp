@@ -17,6 +17,9 @@ struct HudInputs {
     const systems::FrameReport* report = nullptr; // this frame's
     systems::GiConfig* config = nullptr;          // edited live
     ArtSettings* art = nullptr;                   // edited live
+    GiDebugView* gi_view = nullptr;               // edited live
+    GiDebugView gi_view_drawn = GiDebugView::lit; // what the last frame drew
+    int radiosity_history = 0;                    // frames of bounce history the radiosity has
     DayCycle* day = nullptr;
     const systems::GatheredLights* lights = nullptr;
     const systems::GatheredProxies* proxies = nullptr;

@@ -20,6 +20,10 @@ layout(constant_id = 2) const bool HAS_ART = false;
 // (the sides and tops of wall boxes: they are on wall tiles). With 1 or 2 the routing folds at
 // compile time to the branch it would take for every visible pixel.
 layout(constant_id = 3) const int WALL_LOOKUP = 0;
+// The HUD's GI views (WorldView::gi_view): 0 the lit scene; else every surface shows the
+// texture u_view under it, seen from above: 1 light (tone-mapped), 2 distance field, 3
+// direction map, 4 jump flood (packed nearest-wall coordinates).
+layout(constant_id = 4) const int GI_VIEW = 0;
 
 // The frame constants (WorldFrame in game/src/world_renderer.cpp), read as frames[slot] with
 // `slot` a push constant that is always 0. Why the indirection: lavapipe specialises a shader
@@ -42,6 +46,8 @@ struct WorldFrame {
     ivec4 art;         // x: posterize levels (0 off), y: dither, z: palette colours (0 off), w: pattern
                        // (x, y, z all 0: HAS_ART is false)
     vec4 art_params;   // x: dither amplitude (encoded units)
+    ivec4 view_tex;    // GI_VIEW's texture: width, height, pitch, 0
+    vec4 view_params;  // x: its texels per world unit (from the window's min corner)
     vec4 palette[16];  // sRGB-encoded palette colours
     GpuDirectionalLight suns[8];
 };
@@ -70,6 +76,8 @@ layout(set = 0, binding = 14) uniform samplerBuffer u_wall_upper_px;
 layout(set = 0, binding = 15) uniform samplerBuffer u_wall_upper_nx;
 layout(set = 0, binding = 16) uniform samplerBuffer u_wall_upper_pz;
 layout(set = 0, binding = 17) uniform samplerBuffer u_wall_upper_nz;
+// binding 18: the boxes (game_world.vert.glsl)
+layout(set = 0, binding = 19) uniform samplerBuffer u_view; // GI_VIEW's texture (RGBA16F or RGBA8 words)
 
 #include "lantern/gi_walls.glsl"
 #include "lantern/shading.glsl"

@@ -45,11 +45,14 @@ ivec2 block_origin() { return ivec2(gl_GlobalInvocationID.x * BLOCK_W, gl_Global
 
 int texel_index(int x, int y) { return y * pc.size.z + x; }
 
-// Texel centre in world units: min + (i + 0.5) / res, exactly as the C++ reference.
-vec2 texel_center(int x, int y) {
-    float res = float(pc.size.w);
-    return vec2(pc.camera_view.x + (float(x) + 0.5) / res, pc.camera_view.y + (float(y) + 0.5) / res);
+// Centre in world units of texel (x, y) of a grid of `tpu` texels per world unit laid from
+// the window's min corner (the window's textures, the heat and radiosity grids):
+// min + (i + 0.5) / tpu, exactly as the C++ reference.
+vec2 grid_texel_center(int x, int y, float tpu) {
+    return vec2(pc.camera_view.x + (float(x) + 0.5) / tpu, pc.camera_view.y + (float(y) + 0.5) / tpu);
 }
+// The same for the window's textures (tpu = the resolution).
+vec2 texel_center(int x, int y) { return grid_texel_center(x, y, float(pc.size.w)); }
 
 vec4 finite_half_range(vec4 v) {
     v = clamp(v, vec4(-65504.0), vec4(65504.0)); // beyond the half range: stay finite

@@ -173,27 +173,6 @@ void reference_ao_row(ReferenceContext& c) { c.store.put(Tex::ao, reference_ao(c
 
 // ---- point and emissive lights
 
-// A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown
-// as needed.
-struct UploadedArray {
-    gpu::Buffer buffer;
-    gpu::BufferView view;
-};
-
-template <typename T>
-void upload_array(PassRecorder& r, UploadedArray& a, std::span<const T> data, VkFormat format, const char* name) {
-    const VkDeviceSize bytes = (VkDeviceSize(data.size_bytes()) + 15) & ~VkDeviceSize(15);
-    if (!a.buffer || a.buffer.size() < bytes) {
-        gpu::BufferDesc desc;
-        desc.size = std::max<VkDeviceSize>(bytes + bytes / 4, 16); // room to grow
-        desc.usage = format == VK_FORMAT_UNDEFINED ? VK_BUFFER_USAGE_STORAGE_BUFFER_BIT : VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-        desc.name = name;
-        a.buffer = r.device().create_buffer(desc);
-        if (format != VK_FORMAT_UNDEFINED) a.view = r.device().create_buffer_view(a.buffer, format, 0, VK_WHOLE_SIZE, name);
-    }
-    r.cmd.upload(a.buffer, 0, std::as_bytes(data));
-}
-
 // Light bins: one per direct-pass workgroup, a bitmask of the lights reaching it, and one of
 // the proxies that can shade it. The point lights' shadow maps (point_map.hpp): built and
 // uploaded whenever the pass runs with gi.shadow_method = shadow_map (a one-element

@@ -8,6 +8,7 @@
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 
 namespace lantern::gi::rows {
@@ -50,6 +51,7 @@ void record_distance_field(PassRecorder& r) {
     const int last = int(offsets.size()) + 1;
     const std::uint32_t mode = r.iteration == 0 ? 0u : r.iteration < last ? 1u : 2u;
     const Tex src = jfa_target(std::max(r.iteration - 1, 0));
+    LANTERN_ASSERT(mode != 2 || src == jump_flood_result(r.in), "jump_flood_result disagrees with the row");
     const Tex dst = mode == 2 ? Tex::distance_steps : jfa_target(r.iteration);
     r.cmd.bind(
         r.pipeline<JumpFloodParams>("gi_jump_flood.comp", {.proxies = false, .features = mode}));
@@ -95,20 +97,8 @@ float feedback_of(const FrameInputs& in, int history) {
 
 // The ray directions and the blue noise, uploaded once per renderer.
 struct RadiosityState : vk::PassState {
-    gpu::Buffer directions, noise;
-    gpu::BufferView directions_view, noise_view;
+    UploadedArray directions, noise;
 };
-
-gpu::BufferView upload_table(PassRecorder& r, gpu::Buffer& buffer, std::span<const std::byte> bytes,
-                             VkFormat format, const char* name) {
-    gpu::BufferDesc desc;
-    desc.size = (bytes.size() + 15) & ~std::size_t(15);
-    desc.usage = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-    desc.name = name;
-    buffer = r.device().create_buffer(desc);
-    r.cmd.upload(buffer, 0, bytes);
-    return r.device().create_buffer_view(buffer, format, 0, VK_WHOLE_SIZE, name);
-}
 
 void record_radiosity(PassRecorder& r) {
     const HeatGrid g = radiosity_grid(r.in);
@@ -133,14 +123,12 @@ void record_radiosity(PassRecorder& r) {
         r.cmd.barrier_compute_to_compute();
     } else if (r.iteration == 1) {
         RadiosityState& s = r.state<RadiosityState>();
-        if (!s.directions) {
-            const std::vector<glm::ivec2>& dirs = radiosity_directions();
+        if (!s.directions.buffer) {
             const std::vector<std::uint16_t>& ranks = blue_noise_ranks();
             const std::vector<std::uint32_t> noise(ranks.begin(), ranks.end());
-            s.directions_view = upload_table(r, s.directions, std::as_bytes(std::span(dirs)),
-                                             VK_FORMAT_R32G32_SINT, "radiosity directions");
-            s.noise_view = upload_table(r, s.noise, std::as_bytes(std::span(noise)),
-                                        VK_FORMAT_R32_UINT, "blue noise");
+            upload_array(r, s.directions, std::span<const glm::ivec2>(radiosity_directions()),
+                         VK_FORMAT_R32G32_SINT, "radiosity directions");
+            upload_array(r, s.noise, std::span<const std::uint32_t>(noise), VK_FORMAT_R32_UINT, "blue noise");
             r.cmd.barrier_transfer_to_compute();
         }
         const RadiosityMarch m = radiosity_march_params(r.in, r.history);
@@ -148,8 +136,8 @@ void record_radiosity(PassRecorder& r) {
         r.cmd.push_descriptors(gpu::DescriptorWrites()
                                    .uniform_texel_buffer(0, r.view(Tex::radiosity_light))
                                    .uniform_texel_buffer(1, r.view_u32(Tex::distance_steps))
-                                   .uniform_texel_buffer(2, s.directions_view)
-                                   .uniform_texel_buffer(3, s.noise_view)
+                                   .uniform_texel_buffer(2, s.directions.view)
+                                   .uniform_texel_buffer(3, s.noise.view)
                                    .storage_buffer(4, r.buffer(Tex::radiosity)));
         auto p = r.params<RadiosityParams>(g.width, g.height);
         p.pass = {.rays = m.rays,
@@ -176,9 +164,10 @@ void reference_radiosity_row(ReferenceContext& c) {
                                                                     previous, feedback, c.options));
     } else if (c.iteration == 1) {
         const RadiosityMarch m = radiosity_march_params(c.in, c.history);
-        const Texture* previous = c.store.find(Tex::radiosity);
+        // Last frame's radiosity is accumulated into in place: moved out of the store and back.
+        std::optional<Texture>& previous = c.store.textures[std::size_t(Tex::radiosity)];
         Texture radiosity = previous && previous->width == g.width && previous->height == g.height
-                                ? *previous
+                                ? std::move(*previous)
                                 : Texture("radiosity", TexFormat::rgba16f, g.width, g.height);
         reference_radiosity_march(c.store.at(Tex::radiosity_light), c.store.at(Tex::distance_steps),
                                   m, radiosity, c.options);

@@ -6,6 +6,10 @@
 
 #include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/reference_indirect.hpp"
+#include "lantern/gi/vulkan/pass_recorder.hpp"
+
+#include <algorithm>
+#include <span>
 
 namespace lantern::gi::rows {
 
@@ -23,5 +27,26 @@ extern const PassRow radiosity;
 
 // Records the upsample of a grid texture (heat, radiosity) into Tex::indirect (gi_upsample).
 void record_upsample(vk::PassRecorder& r, Tex src, const HeatGrid& grid);
+
+// A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown
+// as needed.
+struct UploadedArray {
+    gpu::Buffer buffer;
+    gpu::BufferView view;
+};
+
+template <typename T>
+void upload_array(vk::PassRecorder& r, UploadedArray& a, std::span<const T> data, VkFormat format, const char* name) {
+    const VkDeviceSize bytes = (VkDeviceSize(data.size_bytes()) + 15) & ~VkDeviceSize(15);
+    if (!a.buffer || a.buffer.size() < bytes) {
+        gpu::BufferDesc desc;
+        desc.size = std::max<VkDeviceSize>(bytes + bytes / 4, 16); // room to grow
+        desc.usage = format == VK_FORMAT_UNDEFINED ? VK_BUFFER_USAGE_STORAGE_BUFFER_BIT : VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+        desc.name = name;
+        a.buffer = r.device().create_buffer(desc);
+        if (format != VK_FORMAT_UNDEFINED) a.view = r.device().create_buffer_view(a.buffer, format, 0, VK_WHOLE_SIZE, name);
+    }
+    r.cmd.upload(a.buffer, 0, std::as_bytes(data));
+}
 
 } // namespace lantern::gi::rows

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "lantern/core/result.hpp"
+#include "lantern/game/gi_view.hpp"
 #include "lantern/game/world_setup.hpp"
 #include "lantern/scene/scene.hpp"
 
@@ -37,6 +38,7 @@ struct GameOptions {
     int posterize = 0;               // --posterize N
     bool dither = false;             // --dither
     std::string palette;             // --palette NAME
+    GiDebugView gi_view = GiDebugView::lit; // --gi-view NAME: a GI texture over the world (HUD: GI views)
 
     // Simulation.
     scene::GiSettings gi;            // the game's defaults, then --set gi.KEY=VALUE overrides

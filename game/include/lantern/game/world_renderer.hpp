@@ -23,6 +23,7 @@
 
 #include "lantern/core/result.hpp"
 #include "lantern/game/gameplay.hpp"
+#include "lantern/game/gi_view.hpp"
 #include "lantern/gi/frame_inputs.hpp"
 #include "lantern/render/render_target.hpp"
 #include "lantern/scene/scene.hpp"
@@ -31,8 +32,11 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace lantern::gpu {
@@ -118,6 +122,8 @@ struct WorldView {
                                                // earlier in the same command list (or an earlier
                                                // submission); nullptr: no GI
     ArtSettings art;
+    GiDebugView gi_view = GiDebugView::lit; // a texture this frame lacks (the method has no such
+                                            // pass) draws the lit scene
     float time = 0.0f; // seconds; unused for now (no animated glow: output is a function of the view)
 };
 
@@ -142,6 +148,8 @@ class WorldRenderer {
     // Box faces the last record() drew: in the view, in their box's mask and turned towards
     // the camera (the HUD shows it; the rest never reach the GPU).
     std::size_t faces_drawn() const;
+    // The GI view the last record() drew (lit when the view asked for was not in the frame).
+    GiDebugView gi_view_drawn() const;
 
     // The view-projection the raster uses: right-handed look-at with world +y as the up hint
     // (the basis of game::camera_ray and gi::visible_area), vertical fov_deg, aspect =

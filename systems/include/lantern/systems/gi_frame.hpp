@@ -31,8 +31,19 @@ namespace lantern::systems {
 
 // ---- resources
 
+// Stepping the converging rows by hand (the HUD's bounce stepper: the radiosity method adds a
+// bounce a frame). Counters, so that the frame systems only read them: each increment of
+// `steps` lets a held row run one more frame, each increment of `restarts` starts the rows
+// afresh next frame (bounce 1 again).
+struct ConvergeControl {
+    bool hold = false;        // converging rows stay where they are (a still scene shows one bounce)
+    std::uint64_t steps = 0;    // while held: one more frame per increment (one a frame)
+    std::uint64_t restarts = 0; // start afresh next frame
+};
+
 struct GiConfig {
     scene::GiSettings settings;
+    ConvergeControl converge;
     float wall_height = 2.0f;
     bool lit_image = false; // run the lit-image pass (tools); the game shades in its raster pass
     float light_hysteresis = 2.0f; // world units of priority bonus for lights kept last frame
@@ -133,6 +144,8 @@ class GiFrame {
     std::uint32_t gpu_lane_ = 0;
     FrameReport report_;
     gi::Convergence convergence_; // the camera's converging rows (cache_keys, gpu_submit)
+    std::uint64_t steps_seen_ = 0, restarts_seen_ = 0; // GiConfig::converge acted on
+    gi::PassSet held_; // ran while held: advanced by the next step or the release
 };
 
 // Per-pass cache keys of a frame (exposed for tests and the HUD): gi::derive_keys over the

@@ -278,10 +278,20 @@ struct Convergence {
     std::array<std::uint64_t, pass_count> reset_key{};   // the same without its history_keeps reads
     std::array<std::uint16_t, pass_count> frames{};      // frames run since its key changed
     std::array<std::uint16_t, pass_count> age{};         // frames of history (since reset_key changed)
-    // After a frame ran: counts one more frame for each converging row in `ran`.
+    std::uint32_t epoch = 0; // hashed into the converging rows' keys: restart() reruns them
+    // After a frame ran: counts one more frame for each converging row in `ran`. (Not
+    // calling it holds the rows where they are: their keys stay, a still scene shows the
+    // same bounce; the HUD's bounce stepper, GiConfig::converge.)
     void advance(PassSet ran);
     // Forget everything (a failed frame: every row starts afresh).
     void reset() { *this = {}; }
+    // Start every converging row afresh next frame, rerunning it (and what reads it) even
+    // where its inputs did not change: the first bounce again.
+    void restart() {
+        const std::uint32_t next = epoch + 1;
+        *this = {};
+        epoch = next;
+    }
 };
 
 // Every pass's cache key (0 for passes not planned): a hash of the window, the inputs the

@@ -20,6 +20,7 @@
 // less sqrt 2, or, near walls, just long enough to enter the next texel).
 #pragma once
 
+#include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/reference.hpp"
 #include "lantern/gi/reference_indirect.hpp"
 
@@ -48,6 +49,9 @@ inline glm::ivec2 jfa_unpack(std::uint32_t v) {
 // 0.2-60 % walls it found the nearest wall texel for every texel, where JFA+1 missed 12 of
 // 302080 by up to 0.7 texels; tests/gi/radiosity_test.cpp).
 std::vector<int> jump_flood_offsets(glm::ivec2 size);
+// The texture (jfa_a or jfa_b) that holds the flood's result, each texel the packed
+// coordinate of its nearest wall texel (x | y << 16; 0xFFFFFFFF: none), after the row ran.
+Tex jump_flood_result(const FrameInputs& in);
 
 // floor(256 x sqrt(d2)), clamped to 65535 (256 texels): exact integer arithmetic.
 std::uint32_t distance_steps_of(std::uint32_t d2);
