@@ -101,7 +101,8 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
         for (const auto& [e, d] : by_entity<DirectionalLight>(w))
             if (gi::sun_adds_light(d->color, d->intensity))
                 out.suns.push_back(gi::pack_directional(
-                    {d->direction, d->color, d->intensity, d->base_shadow_distance, d->bounce_intensity}));
+                    {d->direction, d->color, d->intensity, d->base_shadow_distance, d->bounce_intensity},
+                    config.settings.method));
     }
     out.hash = hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives);
     out.suns_hash = hash_vector(Hasher(), out.suns);

@@ -78,6 +78,13 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"radiosity.accumulate", {3, "3"}},
         {"radiosity.noise", {double(int(scene::NoiseShift::golden)), "golden"}},
         {"radiosity.frames", {5, "5"}},
+        {"gather.scale", {double(int(scene::HeatScale::quarter)), "quarter"}},
+        {"gather.rays", {7, "7"}},
+        {"gather.face_rays", {9, "9"}},
+        {"gather.bounces", {3, "3"}},
+        {"gather.frames", {5, "5"}},
+        {"gather.margin", {2, "2"}},
+        {"wall_albedo", {0.3, "0.3"}},
     };
     const std::map<std::string, std::string> second = {
         {"resolution", "5"}, {"padding", "1.5"}, {"window_snap", "tile"}, {"sun_shadow_method", "dda"}, {"shadow_method", "shadow_map"}, {"proxy_wall_shadows", "full"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
@@ -88,6 +95,8 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"max_shadow_proxies", "1"}, {"method", "heat"}, {"radiosity.scale", "quarter"}, {"radiosity.rays", "5"},
         {"radiosity.steps", "11"}, {"radiosity.epsilon", "2.5"}, {"radiosity.feedback", "0.75"},
         {"radiosity.accumulate", "5"}, {"radiosity.noise", "off"}, {"radiosity.frames", "7"},
+        {"gather.scale", "full"}, {"gather.rays", "5"}, {"gather.face_rays", "6"}, {"gather.bounces", "1"},
+        {"gather.frames", "7"}, {"gather.margin", "3"}, {"wall_albedo", "0.7"},
     };
     if (auto it = values.find(key); it != values.end())
         return it->second.first != v ? it->second.second : second.at(key);
@@ -230,7 +239,7 @@ TEST_P(PassTableMethods, EverySettingChangesExactlyTheKeysOfThePassesItAffects) 
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, PassTableMethods,
-                         ::testing::Values(scene::GiMethod::heat, scene::GiMethod::radiosity),
+                         ::testing::Values(scene::GiMethod::heat, scene::GiMethod::radiosity, scene::GiMethod::gather),
                          [](const auto& p) { return std::string(method(p.param).name); });
 
 TEST(PassTable, ARowMissingASettingIsCaught) {

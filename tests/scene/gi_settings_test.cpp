@@ -91,7 +91,10 @@ INSTANTIATE_TEST_SUITE_P(
                                            "\"reinhard\", \"reinhard_white\", \"aces\", got "
                                            "\"filmic\""},
         OverrideCase{"gi.ao.radius=9", "--set gi.ao.radius: must be in (0, 8], got 9"},
-        OverrideCase{"gi.method=cascades", "--set gi.method: expected one of \"heat\", \"radiosity\", got \"cascades\""},
+        OverrideCase{"gi.method=cascades",
+                     "--set gi.method: expected one of \"heat\", \"radiosity\", \"gather\", got \"cascades\""},
+        OverrideCase{"gi.wall_albedo=1.5", "--set gi.wall_albedo: must be in [0, 1], got 1.5"},
+        OverrideCase{"gi.gather.bounces=0", "--set gi.gather.bounces: must be an integer in [1, 64], got 0"},
         OverrideCase{"gi.radiosity.feedback=1", "--set gi.radiosity.feedback: must be in [0, 1), got 1 (at 1 a "
                                                 "closed room's light grows without bound; see docs/gi.md)"},
         OverrideCase{"gi.radiosity.rays=0", "--set gi.radiosity.rays: must be an integer in [1, 256], got 0"},

@@ -81,6 +81,7 @@ class LanternRunner {
         r.blur_ms = median(passes[gi::Pass::blur]);
         r.distance_ms = median(passes[gi::Pass::distance_field]);
         r.radiosity_ms = median(passes[gi::Pass::radiosity]);
+        r.gather_ms = median(passes[gi::Pass::gather]);
         return r;
     }
 
@@ -187,10 +188,10 @@ Result<SceneReport> run_scene(const AccuracyScene& s, const AccuracyOptions& o,
             " (" + std::to_string(i + 1) + "/" + std::to_string(settings.size()) + ")";
         bar.update(double(i) / double(settings.size()), settings[i].label() + count);
         std::string why;
-        auto window = gi::compute_window(lit.view, lit.gi.padding, lit.gi.resolution, &why);
+        auto window = gi::compute_window(lit.view, lit.gi, &why);
         if (!window) return make_error(s.name + ": no GI window: " + why, 1);
         const gi::FrameInputs in = gi::gather_frame_inputs(lit, *window);
-        const bool converging = settings[i].is_radiosity() && settings[i].frames > 1;
+        const bool converging = settings[i].converges();
         const auto twin = timed.find(twin_key(settings[i]));
         gi::FrameResult frame;
         SweepRun run;
@@ -200,7 +201,7 @@ Result<SceneReport> run_scene(const AccuracyScene& s, const AccuracyOptions& o,
             auto r = lantern.run(in, o.repeats, frame); // one frame's passes, history 0
             if (!r) return make_error(s.name + ": " + r.error().message, 1);
             run = *r;
-            if (settings[i].is_radiosity()) timed[twin_key(settings[i])] = run;
+            if (settings[i].is_radiosity() || settings[i].is_gather()) timed[twin_key(settings[i])] = run;
         }
         run.setting = settings[i];
         if (converging) { // scored at its K-th frame
@@ -255,12 +256,19 @@ SweepSetting SweepSetting::radiosity(int resolution, scene::HeatScale scale, int
     return s;
 }
 
+SweepSetting SweepSetting::gather(int resolution, scene::HeatScale scale, int rays, int face_rays, int frames) {
+    SweepSetting s = radiosity(resolution, scale, rays, face_rays, frames);
+    s.method = scene::GiMethod::gather;
+    return s;
+}
+
 bool SweepSetting::is_default() const {
     return apply(scene::Scene{}).gi == scene::GiSettings{};
 }
 
 std::string SweepSetting::variant() const {
     if (is_radiosity()) return "R";
+    if (is_gather()) return "G";
     if (!hierarchical) return "H";
     if (!per_channel) return "P";
     if (!blur) return "B";
@@ -272,8 +280,8 @@ std::string SweepSetting::label() const {
                        : scale == scene::HeatScale::half ? "half"
                                                          : "quarter";
     const std::string base = "giRes " + std::to_string(resolution) + " " + grid;
-    if (is_radiosity())
-        return "R " + base + " " + std::to_string(rays) + "x" + std::to_string(steps) + " K" +
+    if (is_radiosity() || is_gather())
+        return variant() + " " + base + " " + std::to_string(rays) + "x" + std::to_string(steps) + " K" +
                std::to_string(frames) + (blur ? "" : " B");
     const std::string v = variant();
     return base + " " + std::to_string(rounds) + "r" + (v.empty() ? "" : " " + v);
@@ -289,6 +297,16 @@ scene::Scene SweepSetting::apply(const scene::Scene& s) const {
         out.gi.radiosity.rays = rays;
         out.gi.radiosity.steps = steps;
         out.gi.radiosity.accumulate = frames;
+        return out;
+    }
+    if (is_gather()) {
+        out.gi.method = scene::GiMethod::gather;
+        out.gi.blur = blur;
+        out.gi.gather.scale = scale;
+        out.gi.gather.rays = rays;
+        out.gi.gather.face_rays = steps;
+        out.gi.gather.frames = frames;
+        out.gi.gather.margin = 8; // the reference's domain: the window plus 8 tiles
         return out;
     }
     out.gi.method = scene::GiMethod::heat;
@@ -314,6 +332,7 @@ std::vector<SweepSetting> sweep(bool quick) {
         for (const SweepSetting& v : variants(8)) out.push_back(v);
         for (int k : {1, 4, 16})
             out.push_back(SweepSetting::radiosity(8, HeatScale::quarter, 16, 32, k));
+        for (int k : {1, 8}) out.push_back(SweepSetting::gather(8, HeatScale::half, 32, 32, k));
         return out;
     }
     std::vector<SweepSetting> out;
@@ -332,6 +351,12 @@ std::vector<SweepSetting> sweep(bool quick) {
         for (int k : {4, 16})
             for (int rays : {16, 64}) out.push_back(SweepSetting::radiosity(8, scale, rays, 32, k));
     }
+    // Gather (physical) after 8 frames (16 bounces at the default 2 a frame: albedo 0.5 leaves
+    // 2^-16 of the light unbounced), over its grid and ray counts, and the first frame.
+    for (int res : {8, 16})
+        for (HeatScale scale : {HeatScale::full, HeatScale::half, HeatScale::quarter})
+            for (int rays : {16, 32, 64}) out.push_back(SweepSetting::gather(res, scale, rays, rays, 8));
+    out.push_back(SweepSetting::gather(8, HeatScale::half, 32, 32, 1));
     return out;
 }
 

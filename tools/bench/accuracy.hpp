@@ -29,9 +29,15 @@ struct SweepSetting {
     // the frame scored is the K-th (K = 1: one frame, history 0, a single bounce).
     int frames = 1;
 
+    // gi.method = gather (physical): scale = gather.scale, rays = gather.rays, steps =
+    // gather.face_rays, frames = K (the K-th frame is scored; gather.frames = K).
     static SweepSetting radiosity(int resolution, scene::HeatScale scale, int rays, int steps,
                                   int frames);
+    static SweepSetting gather(int resolution, scene::HeatScale scale, int rays, int face_rays, int frames);
     bool is_radiosity() const { return method == scene::GiMethod::radiosity; }
+    bool is_gather() const { return method == scene::GiMethod::gather; }
+    // A method whose frame K is scored after K frames of history.
+    bool converges() const { return (is_radiosity() || is_gather()) && frames > 1; }
 
     // The taps the heat pass uses: "rings" (three tiers), "8 @ 1 tile" or "8 @ 1 texel".
     std::string taps() const;
@@ -56,6 +62,7 @@ struct SweepRun {
     SweepSetting setting;
     double total_ms = 0.0, direct_ms = 0.0, heat_ms = 0.0, blur_ms = 0.0; // medians
     double distance_ms = 0.0, radiosity_ms = 0.0; // radiosity's passes (medians)
+    double gather_ms = 0.0;                       // the gather method's pass (median)
     ErrorMetrics error;                           // radiosity: of the K-th frame
     // On the Pareto front of fitted total relative RMSE against time among the runs of the
     // same method.

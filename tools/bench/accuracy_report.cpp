@@ -38,9 +38,12 @@ constexpr std::uint32_t heat_front_color = 0x303030, radiosity_front_color = 0xC
 
 bool has_radiosity(const SceneReport& s) {
     for (const SweepRun& r : s.runs)
-        if (r.setting.is_radiosity()) return true;
+        if (r.setting.is_radiosity() || r.setting.is_gather()) return true;
     return false;
 }
+
+constexpr scene::GiMethod all_methods[] = {scene::GiMethod::heat, scene::GiMethod::radiosity, scene::GiMethod::gather};
+constexpr std::uint32_t gather_front_color = 0x1B9E77;
 
 // The Pareto front of `metric` against time among the runs of one method (indices into runs).
 std::vector<std::size_t> front_of(const std::vector<SweepRun>& runs, double ErrorMetrics::*metric,
@@ -69,6 +72,12 @@ Panel panel(const SceneReport& s, const char* title, const std::string& x_label,
             pt.marker = radiosity_marker(r.setting.scale);
             pt.series = 1;
             pt.front_color = radiosity_front_color;
+        } else if (r.setting.is_gather()) {
+            pt.color = resolution_color(r.setting.resolution);
+            pt.marker = scale_marker(r.setting.scale);
+            pt.hollow = true;
+            pt.series = 2;
+            pt.front_color = gather_front_color;
         } else {
             pt.color = resolution_color(r.setting.resolution);
             pt.marker = scale_marker(r.setting.scale);
@@ -81,13 +90,13 @@ Panel panel(const SceneReport& s, const char* title, const std::string& x_label,
         }
         p.points.push_back(pt);
     }
-    for (scene::GiMethod m : {scene::GiMethod::heat, scene::GiMethod::radiosity})
+    for (scene::GiMethod m : all_methods)
         for (std::size_t i : front_of(s.runs, metric, m)) {
             PlotPoint& pt = p.points[i];
             const SweepSetting& set = s.runs[i].setting;
             pt.front = true;
-            pt.tag = set.is_radiosity()
-                         ? std::to_string(set.rays) + "x" + std::to_string(set.steps) + " K" +
+            pt.tag = set.is_radiosity() || set.is_gather()
+                         ? set.variant() + std::to_string(set.rays) + "x" + std::to_string(set.steps) + " K" +
                                std::to_string(set.frames)
                          : (pt.tag.empty() ? "" : pt.tag + " ") + std::to_string(set.rounds) + "r";
         }
@@ -175,7 +184,7 @@ std::string scene_section(const SceneReport& s) {
           "ind. scale | shadow fit % | max err % | SSIM | Pareto |\n";
     md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const SweepRun& r : s.runs)
-        if (!r.setting.is_radiosity()) md += table_row(r);
+        if (r.setting.method == scene::GiMethod::heat) md += table_row(r);
     if (!has_radiosity(s)) return md;
     md += "\nRadiosity (gi.method = radiosity, seed 003): grid = radiosity.scale; K = frames run "
           "since the scene appeared, with radiosity.accumulate = K (feedback " +
@@ -189,8 +198,23 @@ std::string scene_section(const SceneReport& s) {
     md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const SweepRun& r : s.runs)
         if (r.setting.is_radiosity()) md += radiosity_row(r);
-    md += "\nLowest fitted total rRMSE: heat " + best_of(s, scene::GiMethod::heat) +
-          "; radiosity " + best_of(s, scene::GiMethod::radiosity) + ".\n";
+    bool gather = false;
+    for (const SweepRun& r : s.runs) gather = gather || r.setting.is_gather();
+    if (gather) {
+        md += "\nGather (gi.method = gather, physical; wall albedo " +
+              fmt("%.2g", double(scene::GiSettings{}.wall_albedo)) +
+              ", margin 8 tiles: the reference's domain): grid = gather.scale, rays = gather.rays, steps = gather.face_rays, K = frames run since "
+              "the scene appeared (gather.bounces 2 a frame); ms: one frame at history 0; no exposure fit "
+              "is needed (ind. scale near 1 when the level is right).\n\n";
+        md += "| giRes | grid | rays | face rays | K | blur | ms | total rRMSE % | fit | indirect rRMSE % | "
+              "fit | ind. scale | shadow fit % | max err % | SSIM | Pareto |\n";
+        md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        for (const SweepRun& r : s.runs)
+            if (r.setting.is_gather()) md += radiosity_row(r);
+    }
+    md += "\nLowest fitted total rRMSE: heat " + best_of(s, scene::GiMethod::heat) + "; radiosity " +
+          best_of(s, scene::GiMethod::radiosity) + (gather ? "; gather " + best_of(s, scene::GiMethod::gather) : "") +
+          ".\n";
     return md;
 }
 
@@ -204,7 +228,7 @@ std::string fmt(const char* format, double value) {
 
 void mark_fronts(std::vector<SceneReport>& scenes) {
     for (SceneReport& s : scenes)
-        for (scene::GiMethod m : {scene::GiMethod::heat, scene::GiMethod::radiosity})
+        for (scene::GiMethod m : all_methods)
             for (std::size_t i : front_of(s.runs, &ErrorMetrics::total_rmse_fit, m))
                 s.runs[i].front = true;
 }
@@ -246,12 +270,13 @@ std::string csv_report(const std::vector<SceneReport>& scenes) {
         for (const SweepRun& r : s.runs) {
             const ErrorMetrics& e = r.error;
             const SweepSetting& set = r.setting;
-            const bool rad = set.is_radiosity(); // the heat columns empty, and the reverse
+            const bool rad = set.is_radiosity() || set.is_gather(); // the heat columns empty, and the reverse
             const std::string heat = rad ? std::string(",,,")
                                          : std::string(scale_name(set.scale)) + "," +
                                                std::to_string(set.rounds) + "," + set.taps() + "," +
                                                (set.per_channel ? "per-channel" : "physical");
-            const std::string radiosity = rad ? std::string("radiosity,") + scale_name(set.scale) +
+            const std::string radiosity = rad ? std::string(set.is_gather() ? "gather," : "radiosity,") +
+                                                    scale_name(set.scale) +
                                                     "," + std::to_string(set.rays) + "," +
                                                     std::to_string(set.steps) + "," +
                                                     std::to_string(set.frames)

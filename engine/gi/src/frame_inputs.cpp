@@ -51,12 +51,13 @@ float distance_to_window(const GiWindow& w, glm::vec2 p) {
     return glm::length(glm::max(glm::max(lo - p, p - hi), glm::vec2(0.0f)));
 }
 
-GpuDirectionalLight pack_directional(const scene::DirectionalLight& l) {
+GpuDirectionalLight pack_directional(const scene::DirectionalLight& l, scene::GiMethod method) {
     const glm::vec3 dir = glm::normalize(l.direction);
     const float multiplier = 1.0f / std::max(std::abs(dir.y), 0.02f);
     return GpuDirectionalLight{glm::vec4(dir, l.base_shadow_distance),
                                glm::vec4(l.color * l.intensity, multiplier),
-                               glm::vec4(l.bounce_intensity, 0.0f, 0.0f, 0.0f)};
+                               glm::vec4(method == scene::GiMethod::gather ? 0.0f : l.bounce_intensity, 0.0f,
+                                         0.0f, 0.0f)};
 }
 
 FrameInputs gather_frame_inputs(const scene::Scene& s, const GiWindow& window) {
@@ -82,7 +83,7 @@ FrameInputs gather_frame_inputs(const scene::Scene& s, const GiWindow& window) {
         in.emissive_lights.push_back(pack_light(l.position, l.color, l.intensity, l.radius));
     }
     for (const auto& d : s.directional_lights)
-        if (sun_adds_light(d.color, d.intensity)) in.directional_lights.push_back(pack_directional(d));
+        if (sun_adds_light(d.color, d.intensity)) in.directional_lights.push_back(pack_directional(d, s.gi.method));
     offers.clear();
     for (std::uint32_t i = 0; i < s.shadow_proxies.size(); ++i)
         offers.push_back({s.shadow_proxies[i].position, proxy_reach(s.shadow_proxies[i]), i});

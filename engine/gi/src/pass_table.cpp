@@ -6,6 +6,7 @@
 #include "lantern/core/clock.hpp"
 #include "lantern/core/hash.hpp"
 #include "lantern/gi/reference_indirect.hpp"
+#include "lantern/gi/gather.hpp"
 #include "lantern/gi/radiosity.hpp"
 #include "lantern/scene/loader.hpp"
 #include "rows/rows.hpp"
@@ -20,6 +21,11 @@ namespace lantern::gi {
 namespace {
 
 using enum Tex;
+
+glm::ivec2 gather_grid_size(const FrameInputs& in) {
+    const HeatGrid g = gather_grid(in);
+    return {g.width, g.height};
+}
 
 glm::ivec2 radiosity_grid_size(const FrameInputs& in) {
     const HeatGrid g = radiosity_grid(in);
@@ -66,6 +72,9 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {distance_steps, "distance_steps", TexFormat::r8, TexScale::custom, true, true, radiosity_grid_size},
     {radiosity_light, "radiosity_light", TexFormat::rgba16f, TexScale::custom, false, true, radiosity_grid_size},
     {radiosity, "radiosity", TexFormat::rgba16f, TexScale::custom, false, false, radiosity_grid_size},
+    {gather_face_a, "gather_face_a", TexFormat::rgba16f, TexScale::custom, false, true, gather_face_size},
+    {gather_face_b, "gather_face_b", TexFormat::rgba16f, TexScale::custom, false, true, gather_face_size},
+    {gather_ground, "gather_ground", TexFormat::rgba16f, TexScale::custom, false, false, gather_grid_size},
 };
 
 constexpr bool rows_in_order() {
@@ -85,6 +94,13 @@ constexpr const PassRow* heat_rows[] = {
 constexpr const PassRow* radiosity_rows[] = {
     &rows::conduction,     &rows::ao,        &rows::direct, &rows::directional,   &rows::emission,
     &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::lit,
+};
+
+// The gather method (physical): Lantern's direct light, then the wall faces' bounces and the
+// ground gather in place of emission and heat; the blur smooths the gather's ray pattern.
+// (It writes wall_indirect_* itself: no wall_indirect row.)
+constexpr const PassRow* gather_rows[] = {
+    &rows::conduction, &rows::ao, &rows::direct, &rows::directional, &rows::gather, &rows::blur, &rows::lit,
 };
 
 // The registry: the built-in textures, rows and methods, then what add_texture/add_row
@@ -110,6 +126,7 @@ struct Registry {
         methods.push_back({{scene::GiMethod::heat, "heat", {}}, {std::begin(heat_rows), std::end(heat_rows)}});
         methods.push_back(
             {{scene::GiMethod::radiosity, "radiosity", {}}, {std::begin(radiosity_rows), std::end(radiosity_rows)}});
+        methods.push_back({{scene::GiMethod::gather, "gather", {}}, {std::begin(gather_rows), std::end(gather_rows)}});
         const std::vector<std::string> keys = scene::gi_setting_keys();
         for (MethodRows& m : methods) {
             m.method.rows = m.rows;

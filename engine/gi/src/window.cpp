@@ -46,7 +46,7 @@ std::optional<VisibleArea> visible_area(const scene::ViewSpec& view, std::string
 }
 
 std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float padding, int resolution,
-                                       std::string* reason, int max_texels, int snap_texels) {
+                                       std::string* reason, int max_texels, int snap_texels, int margin_tiles) {
     auto area = visible_area(view, reason);
     if (!area) return std::nullopt;
     const int res = std::max(1, resolution);
@@ -58,11 +58,17 @@ std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float paddin
     // Phase lock: the origin snaps down to a whole tile (res texels) or to `snap` texels.
     const double snap = snap_texels > 0 ? double(snap_texels) : double(res);
     const double tex_x = std::floor(min_x * res), tex_z = std::floor(min_z * res);
-    const double snapped_x = std::floor(tex_x / snap) * snap, snapped_z = std::floor(tex_z / snap) * snap;
+    const double snapped_x0 = std::floor(tex_x / snap) * snap, snapped_z0 = std::floor(tex_z / snap) * snap;
     // Size: whole texels, then whole tiles, then the 64-texel minimum.
     double w = std::ceil(size_x * res), h = std::ceil(size_z * res);
     w = std::max(std::ceil(w / res) * res, double(min_texture_size));
     h = std::max(std::ceil(h / res) * res, double(min_texture_size));
+    // A margin of whole tiles on every side (the gather method's domain, as the transport
+    // reference's): the phase is kept.
+    const double margin = double(std::max(0, margin_tiles)) * res;
+    const double snapped_x = snapped_x0 - margin, snapped_z = snapped_z0 - margin;
+    w += 2.0 * margin;
+    h += 2.0 * margin;
     if (!std::isfinite(snapped_x) || !std::isfinite(snapped_z) || !std::isfinite(w) || !std::isfinite(h)) {
         set_reason(reason, "the GI window is not finite");
         return std::nullopt;
@@ -83,13 +89,16 @@ int window_snap_texels(const scene::GiSettings& gi) {
     const int res = std::max(1, gi.resolution);
     if (gi.window_snap == scene::WindowSnap::tile) return res;
     // The indirect grid's texels (1, 2 or 4 window texels) stay whole.
-    const int grid = gi.method == scene::GiMethod::radiosity ? int(gi.radiosity.scale) : int(gi.heat_scale);
+    const int grid = gi.method == scene::GiMethod::radiosity ? int(gi.radiosity.scale)
+                     : gi.method == scene::GiMethod::gather  ? int(gi.gather.scale)
+                                                             : int(gi.heat_scale);
     return std::min(res, grid);
 }
 
 std::optional<GiWindow> compute_window(const scene::ViewSpec& view, const scene::GiSettings& gi, std::string* reason,
                                        int max_texels) {
-    return compute_window(view, gi.padding, gi.resolution, reason, max_texels, window_snap_texels(gi));
+    const int margin = gi.method == scene::GiMethod::gather ? gi.gather.margin : 0;
+    return compute_window(view, gi.padding, gi.resolution, reason, max_texels, window_snap_texels(gi), margin);
 }
 
 glm::ivec2 window_texel_origin(const GiWindow& w) {

@@ -52,9 +52,10 @@ constexpr std::array<EnumName<ProxyWallShadows>, 2> proxy_wall_shadows_names{{
     {"unfold", ProxyWallShadows::unfold},
 }};
 
-constexpr std::array<EnumName<GiMethod>, 2> method_names{{
+constexpr std::array<EnumName<GiMethod>, 3> method_names{{
     {"heat", GiMethod::heat},
     {"radiosity", GiMethod::radiosity},
+    {"gather", GiMethod::gather},
 }};
 
 constexpr std::array<EnumName<NoiseShift>, 3> noise_shift_names{{
@@ -107,7 +108,7 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 43> gi_fields(GiSettings& gi) {
+std::array<GiField, 50> gi_fields(GiSettings& gi) {
     return {{
         {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
@@ -152,6 +153,13 @@ std::array<GiField, 43> gi_fields(GiSettings& gi) {
         {"radiosity.accumulate", IntField{&gi.radiosity.accumulate, {1, 1024}}},
         {"radiosity.noise", EnumField<NoiseShift>{&gi.radiosity.noise, noise_shift_names}},
         {"radiosity.frames", IntField{&gi.radiosity.frames, {1, 4096}}},
+        {"gather.scale", EnumField<HeatScale>{&gi.gather.scale, heat_scale_names}},
+        {"gather.rays", IntField{&gi.gather.rays, {1, 1024}}},
+        {"gather.face_rays", IntField{&gi.gather.face_rays, {1, 1024}}},
+        {"gather.bounces", IntField{&gi.gather.bounces, {1, 64}}},
+        {"gather.frames", IntField{&gi.gather.frames, {1, 4096}}},
+        {"gather.margin", IntField{&gi.gather.margin, {0, 64}}},
+        {"wall_albedo", FloatField{&gi.wall_albedo, between(0.0, 1.0)}},
     }};
 }
 

@@ -24,6 +24,7 @@ extern const PassRow wall_indirect;
 extern const PassRow lit;
 extern const PassRow distance_field;
 extern const PassRow radiosity;
+extern const PassRow gather;
 
 // Records the upsample of a grid texture (heat, radiosity) into Tex::indirect (gi_upsample).
 void record_upsample(vk::PassRecorder& r, Tex src, const HeatGrid& grid);

@@ -107,7 +107,11 @@ std::vector<std::uint32_t> gather_offers(const std::vector<Offer>& offers, const
 float proxy_reach(const scene::ShadowProxy& proxy);
 GpuPointLight pack_light(glm::vec2 position, glm::vec3 color, float intensity, float radius);
 GpuShadowProxy pack_proxy(const scene::ShadowProxy& proxy);
-GpuDirectionalLight pack_directional(const scene::DirectionalLight& light);
+// The sun's bounce fill (bounce_intensity, seed 000's stylised light in its own shadows) is
+// left out (0) under a method whose bounce light is physical (gi.method = gather): it
+// carries the sun's bounces itself.
+GpuDirectionalLight pack_directional(const scene::DirectionalLight& light,
+                                     scene::GiMethod method = scene::GiMethod::heat);
 // A dark sun (the night side of a day cycle) adds nothing and is left out, so the
 // directional pass does not run for it.
 bool sun_adds_light(glm::vec3 color, float intensity);

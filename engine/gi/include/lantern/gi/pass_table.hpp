@@ -88,6 +88,10 @@ enum class Tex : std::uint8_t {
     distance_steps, // 32-bit words: floor(256 x distance), what the raymarch steps by (internal)
     radiosity_light, // this frame's emitters: the direct light + feedback x last frame's (internal)
     radiosity,       // the raymarched light, accumulated over frames
+    // gi.method = gather (physical):
+    gather_face_a, // indirect irradiance per wall-face texel, face f at rows f x height.. (internal)
+    gather_face_b, // its ping-pong partner (face bounces alternate between the two)
+    gather_ground, // the ground's indirect fluence on the gather grid (gi.gather.scale)
     builtin_count
 };
 // Texture ids: the built-ins above, then textures added at run time (add_texture) up to

