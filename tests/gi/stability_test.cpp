@@ -368,3 +368,133 @@ TEST(GiStability, RadiosityOnTheStiffCases) {
         expect_sane(run_both(radiosity(s, lantern::scene::HeatScale::quarter)), "radiosity, 64-texel window");
     }
 }
+
+// The gather method (gi.method = gather, physical) on the stiff cases: huge and tiny lights,
+// albedo 0 / 0.5 / 0.99 / 1, resolutions 1 and 32, a one-texel corridor, a checkerboard, all
+// walls and none, a light inside a wall, the minimum window, a sealed one-tile wall, and
+// 10,000 face bounces. Physical light is not capped (as heat's is): the bound is the half
+// range.
+TEST(GiStability, GatherOnTheStiffCases) {
+    auto gather = [](Scene s, lantern::scene::HeatScale scale = lantern::scene::HeatScale::full) {
+        s.gi.method = lantern::scene::GiMethod::gather;
+        s.gi.gather.scale = scale;
+        s.gi.gather.margin = 1;
+        return s;
+    };
+    auto sane = [](const Frames& f, const std::string& what) { expect_sane(f, what, max_half); };
+    for (float intensity : {1e-8f, 1e30f}) {
+        Scene s = gi_test::comparison_scene("rooms").scene;
+        for (auto& l : s.point_lights) l.intensity = intensity;
+        for (auto& l : s.emissive_lights) l.intensity = intensity;
+        sane(run_both(gather(s, lantern::scene::HeatScale::half)), "gather, intensity " + std::to_string(intensity));
+    }
+    for (float albedo : {0.0f, 0.5f, 0.99f, 1.0f}) {
+        Scene s = gather(gi_test::comparison_scene("rooms").scene);
+        s.gi.wall_albedo = albedo;
+        Frames f = run_both(s);
+        sane(f, "gather, albedo " + std::to_string(albedo));
+        const Texture& indirect = f.ref.textures.at("indirect");
+        if (albedo == 0.0f) EXPECT_EQ(max_in(indirect, 0, 0, indirect.width, indirect.height), 0.0f) << "albedo 0";
+        else EXPECT_GT(max_in(indirect, 0, 0, indirect.width, indirect.height), 0.0f) << "albedo " << albedo;
+    }
+    for (int res : {1, 32}) {
+        Scene s = gi_test::comparison_scene("rooms").scene;
+        s.gi.resolution = res;
+        if (res == 32) s.view = lantern::scene::OrthoView{{6.0f, 5.0f}, {8.0f, 6.0f}};
+        sane(run_both(gather(s, res == 1 ? lantern::scene::HeatScale::full : lantern::scene::HeatScale::quarter)),
+             "gather, resolution " + std::to_string(res));
+    }
+    {
+        std::vector<std::string> rows(64, std::string(64, '#'));
+        for (int x = 1; x < 63; ++x) rows[10][std::size_t(x)] = '.';
+        for (int z = 10; z < 40; ++z) rows[std::size_t(z)][62] = '.';
+        Scene s = gi_test::open_scene({32, 32}, {64, 64}, 1);
+        s.walls = grid_from_rows(rows);
+        s.point_lights.push_back(gi_test::point({50.5f, 10.5f}, {1, 1, 1}, 2.0f, 15.0f));
+        s.gi.gather.rays = 256; // rays 0.025 rad apart: some go down the corridor
+        Frames f = run_both(gather(s));
+        sane(f, "gather, one-texel corridor");
+        const GiWindow& w = f.in.window;
+        const int tx = int(std::floor(62.5f - w.view.min_x)), tz = int(std::floor(30.5f - w.view.min_z));
+        EXPECT_GT(max_in(f.ref.textures.at("indirect"), tx, tz, tx + 1, tz + 1), 0.0f)
+            << "light turns the corner into the second corridor";
+    }
+    {
+        std::vector<std::string> rows(16, std::string(16, '.'));
+        for (int z = 0; z < 16; ++z)
+            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
+        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
+        s.walls = grid_from_rows(rows);
+        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
+        sane(run_both(gather(s)), "gather, checkerboard");
+    }
+    {
+        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
+        s.walls = grid_from_rows(std::vector<std::string>(16, std::string(16, '#')));
+        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
+        Frames f = run_both(gather(s));
+        sane(f, "gather, all walls");
+        const Texture& indirect = f.ref.textures.at("indirect");
+        EXPECT_EQ(max_in(indirect, 0, 0, indirect.width, indirect.height), 0.0f);
+        Scene open = gi_test::open_scene({8, 8}, {16, 16}, 4);
+        open.point_lights = s.point_lights;
+        Frames g = run_both(gather(open));
+        sane(g, "gather, no walls");
+        const Texture& none = g.ref.textures.at("indirect");
+        EXPECT_EQ(max_in(none, 0, 0, none.width, none.height), 0.0f) << "nothing to reflect";
+    }
+    sane(run_both(gather(gi_test::comparison_scene("light_edge_cases").scene)), "gather, light inside a wall");
+    {
+        Scene s = gi_test::open_scene({0.5f, 0.5f}, {1.0f, 1.0f}, 1);
+        s.walls = grid_from_rows({"#.#", "...", "#.#"});
+        s.point_lights.push_back(gi_test::point({1.5f, 1.5f}, {1, 1, 1}, 1.0f, 3.0f));
+        sane(run_both(gather(s, lantern::scene::HeatScale::quarter)), "gather, 64-texel window");
+    }
+    for (auto scale : {lantern::scene::HeatScale::full, lantern::scene::HeatScale::half, lantern::scene::HeatScale::quarter}) {
+        Scene s = gather(sealed_rooms(1.0f, scale, true, 4), scale);
+        s.gi.wall_albedo = 1.0f;
+        s.gi.gather.bounces = 8;
+        Frames f = run_both(s);
+        const GiWindow& w = f.in.window;
+        const int x0 = int((11.0f - w.view.min_x) * float(w.resolution));
+        const int x1 = int((20.0f - w.view.min_x) * float(w.resolution));
+        const int y1 = int((12.0f - w.view.min_z) * float(w.resolution));
+        EXPECT_EQ(max_in(f.ref.textures.at("indirect"), x0, 0, x1, y1), 0.0f) << "sealed wall, scale " << int(scale);
+        if (f.gpu) EXPECT_EQ(max_in(f.gpu->textures.at("indirect"), x0, 0, x1, y1), 0.0f) << "vulkan, scale " << int(scale);
+        const int left = int((10.0f - w.view.min_x) * float(w.resolution));
+        EXPECT_GT(max_in(f.ref.textures.at("indirect"), 0, 0, left, y1), 0.0f) << "the lit room has bounce light";
+    }
+}
+
+// 10,000 face bounces in a sealed room at albedo 1 (the reference; 157 frames of 64): the
+// light grows with every bounce (nothing absorbs it: energy is conserved, so the series has
+// no limit) yet stays finite, within the half range, where it saturates.
+TEST(GiStability, GatherTenThousandBounces) {
+    Scene s = sealed_rooms(1.0f, lantern::scene::HeatScale::full, true, 1);
+    s.gi.method = lantern::scene::GiMethod::gather;
+    s.gi.gather.margin = 0;
+    s.gi.gather.bounces = 64;
+    s.gi.gather.rays = 4;
+    s.gi.gather.face_rays = 4;
+    s.gi.gather.frames = 4096;
+    s.gi.wall_albedo = 1.0f;
+    auto w = compute_window(s.view, s.gi);
+    ASSERT_TRUE(w);
+    const FrameInputs in = gather_frame_inputs(s, *w);
+    Convergence convergence;
+    ReferenceStore store;
+    float last = 0.0f;
+    for (int frame = 0; frame < 157; ++frame) {
+        PassPlan plan = plan_passes(in, false);
+        derive_keys(in, plan, input_keys_of(in), &convergence);
+        execute_reference(in, plan, plan.run, {}, store);
+        convergence.advance(plan.run);
+        const Texture& indirect = store.at(Tex::indirect);
+        const float now = max_in(indirect, 0, 0, indirect.width, indirect.height);
+        ASSERT_TRUE(std::isfinite(now)) << "frame " << frame;
+        ASSERT_LE(now, max_half) << "frame " << frame;
+        ASSERT_GE(now, last) << "frame " << frame << ": albedo 1 loses no light";
+        last = now;
+    }
+    EXPECT_GT(last, 100.0f) << "10,000 bounces of a lossless room";
+}

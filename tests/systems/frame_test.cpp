@@ -153,6 +153,24 @@ TEST_P(FrameCaching, RadiosityConvergesThenStopsAndTheWallDistanceFollowsTheWall
     EXPECT_GT(distance.field.direction(open_tile).y, 0.99f) << "towards the new wall";
 }
 
+// The gather method (physical): its bounces refine for gi.gather.frames frames, then a still
+// scene submits nothing; a light move reruns it with its history kept.
+TEST_P(FrameCaching, GatherConvergesThenStops) {
+    scene::Scene s = full_scene();
+    s.gi.method = scene::GiMethod::gather;
+    s.gi.gather.frames = 3;
+    Harness h(s, 1, device());
+    const PassSet all = set_of({Pass::conduction, Pass::ao, Pass::direct, Pass::directional, Pass::gather, Pass::blur});
+    const PassSet refine = set_of({Pass::gather, Pass::blur});
+    EXPECT_EQ(names(h.step()), names(all)) << "first frame";
+    for (int f = 1; f < 3; ++f) EXPECT_EQ(names(h.step()), names(refine)) << "refining, frame " << f;
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "converged: a still scene submits nothing";
+    h.world.patch<PointLight>(h.sw.point_lights[0]).position.x += 0.5f;
+    EXPECT_EQ(names(h.step()), names(set_of({Pass::direct, Pass::directional, Pass::gather, Pass::blur})))
+        << "a light moved";
+    EXPECT_GT(h.world.resource<systems::FramePasses>().plan.history[int(Pass::gather)], 0) << "history kept";
+}
+
 // The HUD's bounce stepper (GiConfig::converge): held, the radiosity does not refine; each
 // step runs it once more with one more frame of history (one more bounce); a restart runs it
 // afresh (history 0) even though nothing changed; released, it refines on to convergence.

@@ -172,7 +172,12 @@ Result<SceneReport> run_scene(const AccuracyScene& s, const AccuracyOptions& o,
     auto ref = solve_reference(s, reference_settings(o), o, jobs);
     if (!ref) return ref.error();
     SceneReport report{s.name, s.description, ref->stats, reference_noise(*ref, s.scene), {}};
-    const std::vector<SweepSetting> settings = sweep(o.quick);
+    std::vector<SweepSetting> settings = sweep(o.quick);
+    if (!o.methods.empty())
+        std::erase_if(settings, [&](const SweepSetting& set) {
+            const char* name = set.is_gather() ? "gather" : set.is_radiosity() ? "radiosity" : "heat";
+            return std::find(o.methods.begin(), o.methods.end(), name) == o.methods.end();
+        });
     // A radiosity frame costs the same whatever K (accumulate only sets a weight): settings
     // with K > 1 take the timing of their K = 1 twin, so that timer noise does not reorder
     // points that differ only in error.
@@ -183,7 +188,8 @@ Result<SceneReport> run_scene(const AccuracyScene& s, const AccuracyOptions& o,
     };
     transport::ProgressBar bar("lantern " + s.name);
     for (std::size_t i = 0; i < settings.size(); ++i) {
-        const scene::Scene lit = settings[i].apply(s.scene);
+        scene::Scene lit = settings[i].apply(s.scene);
+        if (settings[i].is_gather()) lit.gi.wall_albedo = o.albedo; // the reference's
         const std::string count =
             " (" + std::to_string(i + 1) + "/" + std::to_string(settings.size()) + ")";
         bar.update(double(i) / double(settings.size()), settings[i].label() + count);
@@ -352,11 +358,12 @@ std::vector<SweepSetting> sweep(bool quick) {
             for (int rays : {16, 64}) out.push_back(SweepSetting::radiosity(8, scale, rays, 32, k));
     }
     // Gather (physical) after 8 frames (16 bounces at the default 2 a frame: albedo 0.5 leaves
-    // 2^-16 of the light unbounced), over its grid and ray counts, and the first frame.
-    for (int res : {8, 16})
-        for (HeatScale scale : {HeatScale::full, HeatScale::half, HeatScale::quarter})
-            for (int rays : {16, 32, 64}) out.push_back(SweepSetting::gather(res, scale, rays, rays, 8));
-    out.push_back(SweepSetting::gather(8, HeatScale::half, 32, 32, 1));
+    // 2^-16 of the light unbounced), over its grid and ray counts; the default after 1 and 4.
+    for (HeatScale scale : {HeatScale::half, HeatScale::quarter})
+        for (int rays : {16, 32, 64}) out.push_back(SweepSetting::gather(8, scale, rays, rays, 8));
+    out.push_back(SweepSetting::gather(8, HeatScale::full, 32, 32, 8));
+    for (int rays : {32, 64}) out.push_back(SweepSetting::gather(16, HeatScale::quarter, rays, rays, 8));
+    for (int k : {1, 4}) out.push_back(SweepSetting::gather(8, HeatScale::half, 32, 32, k));
     return out;
 }
 

@@ -21,6 +21,7 @@ struct AccuracyOptions {
     std::string out_dir = "accuracy"; // accuracy.md, accuracy.csv, <scene>.png
     std::string maps_dir = "../shared/maps";
     std::vector<std::string> scenes; // names to run (empty: all)
+    std::vector<std::string> methods; // gi.method values whose settings run (empty: all)
     float albedo = 0.5f;           // the reference's wall albedo
     double target = 0.0;           // reference relative standard error; 0: 1 % (5 % with quick)
     std::string cache_dir;         // "" with use_cache: transport::default_cache_dir()

@@ -79,6 +79,16 @@ int accuracy_main(int argc, char** argv) {
             if (!name.empty()) o.scenes.push_back(name);
         return std::nullopt;
     });
+    p.custom("--methods", "A,B,...", "the GI methods whose settings run: heat, radiosity, gather (default: all)",
+             [&](std::string_view list) -> std::optional<std::string> {
+                 std::stringstream ss{std::string(list)};
+                 for (std::string name; std::getline(ss, name, ',');) {
+                     if (name != "heat" && name != "radiosity" && name != "gather")
+                         return "unknown method '" + name + "' (heat, radiosity or gather)";
+                     o.methods.push_back(name);
+                 }
+                 return std::nullopt;
+             });
     p.text("--maps", "DIR", "Moving AI maps for the map scenes (default ../shared/maps)", o.maps_dir);
     p.number("--albedo", "A", "the reference's wall albedo (default 0.5)", albedo, 0.0, 1.0);
     p.number("--target", "E", "reference relative standard error (default 1 %, 5 % with --quick)", o.target, 1e-4, 0.5);

@@ -48,7 +48,9 @@ std::string SeedRow::label() const {
     const char* s = scale == scene::HeatScale::full ? "full" : scale == scene::HeatScale::half ? "half" : "quarter";
     return "giRes " + std::to_string(resolution) + " " + s + ", " + std::to_string(points) + " point, " +
            std::to_string(emissives) + " emissive, " + std::to_string(directionals) + " directional" +
-           (method == scene::GiMethod::radiosity ? ", radiosity" : "");
+           (method == scene::GiMethod::radiosity ? ", radiosity"
+            : method == scene::GiMethod::gather  ? ", gather " + std::to_string(bounces) + " bounces"
+                                                 : "");
 }
 
 std::vector<SeedRow> seed_rows() {
@@ -65,6 +67,12 @@ std::vector<SeedRow> seed_rows() {
         {8, HeatScale::full, 64, 256, 0, scene::GiMethod::radiosity},
         {8, HeatScale::half, 64, 256, 0, scene::GiMethod::radiosity},
         {8, HeatScale::quarter, 64, 256, 0, scene::GiMethod::radiosity},
+        // The gather method (physical, issue 17) at its defaults (32 + 32 rays, margin 4), and
+        // with one bounce more and one less a frame: the cost of a bounce.
+        {8, HeatScale::half, 64, 256, 0, scene::GiMethod::gather, 1},
+        {8, HeatScale::half, 64, 256, 0, scene::GiMethod::gather, 2},
+        {8, HeatScale::half, 64, 256, 0, scene::GiMethod::gather, 3},
+        {8, HeatScale::quarter, 64, 256, 0, scene::GiMethod::gather, 2},
     };
 }
 
@@ -79,6 +87,8 @@ scene::Scene seed_scene(const SeedRow& row) {
     s.gi.heat_scale = row.scale;
     s.gi.method = row.method;
     s.gi.radiosity.scale = row.scale;
+    s.gi.gather.scale = row.scale;
+    s.gi.gather.bounces = row.bounces;
     s.gi.max_lights = std::max(256, row.points + row.emissives);
     s.gi.max_shadow_proxies = 64;
     int k = 0;

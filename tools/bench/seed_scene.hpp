@@ -19,6 +19,7 @@ struct SeedRow {
     int directionals = 0;
     // heat (seed 000) or radiosity (seed 003, its grid at `scale`, default rays and steps)
     scene::GiMethod method = scene::GiMethod::heat;
+    int bounces = 2; // gather: gi.gather.bounces (the cost of one more bounce from two rows)
     std::string label() const;
 };
 

@@ -236,6 +236,50 @@ std::string methods_table(const std::vector<RowResult>& rows) {
            out;
 }
 
+// The gather method (physical) on the same scene and lights: its pass, the direct pass it
+// runs over a window `gather.margin` tiles wider, heat at the same resolution and scale for
+// scale, and the cost of one more face bounce (rows differing only in gather.bounces).
+std::string gather_table(const std::vector<RowResult>& rows) {
+    auto get = [](const RowResult& r, gi::Pass p) {
+        auto it = r.passes.find(p);
+        return it == r.passes.end() ? PassNumbers{} : it->second;
+    };
+    auto cell = [&](const RowResult& r, gi::Pass p) {
+        const PassNumbers n = get(r, p);
+        return n.ran ? fmt("%.2f", n.gpu_ms) + " (" + (n.copy_ms > 0 ? fmt("%.1f", n.gpu_ms / n.copy_ms) : "-") + ")"
+                     : std::string("-");
+    };
+    std::string out;
+    const RowResult* previous = nullptr;
+    for (const RowResult& g : rows) {
+        if (g.row.method != scene::GiMethod::gather) continue;
+        const char* scale = g.row.scale == scene::HeatScale::full ? "full" : g.row.scale == scene::HeatScale::half ? "half" : "quarter";
+        const RowResult* heat = nullptr;
+        for (const RowResult& h : rows)
+            if (h.row.method == scene::GiMethod::heat && h.row.resolution == g.row.resolution &&
+                h.row.scale == g.row.scale && h.row.points == g.row.points && h.row.emissives == g.row.emissives &&
+                h.row.directionals == g.row.directionals)
+                heat = &h;
+        std::string per_bounce = "-";
+        if (previous && previous->row.scale == g.row.scale && previous->row.resolution == g.row.resolution &&
+            previous->row.bounces + 1 == g.row.bounces)
+            per_bounce = fmt("%.2f", get(g, gi::Pass::gather).gpu_ms - get(*previous, gi::Pass::gather).gpu_ms);
+        out += "| " + std::to_string(g.row.resolution) + " | " + scale + " | " + std::to_string(g.row.bounces) + " | " +
+               cell(g, gi::Pass::gather) + " | " + per_bounce + " | " + cell(g, gi::Pass::direct) + " | " +
+               (heat ? cell(*heat, gi::Pass::heat) : std::string("-")) + " | " + fmt("%.2f", g.total_gpu) + " | " +
+               (get(g, gi::Pass::gather).cpp_ms > 0 ? fmt("%.1f", get(g, gi::Pass::gather).cpp_ms) : std::string("-")) +
+               " |\n";
+        previous = &g;
+    }
+    if (out.empty()) return out;
+    return "\nThe gather method (physical) beside heat (ms, x copy in brackets; 32 ground and 32 face rays, its "
+           "grid at the row's scale, margin 4 tiles: every pass runs over the wider window; + bounce: the "
+           "gather's ms over the row above, one face bounce less):\n\n"
+           "| giRes | scale | bounces | gather | + bounce | direct | heat (same row) | total, gather | C++ gather |\n"
+           "|---|---|---|---|---|---|---|---|---|\n" +
+           out;
+}
+
 } // namespace
 
 int seed_table(const SeedTableOptions& o) {
@@ -272,7 +316,7 @@ int seed_table(const SeedTableOptions& o) {
         print_row(*r, o.reference);
         rows.push_back(std::move(r.value()));
     }
-    const std::string md = markdown(rows, (*device)->name(), o.reference) + light_slopes(rows) + methods_table(rows);
+    const std::string md = markdown(rows, (*device)->name(), o.reference) + light_slopes(rows) + methods_table(rows) + gather_table(rows);
     std::printf("\n%s", md.c_str());
     if (!o.markdown_out.empty()) {
         if (auto ok = write_file_atomic(o.markdown_out, md); !ok) {

@@ -134,7 +134,8 @@ void Game::render_system(Session& s) {
         in.art = &art_;
         in.gi_view = &gi_view_;
         in.gi_view_drawn = world_renderer_->gi_view_drawn();
-        in.radiosity_history = f.plan.history[int(gi::Pass::radiosity)];
+        const bool gather = f.inputs.settings.method == scene::GiMethod::gather;
+        in.converge_history = f.plan.history[int(gather ? gi::Pass::gather : gi::Pass::radiosity)];
         in.day = &w.resource<DayCycle>();
         in.lights = &w.resource<systems::GatheredLights>();
         in.proxies = &w.resource<systems::GatheredProxies>();

@@ -175,8 +175,20 @@ HudActions Hud::draw(const HudInputs& in) {
             ImGui::SliderInt("accumulate frames", &r.accumulate, 1, 64);
             int noise = int(r.noise);
             if (ImGui::Combo("noise", &noise, noise_shifts, 3)) r.noise = scene::NoiseShift(noise);
-            // The bounce stepper (systems::ConvergeControl): each frame adds a bounce; held, it
-            // adds one per click.
+        } else if (g.method == scene::GiMethod::gather) {
+            // gi.gather.*: physical bounce light (docs/gi.md, "The gather method").
+            scene::GatherSettings& r = g.gather;
+            scale_combo("gather scale", r.scale);
+            ImGui::SliderInt("rays", &r.rays, 1, 256);
+            ImGui::SameLine();
+            ImGui::SliderInt("face rays", &r.face_rays, 1, 256);
+            ImGui::SliderInt("bounces a frame", &r.bounces, 1, 16);
+            ImGui::SliderInt("margin (tiles)", &r.margin, 0, 16);
+            ImGui::SliderFloat("wall albedo", &g.wall_albedo, 0.0f, 1.0f);
+        }
+        if (g.method != scene::GiMethod::heat) {
+            // The bounce stepper (systems::ConvergeControl): radiosity adds a bounce a frame,
+            // gather gi.gather.bounces; held, one frame's worth per click.
             systems::ConvergeControl& c = in.config->converge;
             ImGui::Checkbox("hold bounces", &c.hold);
             ImGui::SameLine();
@@ -184,7 +196,8 @@ HudActions Hud::draw(const HudInputs& in) {
             ImGui::SameLine();
             if (ImGui::Button("restart")) ++c.restarts;
             ImGui::SameLine();
-            ImGui::Text("bounce %d", in.radiosity_history + 1);
+            const int per_frame = g.method == scene::GiMethod::gather ? g.gather.bounces : 1;
+            ImGui::Text("bounce %d", (in.converge_history + 1) * per_frame);
         } else {
             ImGui::SliderInt("heat rounds", &g.heat_rounds, 0, 64);
             scale_combo("heat scale", g.heat_scale);

@@ -19,7 +19,7 @@ struct HudInputs {
     ArtSettings* art = nullptr;                   // edited live
     GiDebugView* gi_view = nullptr;               // edited live
     GiDebugView gi_view_drawn = GiDebugView::lit; // what the last frame drew
-    int radiosity_history = 0;                    // frames of bounce history the radiosity has
+    int converge_history = 0;                     // frames of history the method's converging pass has
     DayCycle* day = nullptr;
     const systems::GatheredLights* lights = nullptr;
     const systems::GatheredProxies* proxies = nullptr;

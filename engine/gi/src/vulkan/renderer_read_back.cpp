@@ -3,6 +3,7 @@
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 #include "vulkan/renderer_internal.hpp"
 
+#include "lantern/gi/gather.hpp"
 #include "lantern/gi/radiosity.hpp"
 #include "lantern/gi/reference_indirect.hpp"
 
@@ -89,6 +90,15 @@ std::vector<std::uint64_t> Renderer::pass_bytes_written(Pass pass, const FrameIn
         const HeatGrid r = radiosity_grid(in);
         const std::uint64_t grid = std::uint64_t(pitch_of(r.width)) * std::uint64_t(r.height);
         return {grid * 8, grid * 8, texels * 8};
+    }
+    case Pass::gather: {
+        const HeatGrid g = gather_grid(in);
+        const std::uint64_t grid = std::uint64_t(pitch_of(g.width)) * std::uint64_t(g.height);
+        std::vector<std::uint64_t> out(std::size_t(in.settings.gather.bounces), texels * 4 * 8); // face bounces
+        out.push_back(texels * 4 * 8);                                                           // fill
+        out.push_back(grid * 8);                                                                 // ground
+        out.push_back(texels * 8);                                                               // upsample
+        return out;
     }
     default: break; // rows added at run time: no copy baseline
     }
