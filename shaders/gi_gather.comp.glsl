@@ -6,8 +6,11 @@
 //     (face f of texel (x, y) at (x, f x height + y)); FEATURES & 4: a previous bounce exists
 //   1 fill: wall_indirect_* from the face texture, across each wall tile
 //   2 ground: fluence on the gather grid from B = albedo x (direct + indirect)
-// size: the dispatched texture (window for 0 and 1, gather grid for 2); parameters:
-// GatherParams (engine/gi/src/rows/gather.cpp).
+// Modes 0 and 2 run over a list of the texels that have work (u_list: exposed face texels
+// with their face, or the gather grid's texels in air), laid out LIST_WIDTH entries a row so
+// that no invocation idles on a texel without work (lavapipe runs masked code for every lane);
+// their outputs were cleared before. size: the list's rows (modes 0, 2) or the window (1);
+// parameters: GatherParams (engine/gi/src/rows/gather.cpp).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 struct GatherParams {
@@ -35,10 +38,12 @@ layout(std430, binding = 9) writeonly buffer Out0 { uvec2 texels[]; } o_out0; //
 layout(std430, binding = 10) writeonly buffer Out1 { uvec2 texels[]; } o_out1; // wall_indirect_nx
 layout(std430, binding = 11) writeonly buffer Out2 { uvec2 texels[]; } o_out2; // wall_indirect_pz
 layout(std430, binding = 12) writeonly buffer Out3 { uvec2 texels[]; } o_out3; // wall_indirect_nz
+layout(binding = 13) uniform usamplerBuffer u_list; // modes 0, 2: x | y << 16, face (or 0); rows padded with ~0
 
 #include "lantern/gi_shadow.glsl"
 
 const int UNIT = 4096;
+const int LIST_WIDTH = 256; // entries per row of the list (rows/gather.cpp gather_list_width)
 const int MAX_STEPS = 255;
 const float PI = 3.14159265;
 const uint MODE = FEATURES & 3u;
@@ -126,9 +131,8 @@ bool face_texel(int x, int y, int face) {
     return edge && !is_wall(tile + NORMAL[face]);
 }
 
-// Mode 0: E_indirect of face `face` at window texel (x, y) (zero if not an exposed face texel).
+// Mode 0: E_indirect of face `face` at window texel (x, y), an exposed face texel.
 vec3 face_bounce(int x, int y, int face) {
-    if (!face_texel(x, y, face)) return vec3(0.0);
     int r = resolution();
     ivec2 g = offset() + ivec2(x, y);
     ivec2 cell = g / r, p;
@@ -168,7 +172,7 @@ vec3 fill(int x, int y, int face) {
     return texelFetch(u_faces, window_index(e.x, face * size.y + e.y)).rgb;
 }
 
-// Mode 2: fluence at gather-grid texel (i, j).
+// Mode 2: fluence at gather-grid texel (i, j), whose centre is in air.
 vec3 ground(int i, int j) {
     int r = resolution(), scale = pc.pass.noise >> 16;
     ivec2 off = offset();
@@ -176,14 +180,12 @@ vec3 ground(int i, int j) {
     ivec2 cell = p / UNIT;
     vec3 sum = vec3(0.0);
     int rays = pc.pass.rays;
-    if (!is_wall(origin_tile() + cell)) {
-        int noise = blue_noise_at(i * scale, j * scale);
-        for (int k = 0; k < rays; ++k) {
-            ivec2 d = texelFetch(u_directions, ((k * 4096 + noise) / rays) & 4095).xy;
-            ivec2 texel;
-            int hit = trace(p, cell, d, texel);
-            if (hit >= 0) sum += radiosity_at(hit, texel, true);
-        }
+    int noise = blue_noise_at(i * scale, j * scale);
+    for (int k = 0; k < rays; ++k) {
+        ivec2 d = texelFetch(u_directions, ((k * 4096 + noise) / rays) & 4095).xy;
+        ivec2 texel;
+        int hit = trace(p, cell, d, texel);
+        if (hit >= 0) sum += radiosity_at(hit, texel, true);
     }
     return sum * (PI / float(rays));
 }
@@ -197,13 +199,20 @@ void main() {
         for (int k = 0; k < 4; ++k) {
             int x = o.x + k;
             int index = texel_index(x, y);
-            if (MODE == 0u) {
-                int h = pc.size.y;
-                for (int f = 0; f < 4; ++f) {
-                    vec3 e = x < pc.size.x ? face_bounce(x, y, f) : vec3(0.0);
-                    o_out0.texels[texel_index(x, f * h + y)] = pack_rgba16f(vec4(e, 1.0));
+            if (MODE != 1u) { // a list entry
+                uvec2 e = texelFetch(u_list, y * LIST_WIDTH + x).xy;
+                if (e.x == 0xFFFFFFFFu) return; // the padding after the last entry
+                int tx = int(e.x & 0xFFFFu), ty = int(e.x >> 16);
+                if (MODE == 0u) {
+                    int f = int(e.y);
+                    vec3 v = face_bounce(tx, ty, f);
+                    o_out0.texels[window_index(tx, f * window_size().y + ty)] = pack_rgba16f(vec4(v, 1.0));
+                } else {
+                    int scale = pc.pass.noise >> 16;
+                    int grid_w = (window_size().x + scale - 1) / scale;
+                    o_out0.texels[ty * ((grid_w + 3) & ~3) + tx] = pack_rgba16f(vec4(ground(tx, ty), 1.0));
                 }
-            } else if (MODE == 1u) {
+            } else {
                 vec3 v[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
                 if (x < pc.size.x)
                     for (int f = 0; f < 4; ++f)
@@ -212,9 +221,6 @@ void main() {
                 if (computes_face(FACES, 1)) o_out1.texels[index] = pack_rgba16f(vec4(v[1], 1.0));
                 if (computes_face(FACES, 2)) o_out2.texels[index] = pack_rgba16f(vec4(v[2], 1.0));
                 if (computes_face(FACES, 3)) o_out3.texels[index] = pack_rgba16f(vec4(v[3], 1.0));
-            } else {
-                vec3 e = x < pc.size.x ? ground(x, y) : vec3(0.0);
-                o_out0.texels[index] = pack_rgba16f(vec4(e, 1.0));
             }
         }
     }

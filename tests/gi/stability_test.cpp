@@ -460,7 +460,9 @@ TEST(GiStability, GatherOnTheStiffCases) {
         const int x1 = int((20.0f - w.view.min_x) * float(w.resolution));
         const int y1 = int((12.0f - w.view.min_z) * float(w.resolution));
         EXPECT_EQ(max_in(f.ref.textures.at("indirect"), x0, 0, x1, y1), 0.0f) << "sealed wall, scale " << int(scale);
-        if (f.gpu) EXPECT_EQ(max_in(f.gpu->textures.at("indirect"), x0, 0, x1, y1), 0.0f) << "vulkan, scale " << int(scale);
+        if (f.gpu) {
+            EXPECT_EQ(max_in(f.gpu->textures.at("indirect"), x0, 0, x1, y1), 0.0f) << "vulkan, scale " << int(scale);
+        }
         const int left = int((10.0f - w.view.min_x) * float(w.resolution));
         EXPECT_GT(max_in(f.ref.textures.at("indirect"), 0, 0, left, y1), 0.0f) << "the lit room has bounce light";
     }

@@ -125,6 +125,19 @@ bool gather_face_texel(const FrameInputs& in, const GatherFrame& f, int x, int y
     return edge && !in.walls.is_wall(tile.x + normal_of[face].x, tile.y + normal_of[face].y);
 }
 
+namespace {
+// The fixed-point centre of gather-grid texel (i, j) and its tile, from the origin tile.
+glm::ivec2 ground_center(const GatherFrame& f, const HeatGrid& g, int i, int j) {
+    return {texel_center_fixed(f.offset.x + i * g.scale, g.scale, f.resolution),
+            texel_center_fixed(f.offset.y + j * g.scale, g.scale, f.resolution)};
+}
+} // namespace
+
+bool gather_ground_texel_in_air(const FrameInputs& in, const GatherFrame& f, const HeatGrid& g, int i, int j) {
+    const glm::ivec2 p = ground_center(f, g, i, j);
+    return !in.walls.is_wall(f.origin_tile.x + p.x / gather_unit, f.origin_tile.y + p.y / gather_unit);
+}
+
 glm::ivec2 gather_face_size(const FrameInputs& in) {
     return {in.window.width, 4 * in.window.height};
 }
@@ -205,23 +218,21 @@ Texture reference_gather_ground(const FrameInputs& in, const FaceTextures& direc
                                 const RefOptions& options) {
     const GatherFrame f = gather_frame(in);
     const HeatGrid g = gather_grid(in);
-    const int r = f.resolution, rays = in.settings.gather.rays;
+    const int rays = in.settings.gather.rays;
     const std::vector<glm::ivec2>& dirs = radiosity_directions();
     Texture out("gather_ground", TexFormat::rgba16f, g.width, g.height);
     for_each_row(g.height, options, [&](int j) {
         for (int i = 0; i < g.width; ++i) {
-            // The grid texel's centre, in texels from the origin tile's corner (x 2: exact).
-            const glm::ivec2 p(texel_center_fixed(f.offset.x + i * g.scale, g.scale, r),
-                               texel_center_fixed(f.offset.y + j * g.scale, g.scale, r));
+            // Grid texels in walls gather nothing and stay zero.
+            if (!gather_ground_texel_in_air(in, f, g, i, j)) continue;
+            const glm::ivec2 p = ground_center(f, g, i, j);
             const glm::ivec2 cell(p.x / gather_unit, p.y / gather_unit);
             glm::vec3 sum(0.0f);
-            if (!in.walls.is_wall(f.origin_tile.x + cell.x, f.origin_tile.y + cell.y)) {
-                const int noise = blue_noise_at(f, i * g.scale, j * g.scale);
-                for (int k = 0; k < rays; ++k) {
-                    const glm::ivec2 d = dirs[std::size_t(((k * 4096 + noise) / rays) & 4095)];
-                    const GatherHit hit = gather_trace(in, f, p, cell, d);
-                    if (hit.face >= 0) sum += radiosity_at(in, direct, &faces, hit.face, hit.texel);
-                }
+            const int noise = blue_noise_at(f, i * g.scale, j * g.scale);
+            for (int k = 0; k < rays; ++k) {
+                const glm::ivec2 d = dirs[std::size_t(((k * 4096 + noise) / rays) & 4095)];
+                const GatherHit hit = gather_trace(in, f, p, cell, d);
+                if (hit.face >= 0) sum += radiosity_at(in, direct, &faces, hit.face, hit.texel);
             }
             // Fluence = integral of B / 2 over the circle: (2 pi / rays) x sum B / 2.
             store4(out, i, j, glm::vec4(sum * (pi / float(rays)), 1.0f));

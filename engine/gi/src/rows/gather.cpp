@@ -50,8 +50,40 @@ Tex direct_face(int f) {
 }
 
 struct GatherState : vk::PassState {
-    UploadedArray directions, noise;
+    UploadedArray directions, noise, faces, ground;
+    int face_rows = 0, ground_rows = 0;
 };
+
+// The face bounces and the ground gather run over lists of the texels that have work, not
+// over the window: on lavapipe a lane without work still runs every loop once, masked. An
+// entry is (x | y << 16, face); the list is padded with ~0 to whole rows of this width.
+constexpr int list_width = 256; // gi_gather.comp.glsl LIST_WIDTH
+int pad_rows(std::vector<glm::uvec2>& list) {
+    const int rows = int((list.size() + list_width - 1) / list_width);
+    list.resize(std::size_t(rows) * list_width, glm::uvec2(0xFFFFFFFFu, 0u));
+    return rows;
+}
+
+// Exposed face texels of the window, with their face.
+std::vector<glm::uvec2> face_list(const FrameInputs& in, const GatherFrame& f) {
+    std::vector<glm::uvec2> list;
+    for (int y = 0; y < in.window.height; ++y)
+        for (int x = 0; x < in.window.width; ++x)
+            for (int face = 0; face < 4; ++face)
+                if (gather_face_texel(in, f, x, y, face))
+                    list.push_back({std::uint32_t(x) | (std::uint32_t(y) << 16), std::uint32_t(face)});
+    return list;
+}
+
+// Texels of the gather grid whose centre is in air (reference_gather_ground's test).
+std::vector<glm::uvec2> ground_list(const FrameInputs& in, const GatherFrame& f, const HeatGrid& g) {
+    std::vector<glm::uvec2> list;
+    for (int j = 0; j < g.height; ++j)
+        for (int i = 0; i < g.width; ++i)
+            if (gather_ground_texel_in_air(in, f, g, i, j))
+                list.push_back({std::uint32_t(i) | (std::uint32_t(j) << 16), 0u});
+    return list;
+}
 
 void record_gather(PassRecorder& r) {
     const FrameInputs& in = r.in;
@@ -78,6 +110,14 @@ void record_gather(PassRecorder& r) {
         r.cmd.barrier_transfer_to_compute();
     }
     const GatherFrame f = gather_frame(in);
+    if (r.iteration == 0) { // this frame's lists (the walls or window may have changed)
+        std::vector<glm::uvec2> faces_now = face_list(in, f), ground_now = ground_list(in, f, g);
+        s.face_rows = pad_rows(faces_now);
+        s.ground_rows = pad_rows(ground_now);
+        if (s.face_rows) upload_array(r, s.faces, std::span<const glm::uvec2>(faces_now), VK_FORMAT_R32G32_UINT, "gather face texels");
+        if (s.ground_rows) upload_array(r, s.ground, std::span<const glm::uvec2>(ground_now), VK_FORMAT_R32G32_UINT, "gather ground texels");
+        r.cmd.barrier_transfer_to_compute();
+    }
     int mode = 0;
     Tex source = final_faces(in, r.history), out0 = Tex::gather_ground;
     bool previous = true;
@@ -90,7 +130,13 @@ void record_gather(PassRecorder& r) {
         mode = 1;
     } else {
         mode = 2;
+        // Grid texels in walls are not listed: zero (the upsample may fall back to one).
+        r.cmd.barrier_compute_to_transfer();
+        r.clear(Tex::gather_ground);
+        r.cmd.barrier_transfer_to_compute();
     }
+    const int rows = mode == 0 ? s.face_rows : mode == 2 ? s.ground_rows : 0;
+    if (mode != 1 && rows == 0) return; // nothing to gather (the face texture is never read)
     // Faces not computed are bound to another allocated texture and never read or written.
     Tex first_direct = Tex::gather_face_a, first_indirect = Tex::gather_face_a;
     for (int face = 3; face >= 0; --face)
@@ -105,7 +151,8 @@ void record_gather(PassRecorder& r) {
                                     r.view(computes_face(faces, face) ? direct_face(face) : first_direct));
     writes.uniform_texel_buffer(6, r.view(previous ? source : out0))
         .uniform_texel_buffer(7, s.directions.view)
-        .uniform_texel_buffer(8, s.noise.view);
+        .uniform_texel_buffer(8, s.noise.view)
+        .uniform_texel_buffer(13, mode == 0 ? s.faces.view : mode == 2 ? s.ground.view : s.noise.view);
     if (mode == 1) {
         for (int face = 0; face < 4; ++face) {
             const Tex t = Tex(int(Tex::wall_indirect_px) + face);
@@ -117,7 +164,7 @@ void record_gather(PassRecorder& r) {
     const std::uint32_t features = std::uint32_t(mode) | (previous ? 4u : 0u);
     r.cmd.bind(r.pipeline<GatherParams>("gi_gather.comp", {.proxies = false, .features = features, .faces = faces}));
     r.cmd.push_descriptors(writes);
-    const glm::ivec2 size = mode == 2 ? glm::ivec2(g.width, g.height) : glm::ivec2(in.window.width, in.window.height);
+    const glm::ivec2 size = mode == 1 ? glm::ivec2(in.window.width, in.window.height) : glm::ivec2(list_width, rows);
     auto p = r.params<GatherParams>(size.x, size.y);
     p.pass = {.origin_x = f.origin_tile.x,
               .origin_z = f.origin_tile.y,

@@ -92,8 +92,8 @@ std::vector<std::uint64_t> Renderer::pass_bytes_written(Pass pass, const FrameIn
         return {grid * 8, grid * 8, texels * 8};
     }
     case Pass::gather: {
-        const HeatGrid g = gather_grid(in);
-        const std::uint64_t grid = std::uint64_t(pitch_of(g.width)) * std::uint64_t(g.height);
+        const HeatGrid gg = gather_grid(in);
+        const std::uint64_t grid = std::uint64_t(pitch_of(gg.width)) * std::uint64_t(gg.height);
         std::vector<std::uint64_t> out(std::size_t(in.settings.gather.bounces), texels * 4 * 8); // face bounces
         out.push_back(texels * 4 * 8);                                                           // fill
         out.push_back(grid * 8);                                                                 // ground

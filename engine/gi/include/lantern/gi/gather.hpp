@@ -69,6 +69,10 @@ GatherHit gather_trace(const FrameInputs& in, const GatherFrame& f, glm::ivec2 p
 // Whether window texel (x, y) is the edge texel of its wall tile on `face`, with air across.
 bool gather_face_texel(const FrameInputs& in, const GatherFrame& f, int x, int y, int face);
 
+// Whether the centre of gather-grid texel (i, j) lies in air (walls' grid texels gather
+// nothing and stay zero).
+bool gather_ground_texel_in_air(const FrameInputs& in, const GatherFrame& f, const HeatGrid& g, int i, int j);
+
 // The face textures gather_face_a/b: E_indirect per face texel, face f of texel (x, y) at
 // (x, f x height + y).
 glm::ivec2 gather_face_size(const FrameInputs& in);
