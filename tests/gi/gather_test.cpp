@@ -64,7 +64,7 @@ glm::vec3 texel(const Texture& t, int x, int y) {
 // cos(theta_face) / distance dx. E(x) is Lantern's own face light (wall_direct_pz), so this
 // checks the gather's geometry and normalisation alone.
 TEST(GatherReference, GroundGatherMatchesAQuadratureInFrontOfALitWall) {
-    Scene s = as_gather(gi_test::open_scene({16, 12}, {32, 24}, 4));
+    Scene s = as_gather(gi_test::open_scene({16, 12}, {32, 24}, 2));
     std::vector<std::string> rows(24, std::string(32, '.'));
     for (int x = 0; x < 32; ++x) rows[6][std::size_t(x)] = '#'; // its ends out of the light's reach
     s.walls = grid_from_rows(rows);
