@@ -23,6 +23,7 @@
 using namespace lantern::gi;
 using gi_test::max_in;
 using gi_test::grid_from_rows;
+using gi_test::inputs_of;
 using gi_test::NamedScene;
 using lantern::scene::HeatScale;
 using lantern::scene::NoiseShift;
@@ -36,12 +37,6 @@ Scene as_radiosity(Scene s, HeatScale scale = HeatScale::full) {
     return s;
 }
 
-FrameInputs inputs_of(const Scene& s) {
-    std::string why;
-    auto w = compute_window(s.view, s.gi, &why);
-    EXPECT_TRUE(w) << why;
-    return gather_frame_inputs(s, *w);
-}
 
 // Walls with density `fill` on a w x h grid (rows from a fixed seed).
 lantern::scene::WallGrid random_walls(int w, int h, float fill, std::uint32_t seed) {

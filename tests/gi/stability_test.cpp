@@ -101,6 +101,40 @@ Scene sealed_rooms(float distance, lantern::scene::HeatScale scale, bool segment
     return s;
 }
 
+// The stiff scenes the radiosity and gather methods share (the heat method's own cases build
+// theirs in place): a one-texel corridor turning a corner (64 x 64 tiles of rock, resolution
+// 1, a light in the first leg), a checkerboard, all walls, the minimum window.
+Scene corridor_scene() {
+    std::vector<std::string> rows(64, std::string(64, '#'));
+    for (int x = 1; x < 63; ++x) rows[10][std::size_t(x)] = '.';
+    for (int z = 10; z < 40; ++z) rows[std::size_t(z)][62] = '.';
+    Scene s = gi_test::open_scene({32, 32}, {64, 64}, 1);
+    s.walls = grid_from_rows(rows);
+    s.point_lights.push_back(gi_test::point({50.5f, 10.5f}, {1, 1, 1}, 2.0f, 15.0f));
+    return s;
+}
+Scene checkerboard_scene() {
+    std::vector<std::string> rows(16, std::string(16, '.'));
+    for (int z = 0; z < 16; ++z)
+        for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
+    Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
+    s.walls = grid_from_rows(rows);
+    s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
+    return s;
+}
+Scene all_walls_scene() {
+    Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
+    s.walls = grid_from_rows(std::vector<std::string>(16, std::string(16, '#')));
+    s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
+    return s;
+}
+Scene minimum_window_scene() {
+    Scene s = gi_test::open_scene({0.5f, 0.5f}, {1.0f, 1.0f}, 1);
+    s.walls = grid_from_rows({"#.#", "...", "#.#"});
+    s.point_lights.push_back(gi_test::point({1.5f, 1.5f}, {1, 1, 1}, 1.0f, 3.0f));
+    return s;
+}
+
 } // namespace
 
 // ---- invariants
@@ -331,29 +365,13 @@ TEST(GiStability, RadiosityOnTheStiffCases) {
                     "radiosity, resolution " + std::to_string(res));
     }
     {
-        std::vector<std::string> rows(64, std::string(64, '#'));
-        for (int x = 1; x < 63; ++x) rows[10][std::size_t(x)] = '.';
-        for (int z = 10; z < 40; ++z) rows[std::size_t(z)][62] = '.';
-        Scene s = gi_test::open_scene({32, 32}, {64, 64}, 1);
-        s.walls = grid_from_rows(rows);
-        s.point_lights.push_back(gi_test::point({50.5f, 10.5f}, {1, 1, 1}, 2.0f, 15.0f));
-        Frames f = run_both(radiosity(s));
+        Frames f = run_both(radiosity(corridor_scene()));
         expect_sane(f, "radiosity, one-texel corridor");
         EXPECT_EQ(f.ref.textures.at("indirect").at(30, 30)[0], 0.0f) << "the rock stays dark";
     }
+    expect_sane(run_both(radiosity(checkerboard_scene())), "radiosity, checkerboard");
     {
-        std::vector<std::string> rows(16, std::string(16, '.'));
-        for (int z = 0; z < 16; ++z)
-            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
-        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = grid_from_rows(rows);
-        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
-        expect_sane(run_both(radiosity(s)), "radiosity, checkerboard");
-    }
-    {
-        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = grid_from_rows(std::vector<std::string>(16, std::string(16, '#')));
-        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
+        const Scene s = all_walls_scene();
         Frames f = run_both(radiosity(s));
         expect_sane(f, "radiosity, all walls");
         EXPECT_EQ(max_in(f.ref.textures.at("indirect"), 0, 0, 64, 64), 0.0f);
@@ -362,12 +380,7 @@ TEST(GiStability, RadiosityOnTheStiffCases) {
         expect_sane(run_both(radiosity(open)), "radiosity, no walls");
     }
     expect_sane(run_both(radiosity(gi_test::comparison_scene("light_edge_cases").scene)), "radiosity, light inside a wall");
-    {
-        Scene s = gi_test::open_scene({0.5f, 0.5f}, {1.0f, 1.0f}, 1);
-        s.walls = grid_from_rows({"#.#", "...", "#.#"});
-        s.point_lights.push_back(gi_test::point({1.5f, 1.5f}, {1, 1, 1}, 1.0f, 3.0f));
-        expect_sane(run_both(radiosity(s, lantern::scene::HeatScale::quarter)), "radiosity, 64-texel window");
-    }
+    expect_sane(run_both(radiosity(minimum_window_scene(), lantern::scene::HeatScale::quarter)), "radiosity, 64-texel window");
 }
 
 // The gather method (gi.method = gather, physical) on the stiff cases: huge and tiny lights,
@@ -395,8 +408,11 @@ TEST(GiStability, GatherOnTheStiffCases) {
         Frames f = run_both(s);
         sane(f, "gather, albedo " + std::to_string(albedo));
         const Texture& indirect = f.ref.textures.at("indirect");
-        if (albedo == 0.0f) EXPECT_EQ(max_in(indirect, 0, 0, indirect.width, indirect.height), 0.0f) << "albedo 0";
-        else EXPECT_GT(max_in(indirect, 0, 0, indirect.width, indirect.height), 0.0f) << "albedo " << albedo;
+        if (albedo == 0.0f) {
+            EXPECT_EQ(max_in(indirect, 0, 0, indirect.width, indirect.height), 0.0f) << "albedo 0";
+        } else {
+            EXPECT_GT(max_in(indirect, 0, 0, indirect.width, indirect.height), 0.0f) << "albedo " << albedo;
+        }
     }
     for (int res : {1, 32}) {
         Scene s = gi_test::comparison_scene("rooms").scene;
@@ -406,12 +422,7 @@ TEST(GiStability, GatherOnTheStiffCases) {
              "gather, resolution " + std::to_string(res));
     }
     {
-        std::vector<std::string> rows(64, std::string(64, '#'));
-        for (int x = 1; x < 63; ++x) rows[10][std::size_t(x)] = '.';
-        for (int z = 10; z < 40; ++z) rows[std::size_t(z)][62] = '.';
-        Scene s = gi_test::open_scene({32, 32}, {64, 64}, 1);
-        s.walls = grid_from_rows(rows);
-        s.point_lights.push_back(gi_test::point({50.5f, 10.5f}, {1, 1, 1}, 2.0f, 15.0f));
+        Scene s = corridor_scene();
         s.gi.gather.rays = 256; // rays 0.025 rad apart: some go down the corridor
         Frames f = run_both(gather(s));
         sane(f, "gather, one-texel corridor");
@@ -420,19 +431,9 @@ TEST(GiStability, GatherOnTheStiffCases) {
         EXPECT_GT(max_in(f.ref.textures.at("indirect"), tx, tz, tx + 1, tz + 1), 0.0f)
             << "light turns the corner into the second corridor";
     }
+    sane(run_both(gather(checkerboard_scene())), "gather, checkerboard");
     {
-        std::vector<std::string> rows(16, std::string(16, '.'));
-        for (int z = 0; z < 16; ++z)
-            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
-        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = grid_from_rows(rows);
-        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
-        sane(run_both(gather(s)), "gather, checkerboard");
-    }
-    {
-        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = grid_from_rows(std::vector<std::string>(16, std::string(16, '#')));
-        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
+        const Scene s = all_walls_scene();
         Frames f = run_both(gather(s));
         sane(f, "gather, all walls");
         const Texture& indirect = f.ref.textures.at("indirect");
@@ -445,12 +446,7 @@ TEST(GiStability, GatherOnTheStiffCases) {
         EXPECT_EQ(max_in(none, 0, 0, none.width, none.height), 0.0f) << "nothing to reflect";
     }
     sane(run_both(gather(gi_test::comparison_scene("light_edge_cases").scene)), "gather, light inside a wall");
-    {
-        Scene s = gi_test::open_scene({0.5f, 0.5f}, {1.0f, 1.0f}, 1);
-        s.walls = grid_from_rows({"#.#", "...", "#.#"});
-        s.point_lights.push_back(gi_test::point({1.5f, 1.5f}, {1, 1, 1}, 1.0f, 3.0f));
-        sane(run_both(gather(s, lantern::scene::HeatScale::quarter)), "gather, 64-texel window");
-    }
+    sane(run_both(gather(minimum_window_scene(), lantern::scene::HeatScale::quarter)), "gather, 64-texel window");
     for (auto scale : {lantern::scene::HeatScale::full, lantern::scene::HeatScale::half, lantern::scene::HeatScale::quarter}) {
         Scene s = gather(sealed_rooms(1.0f, scale, true, 4), scale);
         s.gi.wall_albedo = 1.0f;

@@ -5,7 +5,11 @@
 #include "gi_test_util.hpp"
 
 #include "common/test_support.hpp"
+#include "lantern/gi/frame_inputs.hpp"
+#include "lantern/gi/window.hpp"
 #include "lantern/scene/loader.hpp"
+
+#include <gtest/gtest.h>
 
 #include <functional>
 #include <random>
@@ -16,6 +20,14 @@
 namespace gi_test {
 
 using lantern::scene::Scene;
+
+// The frame inputs of a scene in its own GI window (the test fails when it has none).
+inline lantern::gi::FrameInputs inputs_of(const Scene& s) {
+    std::string why;
+    auto w = lantern::gi::compute_window(s.view, s.gi, &why);
+    EXPECT_TRUE(w) << why;
+    return w ? lantern::gi::gather_frame_inputs(s, *w) : lantern::gi::FrameInputs{};
+}
 
 inline lantern::scene::PointLight point(glm::vec2 p, glm::vec3 c, float intensity, float radius) {
     return {p, 1.0f, c, intensity, radius};

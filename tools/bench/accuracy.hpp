@@ -55,7 +55,9 @@ struct SweepSetting {
 // The default sweep (heat: giRes 4/8/16 x full/half/quarter x 10/20/40 rounds, plus each
 // toggle at 20 rounds, full scale, every resolution; radiosity: giRes 8, quarter and half
 // grid, 8/16/32/64 rays x 32/64 steps at K = 1, 16 and 64 rays x 32 steps at K = 4 and 16)
-// or the --quick one (five heat settings; radiosity quarter 16 x 32 at K = 1, 4, 16).
+// or the --quick one (five heat settings; radiosity quarter 16 x 32 at K = 1, 4, 16; gather
+// half 32 x 32 at K = 1 and 8). Gather: giRes 8 half and quarter x 16 / 32 / 64 rays, full at
+// 32, giRes 16 quarter at 32 and 64, all at K = 8, and the default at K = 1 and 4.
 std::vector<SweepSetting> sweep(bool quick);
 
 struct SweepRun {

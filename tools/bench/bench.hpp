@@ -16,7 +16,7 @@ struct SeedTableOptions {
 int seed_table(const SeedTableOptions& options);
 
 struct AccuracyOptions {
-    bool quick = false;            // one scene, eight settings (five heat, three radiosity), a 5 % reference
+    bool quick = false;            // one scene, ten settings (five heat, three radiosity, two gather), a 5 % reference
     int repeats = 5;               // timed frames per setting (after one warm-up); median
     std::string out_dir = "accuracy"; // accuracy.md, accuracy.csv, <scene>.png
     std::string maps_dir = "../shared/maps";

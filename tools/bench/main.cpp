@@ -70,7 +70,7 @@ int accuracy_main(int argc, char** argv) {
              "Error against run time: a sweep of GI settings on procedural scenes and real maps, each\n"
              "timed (GPU timestamps, median) and compared with the light-transport reference; writes\n"
              "DIR/accuracy.md, accuracy.csv and one plot per scene.");
-    p.flag("--quick", "one scene, eight settings (five heat, three radiosity), a 5 % reference", o.quick);
+    p.flag("--quick", "one scene, ten settings (five heat, three radiosity, two gather), a 5 % reference", o.quick);
     p.integer("--repeats", "N", "timed frames per setting, after one warm-up; median (default 5)", o.repeats, 1, 1000);
     p.text("--out", "DIR", "accuracy.md, accuracy.csv, <scene>.png go here (default accuracy)", o.out_dir);
     p.custom("--scenes", "A,B,...", "the scenes to run (default: all)", [&](std::string_view list) -> std::optional<std::string> {

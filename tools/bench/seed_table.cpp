@@ -195,18 +195,20 @@ std::string light_slopes(const std::vector<RowResult>& rows) {
            out;
 }
 
+// A row's numbers for `p` (zeros when the pass did not run), and "ms (x copy)" or "-".
+PassNumbers get(const RowResult& r, gi::Pass p) {
+    auto it = r.passes.find(p);
+    return it == r.passes.end() ? PassNumbers{} : it->second;
+}
+std::string cell(const RowResult& r, gi::Pass p) {
+    const PassNumbers n = get(r, p);
+    return n.ran ? fmt("%.2f", n.gpu_ms) + " (" + (n.copy_ms > 0 ? fmt("%.1f", n.gpu_ms / n.copy_ms) : "-") + ")"
+                 : std::string("-");
+}
+
 // Seed 003's radiosity beside seed 000's heat on the same row (resolution, scale, lights):
 // the indirect passes each method runs instead of the other's, in ms and x copy.
 std::string methods_table(const std::vector<RowResult>& rows) {
-    auto get = [](const RowResult& r, gi::Pass p) {
-        auto it = r.passes.find(p);
-        return it == r.passes.end() ? PassNumbers{} : it->second;
-    };
-    auto cell = [&](const RowResult& r, gi::Pass p) {
-        const PassNumbers n = get(r, p);
-        return n.ran ? fmt("%.2f", n.gpu_ms) + " (" + (n.copy_ms > 0 ? fmt("%.1f", n.gpu_ms / n.copy_ms) : "-") + ")"
-                     : std::string("-");
-    };
     std::string out;
     for (const RowResult& rad : rows) {
         if (rad.row.method != scene::GiMethod::radiosity) continue;
@@ -240,15 +242,6 @@ std::string methods_table(const std::vector<RowResult>& rows) {
 // runs over a window `gather.margin` tiles wider, heat at the same resolution and scale for
 // scale, and the cost of one more face bounce (rows differing only in gather.bounces).
 std::string gather_table(const std::vector<RowResult>& rows) {
-    auto get = [](const RowResult& r, gi::Pass p) {
-        auto it = r.passes.find(p);
-        return it == r.passes.end() ? PassNumbers{} : it->second;
-    };
-    auto cell = [&](const RowResult& r, gi::Pass p) {
-        const PassNumbers n = get(r, p);
-        return n.ran ? fmt("%.2f", n.gpu_ms) + " (" + (n.copy_ms > 0 ? fmt("%.1f", n.gpu_ms / n.copy_ms) : "-") + ")"
-                     : std::string("-");
-    };
     std::string out;
     const RowResult* previous = nullptr;
     for (const RowResult& g : rows) {
