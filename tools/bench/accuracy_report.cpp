@@ -103,7 +103,7 @@ Panel panel(const SceneReport& s, const char* title, const std::string& x_label,
     return p;
 }
 
-std::vector<LegendEntry> legend(bool radiosity) {
+std::vector<LegendEntry> legend(bool radiosity, bool gather) {
     std::vector<LegendEntry> l{
         {"heat: giRes 4", 0x1F77B4},
         {"giRes 8", 0x2CA02C},
@@ -127,6 +127,9 @@ std::vector<LegendEntry> legend(bool radiosity) {
                                   {"radiosity Pareto front (rays x steps, K)",
                                    radiosity_front_color, Marker::circle, false, true}})
         l.push_back(e);
+    if (gather)
+        l.push_back({"gather (hollow; giRes colour, grid shape): Pareto front (G rays, K)", gather_front_color,
+                     Marker::circle, false, true});
     return l;
 }
 
@@ -306,7 +309,9 @@ Result<void> write_plot(const SceneReport& s, const std::string& device, const s
     if (!s.runs.empty() && s.runs.front().error.shadow_texels > 0)
         f.panels.push_back(panel(s, "ground without direct light, fitted", x_label,
                                  &ErrorMetrics::shadow_rmse_fit));
-    f.legend = legend(has_radiosity(s));
+    bool gather = false;
+    for (const SweepRun& r : s.runs) gather = gather || r.setting.is_gather();
+    f.legend = legend(has_radiosity(s), gather);
     return write_figure_png(f, path);
 }
 
