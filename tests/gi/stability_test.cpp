@@ -101,8 +101,7 @@ Scene sealed_rooms(float distance, lantern::scene::HeatScale scale, bool segment
     return s;
 }
 
-// The stiff scenes the radiosity and gather methods share (the heat method's own cases build
-// theirs in place): a one-texel corridor turning a corner (64 x 64 tiles of rock, resolution
+// Stiff scenes several cases share: a one-texel corridor turning a corner (64 x 64 tiles of rock, resolution
 // 1, a light in the first leg), a checkerboard, all walls, the minimum window.
 Scene corridor_scene() {
     std::vector<std::string> rows(64, std::string(64, '#'));
@@ -270,15 +269,8 @@ TEST(GiStability, OneTexelCorridorsAndCheckerboard) {
         EXPECT_GT(f.ref.textures.at("indirect").at(62, 16)[0], 0.0f);
         EXPECT_EQ(f.ref.textures.at("indirect").at(30, 30)[0], 0.0f);
     }
-    {   // Checkerboard: every other tile a wall; light passes only through corners.
-        std::vector<std::string> rows(16, std::string(16, '.'));
-        for (int z = 0; z < 16; ++z)
-            for (int x = 0; x < 16; ++x) rows[std::size_t(z)][std::size_t(x)] = (x + z) % 2 ? '#' : '.';
-        Scene s = gi_test::open_scene({8, 8}, {16, 16}, 4);
-        s.walls = grid_from_rows(rows);
-        s.point_lights.push_back(gi_test::point({8.5f, 8.5f}, {1, 1, 1}, 1.0f, 6.0f));
-        expect_sane(run_both(s), "checkerboard");
-    }
+    // Checkerboard: every other tile a wall; light passes only through corners.
+    expect_sane(run_both(checkerboard_scene()), "checkerboard");
 }
 
 TEST(GiStability, AllWallsAndNoWalls) {
