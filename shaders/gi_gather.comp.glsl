@@ -2,10 +2,10 @@
 // integer tile crossings, the same rays, the same sums in the same order). Three modes
 // (FEATURES & 3):
 //   0 face bounce: every exposed face texel of the window gathers E_indirect from B =
-//     albedo x (direct + previous) of the faces its rays hit; writes the face texture
+//     albedo x (direct + previous) + emission of the faces its rays hit (their tiles' materials); writes the face texture
 //     (face f of texel (x, y) at (x, f x height + y)); FEATURES & 4: a previous bounce exists
 //   1 fill: wall_indirect_* from the face texture, across each wall tile
-//   2 ground: fluence on the gather grid from B = albedo x (direct + indirect)
+//   2 ground: fluence on the gather grid from B = albedo x (direct + indirect) + emission
 // Modes 0 and 2 run over a list of the texels that have work (u_list: exposed face texels
 // with their face, or the gather grid's texels in air), laid out LIST_WIDTH entries a row so
 // that no invocation idles on a texel without work (lavapipe runs masked code for every lane);
@@ -20,7 +20,7 @@ struct GatherParams {
     int rays;               // rays per texel (face rays in mode 0)
     int noise;              // window texel 0's blue-noise coordinate x | y << 8 | grid scale << 16
     int window;             // window texels: width | height << 16
-    float albedo;           // gi.wall_albedo
+    int pad;
 };
 #define GI_PASS_PARAMS GatherParams
 #include "lantern/gi_common.glsl"
@@ -39,6 +39,7 @@ layout(std430, binding = 10) writeonly buffer Out1 { uvec2 texels[]; } o_out1; /
 layout(std430, binding = 11) writeonly buffer Out2 { uvec2 texels[]; } o_out2; // wall_indirect_pz
 layout(std430, binding = 12) writeonly buffer Out3 { uvec2 texels[]; } o_out3; // wall_indirect_nz
 layout(binding = 13) uniform usamplerBuffer u_list; // modes 0, 2: x | y << 16, face (or 0); rows padded with ~0
+layout(binding = 14) uniform samplerBuffer u_materials; // per wall cell value: albedo, emission (frame_inputs.hpp material_table)
 
 #include "lantern/gi_shadow.glsl"
 
@@ -72,10 +73,14 @@ vec3 direct_at(int face, ivec2 t) {
     if (face == 2) return computes_face(FACES, 2) ? texelFetch(u_direct_pz, i).rgb : vec3(0.0);
     return computes_face(FACES, 3) ? texelFetch(u_direct_nz, i).rgb : vec3(0.0);
 }
+// B = albedo x (direct + indirect) + emission, by the material of t's tile.
 vec3 radiosity_at(int face, ivec2 t, bool with_faces) {
     vec3 e = direct_at(face, t);
     if (with_faces) e += texelFetch(u_faces, window_index(t.x, face * window_size().y + t.y)).rgb;
-    return pc.pass.albedo * e;
+    ivec2 tile = origin_tile() + (offset() + t) / resolution();
+    int cell = int(wall_cell(tile.x, tile.y));
+    precise vec3 b = texelFetch(u_materials, 2 * cell).rgb * e + texelFetch(u_materials, 2 * cell + 1).rgb;
+    return b;
 }
 
 // gather_trace: the first wall tile the ray enters (face -1: none), and the window texel

@@ -142,7 +142,10 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, g
                                                      std::uint64_t wall_version, std::uint64_t lights_hash,
                                                      std::uint64_t suns_hash, std::uint64_t proxies_hash,
                                                      gi::Convergence* convergence) {
-    const gi::InputKeys inputs{gi::hash_window(in.window), wall_version, lights_hash, proxies_hash, suns_hash};
+    // The walls' key covers their materials too (what they reflect and emit).
+    const std::uint64_t walls = in.materials.empty() ? wall_version
+                                                     : Hasher().add(wall_version).add_span(std::span(in.materials)).value();
+    const gi::InputKeys inputs{gi::hash_window(in.window), walls, lights_hash, proxies_hash, suns_hash};
     return gi::derive_keys(in, plan, inputs, convergence);
 }
 

@@ -110,6 +110,68 @@ TEST(GatherReference, GroundGatherMatchesAQuadratureInFrontOfALitWall) {
     EXPECT_LT(worst, 0.03) << "1024 rays: the ray pattern's error is well below 3 %";
 }
 
+// Coloured bounce (seed 004's materials): a white wall meeting red rock at a corner, lit
+// by a white light, takes the rock's red from its bounce light; with the rock white too the
+// same face's indirect light stays white. A glowing wall lights a room with no light.
+TEST(GatherReference, AWhiteWallBesideRedRockTurnsPink) {
+    std::vector<std::string> rows(16, std::string(16, '.'));
+    for (int x = 2; x < 14; ++x) rows[4][std::size_t(x)] = '#'; // white, its +Z face on z = 5
+    for (int z = 5; z < 13; ++z) rows[std::size_t(z)][2] = '#'; // red rock, its +X face on x = 3
+    auto face_light = [&](glm::vec3 rock) {
+        Scene s = as_gather(gi_test::open_scene({8, 8}, {16, 16}, 4));
+        s.walls = grid_from_rows(rows);
+        s.materials = {{"white", {0.9f, 0.9f, 0.9f}, {}}, {"rock", rock, {}}};
+        for (int x = 2; x < 14; ++x) s.walls.cells[std::size_t(4 * 16 + x)] = lantern::scene::material_cell(0);
+        for (int z = 5; z < 13; ++z) s.walls.cells[std::size_t(z * 16 + 2)] = lantern::scene::material_cell(1);
+        s.point_lights = {{{8.5f, 9.5f}, 1.0f, {1.0f, 1.0f, 1.0f}, 2.0f, 12.0f}};
+        const FrameInputs in = inputs_of(s);
+        const ReferenceStore store = run_frames(in, 4);
+        // The white wall's +Z face one tile from the corner: wall tile (3, 4), its top texel row.
+        const GiWindow& w = in.window;
+        const int x = int((3.5f - w.view.min_x) * 4.0f), y = int((5.0f - 0.125f - w.view.min_z) * 4.0f);
+        return std::pair{texel(store.at(Tex::wall_direct_pz), x, y), texel(store.at(Tex::wall_indirect_pz), x, y)};
+    };
+    const auto [direct, indirect] = face_light({0.8f, 0.1f, 0.1f});
+    std::printf("white face by red rock: direct (%.4f %.4f %.4f), indirect (%.4f %.4f %.4f)\n", direct.r, direct.g,
+                direct.b, indirect.r, indirect.g, indirect.b);
+    EXPECT_EQ(direct.r, direct.g) << "a white light";
+    EXPECT_GT(indirect.r, 2.0f * indirect.g) << "the rock's bounce is red";
+    EXPECT_NEAR(indirect.g, indirect.b, 1e-6f * indirect.g);
+    const glm::vec3 total = direct + indirect;
+    EXPECT_GT(total.r, 1.1f * total.g) << "pink: more red than green and blue, which stay equal";
+    const auto [direct_w, indirect_w] = face_light({0.9f, 0.9f, 0.9f});
+    EXPECT_EQ(indirect_w.r, indirect_w.g) << "white rock: no tint";
+    EXPECT_GT(indirect_w.g, indirect.g) << "white rock reflects more green than red rock";
+}
+
+TEST(GatherReference, AGlowingWallLightsARoomWithoutLights) {
+    std::vector<std::string> rows(12, std::string(12, '#'));
+    for (int z = 3; z < 9; ++z) rows[std::size_t(z)].replace(3, 6, "......");
+    Scene s = as_gather(gi_test::open_scene({6, 6}, {12, 12}, 4));
+    s.walls = grid_from_rows(rows);
+    s.materials = {{"lava", {0.0f, 0.0f, 0.0f}, {2.0f, 0.5f, 0.0f}}};
+    for (int x = 3; x < 9; ++x) s.walls.cells[std::size_t(2 * 12 + x)] = lantern::scene::material_cell(0);
+    s.gi.wall_albedo = 0.0f; // only the lava's own light, no bounce
+    s.gi.gather.rays = 1024;
+    s.gi.blur = false;
+    const FrameInputs in = inputs_of(s);
+    ASSERT_TRUE(has_emissive_materials(in));
+    const ReferenceStore store = run_frames(in, 1);
+    const Texture& indirect = store.at(Tex::indirect);
+    const GiWindow& w = in.window;
+    // Near the room's centre: lit by the 6-tile glowing face on z = 3 (x 3..9), in the lava's
+    // colour. Fluence from a face of constant radiosity B: B / 2 x the angle it subtends.
+    const int tx = int((6.0f - w.view.min_x) * 4.0f), ty = int((6.0f - w.view.min_z) * 4.0f);
+    const glm::vec2 q = w.texel_center(tx, ty);
+    const glm::vec3 c = texel(indirect, tx, ty);
+    EXPECT_NEAR(c.g / c.r, 0.25f, 1e-4f);
+    EXPECT_EQ(c.b, 0.0f);
+    const float angle = std::atan((9.0f - q.x) / (q.y - 3.0f)) + std::atan((q.x - 3.0f) / (q.y - 3.0f));
+    const float expected = 2.0f / 2.0f * angle;
+    std::printf("fluence %.4f, expected %.4f\n", c.r, expected);
+    EXPECT_NEAR(c.r, expected, 0.01f * expected);
+}
+
 namespace {
 
 class Gather : public lantern::test::GpuTest {
@@ -183,6 +245,10 @@ TEST_F(Gather, FramesOfBouncesAndEverySettingMatchTheReference) {
         {"texel snap, resolution 3",
          [](Scene& s) { s.gi.window_snap = lantern::scene::WindowSnap::texel, s.gi.resolution = 3; }},
         {"two faces computed", [](Scene& s) { s.gi.wall_faces.px = false, s.gi.wall_faces.nz = false; }},
+        {"no materials", [](Scene& s) {
+             s.materials.clear();
+             for (auto& c : s.walls.cells) c = c != 0 ? 1 : 0;
+         }},
     };
     for (const Case& c : cases) {
         Scene s = base;

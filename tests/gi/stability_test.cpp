@@ -347,6 +347,7 @@ TEST(GiStability, RadiosityOnTheStiffCases) {
         Scene s = gi_test::comparison_scene("rooms").scene;
         for (auto& l : s.point_lights) l.intensity = intensity;
         for (auto& l : s.emissive_lights) l.intensity = intensity;
+        for (auto& m : s.materials) m.emission *= intensity; // glowing walls as bright
         expect_sane(run_both(radiosity(s, lantern::scene::HeatScale::half)), "radiosity, intensity " + std::to_string(intensity));
     }
     for (int res : {1, 32}) {
@@ -392,11 +393,13 @@ TEST(GiStability, GatherOnTheStiffCases) {
         Scene s = gi_test::comparison_scene("rooms").scene;
         for (auto& l : s.point_lights) l.intensity = intensity;
         for (auto& l : s.emissive_lights) l.intensity = intensity;
+        for (auto& m : s.materials) m.emission *= intensity; // glowing walls as bright
         sane(run_both(gather(s, lantern::scene::HeatScale::half)), "gather, intensity " + std::to_string(intensity));
     }
     for (float albedo : {0.0f, 0.5f, 0.99f, 1.0f}) {
         Scene s = gather(gi_test::comparison_scene("rooms").scene);
         s.gi.wall_albedo = albedo;
+        for (auto& m : s.materials) m.albedo = glm::vec3(albedo), m.emission = glm::vec3(0.0f); // no glow
         Frames f = run_both(s);
         sane(f, "gather, albedo " + std::to_string(albedo));
         const Texture& indirect = f.ref.textures.at("indirect");

@@ -73,12 +73,19 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.point_lights.push_back(point({8.3f, 7.6f}, {1.0f, 0.6f, 0.3f}, 2.0f, 6.0f));
         out.push_back({"open_field", s});
     }
-    {   // 2. Rooms and doorways, point lights and emissives.
+    {   // 2. Rooms and doorways, point lights and emissives; walls of four materials (red
+        // rock, white, glowing lava and the default), which only the gather method reads.
         Scene s = open_scene({12, 10}, {24, 20}, 4);
         std::vector<std::string> rows(20, std::string(24, '.'));
         for (int x = 0; x < 24; ++x) rows[10][std::size_t(x)] = (x == 5 || x == 17) ? '.' : '#';
         for (int z = 0; z < 20; ++z) rows[std::size_t(z)][12] = (z == 4 || z == 15) ? '.' : '#';
         s.walls = grid_from_rows(rows);
+        s.materials = {{"red_rock", {0.8f, 0.15f, 0.1f}, {}},
+                       {"white", {0.9f, 0.9f, 0.9f}, {}},
+                       {"lava", {0.3f, 0.1f, 0.05f}, {1.5f, 0.5f, 0.1f}}};
+        for (int x = 0; x < 5; ++x) s.walls.cells[std::size_t(10 * 24 + x)] = lantern::scene::material_cell(0);
+        for (int x = 6; x < 12; ++x) s.walls.cells[std::size_t(10 * 24 + x)] = lantern::scene::material_cell(1);
+        for (int z = 0; z < 4; ++z) s.walls.cells[std::size_t(z * 24 + 12)] = lantern::scene::material_cell(2);
         s.point_lights.push_back(point({4.5f, 4.5f}, {1.0f, 0.8f, 0.5f}, 2.0f, 9.0f));
         s.point_lights.push_back(point({18.2f, 15.7f}, {0.3f, 0.6f, 1.0f}, 1.5f, 8.0f));
         s.emissive_lights.push_back(emissive({16.5f, 3.5f}, {0.2f, 1.0f, 0.4f}, 1.0f, 4.0f));

@@ -451,11 +451,10 @@ INSTANTIATE_TEST_SUITE_P(
                        "t.json:1:47: world.rows[1]: row has 3 cells, row 0 has 2"},
         SceneErrorCase{"{\"lantern_scene\": 1, \"world\": {\"rows\": [\n  \"####\",\n  \"#.x#\"]}}",
                        "t.json:3:6: world.rows[1]: unknown cell character 'x' (rows use '#' for "
-                       "wall and '.' for floor)"},
+                       "wall, '.' for floor and the symbols of \"materials\")"},
         SceneErrorCase{R"({"lantern_scene": 1, "world": {"rows": ["#.\t"]}})",
                        "t.json:1:44: world.rows[0]: unknown cell character byte 0x09 (rows use '#' "
-                       "for wall and "
-                       "'.' for floor)"},
+                       "for wall, '.' for floor and the symbols of \"materials\")"},
         SceneErrorCase{R"({"lantern_scene": 1, "world": {"rows": ["."], "origin": [0.5, 0]}})",
                        "t.json:1:58: world.origin[0]: expected an integer, got 0.5"},
         SceneErrorCase{R"({"lantern_scene": 1, "world": {"rows": ["."], "origin": [0]}})",
@@ -682,4 +681,83 @@ TEST(SceneLoader, TheExampleInTheDocsLoads) {
     EXPECT_EQ(scene->walls.width, 64);
     EXPECT_EQ(scene->shadow_proxies.size(), 1u + 42u); // its own proxy, then the trees
     EXPECT_EQ(scene->gi, GiSettings{});                  // the example spells out the defaults
+}
+
+// ---- materials (seed 004's meta pass; docs/scenes.md, "Materials") ----------------------
+
+TEST(SceneLoader, MaterialsColourRowsByTheirSymbolsAndRegions) {
+    const Scene s = parse_scene_ok(R"({"lantern_scene": 1,
+        "materials": [{"name": "red_rock", "albedo": [0.8, 0.1, 0.1], "symbol": "R"},
+                      {"name": "lava", "albedo": [0.2, 0.05, 0.0], "emission": [4, 1, 0.2]}],
+        "material_regions": [{"material": "lava", "min": [11, 20], "max": [11, 21]},
+                             {"material": "red_rock", "min": [-1000000, 21], "max": [1000000, 21]}],
+        "world": {"rows": ["#R.#", "##.R", "#..#"], "origin": [10, 20]},
+        "view": {"center": [12, 21]}})");
+    ASSERT_EQ(s.materials.size(), 2u);
+    EXPECT_EQ(s.materials[0].name, "red_rock");
+    EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.8f, 0.1f, 0.1f));
+    EXPECT_EQ(s.materials[0].emission, glm::vec3(0.0f));
+    EXPECT_EQ(s.materials[1].emission, glm::vec3(4.0f, 1.0f, 0.2f));
+    const std::uint8_t d = default_wall_cell, red = material_cell(0), lava = material_cell(1);
+    // Row 0: the region made (11, 20) lava; row 1: the second region made every wall red,
+    // after the first made (11, 21) lava; floor stays floor.
+    const std::vector<std::uint8_t> expected{d, lava, 0, d, red, red, 0, red, d, 0, 0, d};
+    EXPECT_EQ(s.walls.cells, expected);
+    EXPECT_TRUE(s.walls.is_wall_tile(11, 20));
+}
+
+TEST(SceneLoader, MaterialRegionsColourMapWalls) {
+    TempDir dir;
+    write_text(dir.file("a.map"), "type octile\nheight 2\nwidth 3\nmap\n@.@\n@@.\n");
+    write_text(dir.file("s.json"), R"({"lantern_scene": 1, "world": {"map": "a.map"},
+        "materials": [{"name": "moss", "albedo": [0.2, 0.6, 0.2]}],
+        "material_regions": [{"material": "moss", "min": [1, 0], "max": [2, 1]}],
+        "view": {"center": [1, 1]}})");
+    auto scene = load_scene(dir.file("s.json"));
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const std::uint8_t moss = material_cell(0);
+    EXPECT_EQ(scene->walls.cells, (std::vector<std::uint8_t>{1, 0, moss, 1, moss, 0}));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Materials, SceneErrors,
+    testing::Values(
+        SceneErrorCase{scene_with(R"("materials": [{"albedo": [1, 1, 1]}])"),
+                       "t.json:2:15: materials[0].name: required key is missing"},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "red rock"}])"),
+                       "t.json:2:24: materials[0].name: must be 1 to 64 letters, digits or '_', got \"red rock\""},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a"}, {"name": "a"}])"),
+                       "t.json:2:39: materials[1].name: material \"a\" is defined twice"},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "albedo": [1.5, 0, 0]}])"),
+                       "t.json:2:40: materials[0].albedo[0]: must be in [0, 1], got 1.5"},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "emission": [0, -1, 0]}])"),
+                       "t.json:2:45: materials[0].emission[1]: must be >= 0, got -1"},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "symbol": "#"}])"),
+                       "t.json:2:39: materials[0].symbol: must be one printable ASCII character other than '#', "
+                       "'.' and space, got \"#\""},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "symbol": "ab"}])"),
+                       "t.json:2:39: materials[0].symbol: must be one printable ASCII character other than '#', "
+                       "'.' and space, got \"ab\""},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "symbol": "x"}, {"name": "b", "symbol": "x"}])"),
+                       "t.json:2:69: materials[1].symbol: symbol 'x' is taken by material \"a\""},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "glow": 1}])"),
+                       "t.json:2:29: materials[0].glow: unknown key 'glow' in materials[0]"},
+        SceneErrorCase{scene_with(R"("materials": {"name": "a"})"),
+                       "t.json:2:14: materials: expected an array, got an object"},
+        SceneErrorCase{scene_with(R"("material_regions": [{"material": "b", "min": [0, 0], "max": [1, 1]}])"),
+                       "t.json:2:35: material_regions[0].material: unknown material \"b\" (not in \"materials\")"},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a"}], "material_regions": [{"material": "a", "min": [0, 0], "max": [1, -1]}])"),
+                       "t.json:2:92: material_regions[0].max: must not be below min in x or z"},
+        SceneErrorCase{scene_with(R"("material_regions": [{"material": "a", "min": [0.5, 0], "max": [1, 1]}])"),
+                       "t.json:2:48: material_regions[0].min[0]: expected an integer, got 0.5"},
+        SceneErrorCase{"{\"lantern_scene\": 1, \"materials\": [{\"name\": \"r\", \"symbol\": \"R\"}],\n"
+                       "\"world\": {\"rows\": [\"#RG\"]}, \"view\": {\"center\": [0, 0]}}",
+                       "t.json:2:23: world.rows[0]: unknown cell character 'G' (rows use '#' for wall, '.' for "
+                       "floor and the symbols of \"materials\")"}));
+
+TEST(SceneLoader, MoreMaterialsThanCellValuesAreRefused) {
+    std::string list;
+    for (int i = 0; i <= max_materials; ++i) list += (i ? ", " : "") + std::string("{\"name\": \"m") + std::to_string(i) + "\"}";
+    EXPECT_EQ(parse_scene_error(scene_with("\"materials\": [" + list + "]")),
+              "t.json:2:14: materials: has 255 materials, above the limit of 254");
 }

@@ -35,7 +35,7 @@ struct Agreement {
 };
 
 // Converged gather (8 frames, 16 bounces) against the reference over the reference's window.
-Agreement compare(scene::Scene s, const transport::TransportSettings& t) {
+Agreement compare(scene::Scene s, const transport::TransportSettings& t, int channel = 1) {
     s.gi.method = scene::GiMethod::gather;
     s.gi.resolution = t.resolution;
     s.gi.gather.scale = scene::HeatScale::full;
@@ -65,10 +65,10 @@ Agreement compare(scene::Scene s, const transport::TransportSettings& t) {
         for (int x = 0; x < rw.width; ++x) {
             const glm::vec2 c = rw.texel_center(x, y);
             if (!s.walls.is_wall_tile(int(std::floor(c.x)), int(std::floor(c.y)))) {
-                const double l = indirect.at(x + shift, y + shift)[1], r = ref->indirect.at(x, y).g;
+                const double l = indirect.at(x + shift, y + shift)[channel], r = ref->indirect.at(x, y)[channel];
                 g_lan += l, g_ref += r;
                 err2 += (l - r) * (l - r), ref2 += r * r;
-                se2 += double(ref->indirect_error.at(x, y).g) * ref->indirect_error.at(x, y).g;
+                se2 += double(ref->indirect_error.at(x, y)[channel]) * ref->indirect_error.at(x, y)[channel];
                 continue;
             }
             // Face light is compared on each face's edge texel (where the gather keeps it).
@@ -78,8 +78,8 @@ Agreement compare(scene::Scene s, const transport::TransportSettings& t) {
                                                  float(t.resolution);
                 if (int(std::floor(across.x)) == int(std::floor(c.x)) && int(std::floor(across.y)) == int(std::floor(c.y)))
                     continue; // not on the tile's edge
-                f_lan += store.at(gi::Tex(int(gi::Tex::wall_indirect_px) + f)).at(x + shift, y + shift)[1];
-                f_ref += ref->face_indirect.at(f, x, y).g;
+                f_lan += store.at(gi::Tex(int(gi::Tex::wall_indirect_px) + f)).at(x + shift, y + shift)[channel];
+                f_ref += ref->face_indirect.at(f, x, y)[channel];
             }
         }
     Agreement a;
@@ -87,9 +87,9 @@ Agreement compare(scene::Scene s, const transport::TransportSettings& t) {
     a.ground_rrmse = std::sqrt(err2 / ref2);
     a.reference_se = std::sqrt(se2 / ref2);
     a.face_ratio = f_lan / f_ref;
-    std::printf("ground indirect %.2f %% of the reference's, rRMSE %.2f %% (its own noise %.2f %%); face "
+    std::printf("channel %d: ground indirect %.2f %% of the reference's, rRMSE %.2f %% (its own noise %.2f %%); face "
                 "indirect %.2f %%\n",
-                100.0 * a.ground_ratio, 100.0 * a.ground_rrmse, 100.0 * a.reference_se, 100.0 * a.face_ratio);
+                channel, 100.0 * a.ground_ratio, 100.0 * a.ground_rrmse, 100.0 * a.reference_se, 100.0 * a.face_ratio);
     return a;
 }
 
@@ -138,4 +138,26 @@ TEST(GatherAgainstTransport, RoomsWithLightFromTheMargin) {
     EXPECT_NEAR(a.ground_ratio, 1.0, 0.05);
     EXPECT_NEAR(a.face_ratio, 1.0, 0.05);
     EXPECT_LT(a.ground_rrmse, 0.06 + 2.0 * a.reference_se);
+}
+
+// Materials (seed 004): a closed room of red rock, white and default walls, one side glowing
+// lava: every channel agrees, the lava's light and the rock's tint included.
+TEST(GatherAgainstTransport, ColouredAndGlowingWalls) {
+    scene::Scene s = transport_test::scene(transport_test::closed_room(), {8, 8}, {16, 16});
+    s.materials = {{"red_rock", {0.8f, 0.15f, 0.1f}, {}},
+                   {"white", {0.9f, 0.9f, 0.9f}, {}},
+                   {"lava", {0.3f, 0.1f, 0.05f}, {0.6f, 0.2f, 0.04f}}};
+    for (int i = 5; i <= 10; ++i) {
+        s.walls.cells[std::size_t(4 * 16 + i)] = scene::material_cell(0);  // z = 4: red rock
+        s.walls.cells[std::size_t(i * 16 + 4)] = scene::material_cell(1);  // x = 4: white
+        s.walls.cells[std::size_t(11 * 16 + i)] = scene::material_cell(2); // z = 11: lava
+    }
+    s.point_lights = {{{6.3f, 7.1f}, 1.0f, {1.0f, 1.0f, 1.0f}, 1.5f, 12.0f}};
+    s.gi.gather.bounces = 3;
+    for (int channel = 0; channel < 3; ++channel) {
+        const Agreement a = compare(s, settings(0.5f, 2), channel);
+        EXPECT_NEAR(a.ground_ratio, 1.0, 0.02) << "channel " << channel;
+        EXPECT_NEAR(a.face_ratio, 1.0, 0.03) << "channel " << channel;
+        EXPECT_LT(a.ground_rrmse, 0.05 + 2.0 * a.reference_se) << "channel " << channel;
+    }
 }

@@ -279,3 +279,45 @@ TEST(Solver, RejectsBadSettingsAndViews) {
 }
 
 } // namespace
+
+// Materials (seed 004): a white wall meeting red rock at a corner, lit by a white light,
+// receives red bounce light; with white rock it receives white.
+TEST(Solver, ColouredWallsTintTheirBounceLight) {
+    std::vector<std::string> rows(16, std::string(16, '.'));
+    for (int x = 2; x < 14; ++x) rows[4][std::size_t(x)] = '#';
+    for (int z = 5; z < 13; ++z) rows[std::size_t(z)][2] = '#';
+    auto white_face = [&](glm::vec3 rock) {
+        scene::Scene s = transport_test::scene(rows, {8, 8}, {16, 16});
+        s.materials = {{"white", {0.9f, 0.9f, 0.9f}, {}}, {"rock", rock, {}}};
+        for (int x = 2; x < 14; ++x) s.walls.cells[std::size_t(4 * 16 + x)] = scene::material_cell(0);
+        for (int z = 5; z < 13; ++z) s.walls.cells[std::size_t(z * 16 + 2)] = scene::material_cell(1);
+        s.point_lights = {{{8.5f, 9.5f}, 1.0f, {1.0f, 1.0f, 1.0f}, 2.0f, 12.0f}};
+        const TransportResult r = solve(s, transport_test::quick(0.5f, 1u << 15));
+        // The +Z face of wall tiles 3 and 4 (x 3..5 on z = 5): window texels x 12..19.
+        glm::dvec3 sum(0.0);
+        for (int x = 12; x < 20; ++x) sum += glm::dvec3(r.face_indirect.at(gi::face_pos_z, x, 4 * 4 + 3));
+        return sum;
+    };
+    const glm::dvec3 red = white_face({0.8f, 0.1f, 0.1f}), white = white_face({0.9f, 0.9f, 0.9f});
+    EXPECT_GT(red.r, 2.0 * red.g);
+    EXPECT_NEAR(red.g, red.b, 1e-9 * red.g);
+    EXPECT_EQ(white.r, white.g);
+    EXPECT_GT(white.g, red.g);
+}
+
+// A glowing wall in a sealed room of black walls: every photon it sends lands on another
+// wall once, so the faces receive exactly its power, emission x face length.
+TEST(Solver, AGlowingWallSendsItsPowerToTheOtherWalls) {
+    std::vector<std::string> rows(16, std::string(16, '#'));
+    for (int z = 5; z < 11; ++z) rows[std::size_t(z)].replace(5, 6, "......");
+    scene::Scene s = transport_test::scene(rows, {8, 8}, {16, 16});
+    s.materials = {{"lava", {0.0f, 0.0f, 0.0f}, {1.0f, 0.5f, 0.25f}}};
+    for (int x = 5; x < 11; ++x) s.walls.cells[std::size_t(4 * 16 + x)] = scene::material_cell(0);
+    const TransportResult r = solve(s, transport_test::quick(0.0f));
+    double red = 0.0, green = 0.0;
+    for (std::size_t i = 0; i < r.face_indirect.rgb.size(); i += 3) red += r.face_indirect.rgb[i], green += r.face_indirect.rgb[i + 1];
+    red /= double(r.face_indirect.layout.resolution), green /= double(r.face_indirect.layout.resolution);
+    EXPECT_NEAR(red, 6.0, 0.015 * 6.0) << "six faces of emission 1";
+    EXPECT_NEAR(green / red, 0.5, 1e-9);
+    EXPECT_EQ(face_power(r.face_direct), 0.0);
+}

@@ -89,7 +89,31 @@ FrameInputs gather_frame_inputs(const scene::Scene& s, const GiWindow& window) {
         offers.push_back({s.shadow_proxies[i].position, proxy_reach(s.shadow_proxies[i]), i});
     in.proxy_ids = gather_offers(offers, window, std::size_t(std::max(0, s.gi.max_shadow_proxies)));
     for (std::uint32_t i : in.proxy_ids) in.proxies.push_back(pack_proxy(s.shadow_proxies[i]));
+    for (const scene::Material& m : s.materials) in.materials.push_back(pack_material(m));
     return in;
+}
+
+GpuMaterial pack_material(const scene::Material& m) {
+    return {glm::vec4(m.albedo, 0.0f), glm::vec4(m.emission, 0.0f)};
+}
+
+GpuMaterial material_of(const FrameInputs& in, std::uint8_t cell) {
+    if (cell == 0) return {glm::vec4(0.0f), glm::vec4(0.0f)};
+    const std::size_t k = std::size_t(cell) - std::size_t(scene::first_material_cell);
+    if (cell >= scene::first_material_cell && k < in.materials.size()) return in.materials[k];
+    return {glm::vec4(glm::vec3(in.settings.wall_albedo), 0.0f), glm::vec4(0.0f)};
+}
+
+std::vector<GpuMaterial> material_table(const FrameInputs& in) {
+    std::vector<GpuMaterial> table(material_table_size);
+    for (int cell = 0; cell < material_table_size; ++cell) table[std::size_t(cell)] = material_of(in, std::uint8_t(cell));
+    return table;
+}
+
+bool has_emissive_materials(const FrameInputs& in) {
+    for (const GpuMaterial& m : in.materials)
+        if (m.emission.r > 0.0f || m.emission.g > 0.0f || m.emission.b > 0.0f) return true;
+    return false;
 }
 
 } // namespace lantern::gi

@@ -32,13 +32,16 @@ int blue_noise_at(const GatherFrame& f, int x, int y) {
     return int(blue_noise_ranks()[std::size_t(ny * blue_noise_size + nx)]);
 }
 
-// B = albedo x (direct + indirect) of face `face` at window texel t.
-glm::vec3 radiosity_at(const FrameInputs& in, const FaceTextures& direct, const Texture* faces, int face,
-                       glm::ivec2 t) {
+// B = albedo x (direct + indirect) + emission of face `face` at window texel t, by the
+// material of t's tile.
+glm::vec3 radiosity_at(const FrameInputs& in, const GatherFrame& f, const FaceTextures& direct, const Texture* faces,
+                       int face, glm::ivec2 t) {
     glm::vec3 e(0.0f);
     if (direct[std::size_t(face)]) e = glm::vec3(load4(*direct[std::size_t(face)], t.x, t.y));
     if (faces) e += glm::vec3(load4(*faces, t.x, face * in.window.height + t.y));
-    return in.settings.wall_albedo * e;
+    const glm::ivec2 tile = f.origin_tile + (f.offset + t) / f.resolution; // both non-negative
+    const GpuMaterial m = material_of(in, in.walls.cell(tile.x, tile.y));
+    return glm::vec3(m.albedo) * e + glm::vec3(m.emission);
 }
 
 // Fixed-point centre of window texel coordinate i (with offset) along one axis: exact for
@@ -174,7 +177,7 @@ Texture reference_gather_faces(const FrameInputs& in, const FaceTextures& direct
                     if (cosine <= 0) continue;
                     const GatherHit hit = gather_trace(in, f, p, cell, d);
                     if (hit.face < 0) continue;
-                    sum += radiosity_at(in, direct, previous, hit.face, hit.texel) * float(cosine);
+                    sum += radiosity_at(in, f, direct, previous, hit.face, hit.texel) * float(cosine);
                 }
                 // E = integral of (B / 2) cos over the half circle: (pi / rays) x sum (B / 2) cos.
                 const glm::vec3 e = sum * (pi / (2.0f * 4096.0f * float(rays)));
@@ -232,7 +235,7 @@ Texture reference_gather_ground(const FrameInputs& in, const FaceTextures& direc
             for (int k = 0; k < rays; ++k) {
                 const glm::ivec2 d = dirs[std::size_t(((k * 4096 + noise) / rays) & 4095)];
                 const GatherHit hit = gather_trace(in, f, p, cell, d);
-                if (hit.face >= 0) sum += radiosity_at(in, direct, &faces, hit.face, hit.texel);
+                if (hit.face >= 0) sum += radiosity_at(in, f, direct, &faces, hit.face, hit.texel);
             }
             // Fluence = integral of B / 2 over the circle: (2 pi / rays) x sum B / 2.
             store4(out, i, j, glm::vec4(sum * (pi / float(rays)), 1.0f));

@@ -369,6 +369,7 @@ InputKeys input_keys_of(const FrameInputs& in) {
     walls.add(in.walls.width).add(in.walls.height).add(in.walls.origin.x).add(in.walls.origin.y)
         .add(in.walls.phase.x).add(in.walls.phase.y);
     walls.add_bytes(in.walls.cells, std::size_t(in.walls.width) * std::size_t(in.walls.height));
+    walls.add_span(std::span(in.materials)); // what the walls reflect and emit
     k.walls = walls.value();
     k.lights = Hasher().add_span(std::span(in.point_lights)).add_span(std::span(in.emissive_lights)).value();
     k.proxies = Hasher().add_span(std::span(in.proxies)).value();

@@ -8,7 +8,6 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -34,9 +33,6 @@ struct Run {
     int x0, z, len; // tiles: [x0, x0 + len) x [z, z + 1] for a horizontal run
     bool vertical;  // then [x0, x0 + 1] x [z, z + len)
 };
-
-std::uint32_t bits(float f) { return std::bit_cast<std::uint32_t>(f); }
-float from_bits(std::uint32_t u) { return std::bit_cast<float>(u); }
 
 Box run_box(const Run& r, glm::vec2 light, float grow) {
     const glm::vec2 lo(float(r.x0), float(r.z));

@@ -37,6 +37,7 @@ constexpr int supported_version = 1;
 // World positions are floats, which hold whole tiles exactly only up to 2^24.
 constexpr int max_origin = 1 << 24;
 constexpr float tree_proxy_radius = 0.4f;
+constexpr int max_material_regions = 4096;
 constexpr float tree_proxy_max_length = 3.0f;
 
 constexpr std::array<EnumName<TreeMode>, 2> tree_modes{{
@@ -89,10 +90,25 @@ bool check_rows_size(Reader& reader, const json::Value& rows, std::size_t width,
     return true;
 }
 
-// One row string: '#' wall, '.' floor. A bad character is reported at its own column
-// (exact as long as the '#' and '.' before it are not spelled as \u escapes).
+// The cell value of each row character: '#' the default wall, '.' floor, and each
+// material's symbol its material's wall; -1 for the rest.
+using RowLegend = std::array<int, 256>;
+
+RowLegend row_legend(const std::vector<Material>& materials, const std::vector<char>& symbols) {
+    RowLegend legend;
+    legend.fill(-1);
+    legend[std::uint8_t('#')] = default_wall_cell;
+    legend[std::uint8_t('.')] = 0;
+    for (std::size_t k = 0; k < materials.size(); ++k)
+        if (symbols[k] != 0) legend[std::uint8_t(symbols[k])] = material_cell(int(k));
+    return legend;
+}
+
+// One row string: '#' wall, '.' floor, a material's symbol its wall. A bad character is
+// reported at its own column (exact as long as the characters before it are not spelled as
+// \u escapes).
 bool read_row(Reader& reader, const json::Value& row, const std::string& path, std::size_t width,
-              std::vector<std::uint8_t>& cells) {
+              const RowLegend& legend, std::vector<std::uint8_t>& cells) {
     if (!reader.expect(row, path, json::Type::string)) return false;
     const std::string& text = row.as_string();
     if (text.size() != width)
@@ -100,19 +116,21 @@ bool read_row(Reader& reader, const json::Value& row, const std::string& path, s
                            "row has " + std::to_string(text.size()) + " cells, row 0 has " +
                                std::to_string(width));
     for (std::size_t col = 0; col < text.size(); ++col) {
-        if (text[col] != '#' && text[col] != '.') {
+        const int cell = legend[std::uint8_t(text[col])];
+        if (cell < 0) {
             const json::Position at{row.position().line, row.position().column + 1 + int(col)};
             return reader.fail(at, path,
                                "unknown cell character " + reading::quote_char(text[col]) +
-                                   " (rows use '#' for wall and '.' for floor)");
+                                   " (rows use '#' for wall, '.' for floor and the symbols of "
+                                   "\"materials\")");
         }
-        cells.push_back(text[col] == '#' ? 1 : 0);
+        cells.push_back(std::uint8_t(cell));
     }
     return true;
 }
 
 // Fills the size and cells of `grid` (not its origin) from "rows".
-void read_rows(Reader& reader, const json::Value& rows, WallGrid& grid) {
+void read_rows(Reader& reader, const json::Value& rows, const RowLegend& legend, WallGrid& grid) {
     if (!reader.expect(rows, "world.rows", json::Type::array)) return;
     const json::Value::Array& items = rows.as_array();
     if (items.empty()) {
@@ -126,7 +144,7 @@ void read_rows(Reader& reader, const json::Value& rows, WallGrid& grid) {
     // follow the input's size, not what it claims.
     std::vector<std::uint8_t> cells;
     for (std::size_t row = 0; row < items.size(); ++row)
-        if (!read_row(reader, items[row], reading::index_path("world.rows", row), width, cells))
+        if (!read_row(reader, items[row], reading::index_path("world.rows", row), width, legend, cells))
             return;
     grid.width = int(width);
     grid.height = int(items.size());
@@ -144,7 +162,8 @@ void read_map_spec(Reader& reader, Fields& world, MapSpec& map) {
         world.fail("extra_floor_chars", *problem);
 }
 
-void read_world(Reader& reader, const json::Value& value, Scene& scene, MapSpec& map) {
+void read_world(Reader& reader, const json::Value& value, const RowLegend& legend, Scene& scene,
+                MapSpec& map) {
     Fields world(reader, value, "world",
                  {"map", "rows", "origin", "wall_height", "trees", "extra_floor_chars"});
     world.optional("origin", scene.walls.origin, IntRange{-max_origin, max_origin})
@@ -155,7 +174,7 @@ void read_world(Reader& reader, const json::Value& value, Scene& scene, MapSpec&
     } else if (source == "rows") {
         for (std::string_view key : {"trees", "extra_floor_chars"})
             if (world.find(key)) world.fail(key, "applies to \"map\" worlds only");
-        if (reader.ok()) read_rows(reader, *world.find("rows"), scene.walls);
+        if (reader.ok()) read_rows(reader, *world.find("rows"), legend, scene.walls);
     }
 }
 
@@ -245,6 +264,142 @@ void read_list(Reader& reader, const Fields& top, std::string_view key, ReadItem
     }
 }
 
+// "materials": names unique, of letters, digits and '_'; symbols unique, printable, not
+// '#', '.' or a space. `symbols` gets each material's symbol (0: none).
+void read_materials(Reader& reader, const Fields& top, std::vector<Material>& out,
+                    std::vector<char>& symbols) {
+    const json::Value* list = top.find("materials");
+    if (!list || !reader.expect(*list, "materials", json::Type::array)) return;
+    const json::Value::Array& items = list->as_array();
+    if (items.size() > std::size_t(max_materials)) {
+        reader.fail(list->position(), "materials",
+                    "has " + std::to_string(items.size()) + " materials, above the limit of " +
+                        std::to_string(max_materials));
+        return;
+    }
+    for (std::size_t i = 0; i < items.size() && reader.ok(); ++i) {
+        const std::string path = reading::index_path("materials", i);
+        Material m;
+        std::string symbol;
+        Fields fields(reader, items[i], path, {"name", "albedo", "emission", "symbol"});
+        fields.required("name", m.name)
+            .optional("albedo", m.albedo, between(0.0, 1.0))
+            .optional("emission", m.emission, at_least(0.0))
+            .optional("symbol", symbol);
+        if (!reader.ok()) return;
+        const bool word = !m.name.empty() && m.name.size() <= 64 &&
+                          std::all_of(m.name.begin(), m.name.end(), [](char c) {
+                              return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                                     (c >= '0' && c <= '9') || c == '_';
+                          });
+        if (!word) {
+            fields.fail("name", "must be 1 to 64 letters, digits or '_', got \"" +
+                                    reading::shorten(m.name) + "\"");
+            return;
+        }
+        for (const Material& earlier : out)
+            if (earlier.name == m.name) {
+                fields.fail("name", "material \"" + m.name + "\" is defined twice");
+                return;
+            }
+        char c = 0;
+        if (fields.find("symbol")) {
+            if (symbol.size() != 1 || symbol[0] <= ' ' || symbol[0] > '~' || symbol[0] == '#' ||
+                symbol[0] == '.') {
+                fields.fail("symbol", "must be one printable ASCII character other than '#', '.' "
+                                      "and space, got \"" + reading::shorten(symbol) + "\"");
+                return;
+            }
+            c = symbol[0];
+            for (std::size_t k = 0; k < out.size(); ++k)
+                if (symbols[k] == c) {
+                    fields.fail("symbol", "symbol " + reading::quote_char(c) + " is taken by material \"" +
+                                              out[k].name + "\"");
+                    return;
+                }
+        }
+        out.push_back(std::move(m));
+        symbols.push_back(c);
+    }
+}
+
+// "material_regions": which rectangle of tiles (inclusive world tiles) takes which material;
+// read before the map import, applied after it, in order, to the wall tiles inside.
+struct MaterialRegion {
+    glm::ivec2 min{0}, max{0};
+    std::uint8_t cell = default_wall_cell;
+};
+
+void read_material_regions(Reader& reader, const Fields& top, const std::vector<Material>& materials,
+                           std::vector<MaterialRegion>& out) {
+    const json::Value* list = top.find("material_regions");
+    if (!list || !reader.expect(*list, "material_regions", json::Type::array)) return;
+    if (list->as_array().size() > std::size_t(max_material_regions)) {
+        reader.fail(list->position(), "material_regions",
+                    "has " + std::to_string(list->as_array().size()) + " regions, above the limit of " +
+                        std::to_string(max_material_regions));
+        return;
+    }
+    for (std::size_t i = 0; i < list->as_array().size() && reader.ok(); ++i) {
+        const std::string path = reading::index_path("material_regions", i);
+        MaterialRegion region;
+        std::string name;
+        Fields fields(reader, list->as_array()[i], path, {"material", "min", "max"});
+        fields.required("material", name)
+            .required("min", region.min, IntRange{-max_origin, max_origin})
+            .required("max", region.max, IntRange{-max_origin, max_origin});
+        if (!reader.ok()) return;
+        if (region.max.x < region.min.x || region.max.y < region.min.y) {
+            fields.fail("max", "must not be below min in x or z");
+            return;
+        }
+        const auto it = std::find_if(materials.begin(), materials.end(),
+                                     [&](const Material& m) { return m.name == name; });
+        if (it == materials.end()) {
+            fields.fail("material", "unknown material \"" + reading::shorten(name) +
+                                        "\" (not in \"materials\")");
+            return;
+        }
+        region.cell = material_cell(int(it - materials.begin()));
+        out.push_back(region);
+    }
+}
+
+// Last region wins. Painted from the last region back, each row keeping a "next cell not yet
+// decided" link per cell (path-halving), so every cell is visited once however the regions
+// overlap: O(rows x regions + cells), never regions x area (hostile input).
+void apply_material_regions(const std::vector<MaterialRegion>& regions, WallGrid& grid) {
+    if (regions.empty() || grid.width <= 0) return;
+    std::vector<int> next(std::size_t(grid.width) + 1);
+    auto find = [&](int c) {
+        while (next[std::size_t(c)] != c) {
+            next[std::size_t(c)] = next[std::size_t(next[std::size_t(c)])];
+            c = next[std::size_t(c)];
+        }
+        return c;
+    };
+    for (int row = 0; row < grid.height; ++row) {
+        const std::int64_t z = std::int64_t(grid.origin.y) + row;
+        bool reset = false;
+        for (auto r = regions.rbegin(); r != regions.rend(); ++r) {
+            if (z < r->min.y || z > r->max.y) continue;
+            // In 64 bits: the region may reach far beyond the grid.
+            const std::int64_t c0 = std::max<std::int64_t>(0, std::int64_t(r->min.x) - grid.origin.x),
+                               c1 = std::min<std::int64_t>(grid.width - 1, std::int64_t(r->max.x) - grid.origin.x);
+            if (c0 > c1) continue;
+            if (!reset) {
+                for (int c = 0; c <= grid.width; ++c) next[std::size_t(c)] = c;
+                reset = true;
+            }
+            for (int c = find(int(c0)); c <= int(c1); c = find(c)) {
+                std::uint8_t& cell = grid.cells[std::size_t(row) * std::size_t(grid.width) + std::size_t(c)];
+                if (cell != 0) cell = r->cell;
+                next[std::size_t(c)] = c + 1; // decided
+            }
+        }
+    }
+}
+
 void read_version(Reader& reader, Fields& top) {
     int version = 0;
     top.required("lantern_scene", version, IntRange{});
@@ -255,13 +410,17 @@ void read_version(Reader& reader, Fields& top) {
 }
 
 // Everything but the map import, in a fixed order; the first problem is kept.
-void read_scene(Reader& reader, const json::Value& root, Scene& scene, MapSpec& map) {
+void read_scene(Reader& reader, const json::Value& root, Scene& scene, MapSpec& map,
+                std::vector<MaterialRegion>& regions) {
     Fields top(reader, root, "",
                {"lantern_scene", "world", "view", "camera", "gi", "point_lights", "emissive_lights",
-                "directional_lights", "shadow_proxies"});
+                "directional_lights", "shadow_proxies", "materials", "material_regions"});
     read_version(reader, top);
+    std::vector<char> symbols;
+    read_materials(reader, top, scene.materials, symbols);
+    read_material_regions(reader, top, scene.materials, regions);
     if (const json::Value* world = top.find_required("world"))
-        read_world(reader, *world, scene, map);
+        if (reader.ok()) read_world(reader, *world, row_legend(scene.materials, symbols), scene, map);
     read_view(reader, top, scene.view);
     if (const json::Value* gi = top.find("gi")) reading::read_gi_settings(reader, *gi, scene.gi);
     check_gi_window(reader, top, scene);
@@ -406,12 +565,14 @@ Result<Scene> parse_scene(std::string_view json_text, const std::string& file_na
     Scene scene;
     scene.source = file;
     MapSpec map;
+    std::vector<MaterialRegion> regions;
     Reader reader;
-    read_scene(reader, *root, scene, map);
+    read_scene(reader, *root, scene, map, regions);
     if (!reader.ok()) return file_error(file, reader.issue());
     if (!map.path.empty())
         if (auto imported = import_map(map, file, base_dir, scene); !imported)
             return imported.error();
+    apply_material_regions(regions, scene.walls);
     return scene;
 }
 

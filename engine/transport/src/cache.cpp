@@ -181,6 +181,11 @@ Result<std::uint64_t> cache_key(const scene::Scene& scene, const TransportSettin
     h.add_span(std::span<const std::uint8_t>(scene.walls.cells));
     h.add(scene.wall_height).add(scene.gi.light_softness).add(scene.gi.directional_angle_scale);
     hash_lights(h, scene);
+    if (!scene.materials.empty()) { // (keys of scenes without materials stay as they were)
+        h.add(scene.materials.size());
+        for (const scene::Material& m : scene.materials)
+            h.add(m.albedo.r).add(m.albedo.g).add(m.albedo.b).add(m.emission.r).add(m.emission.g).add(m.emission.b);
+    }
     return h.value();
 }
 

@@ -40,6 +40,17 @@ EmitterTable EmitterTable::build(const Problem& p) {
             for (int face = 0; face < 4; ++face) {
                 const FaceRef f{p.domain.min_tile + glm::ivec2(tx, tz), face};
                 if (!face_in_domain(p, f)) continue;
+                const gi::GpuMaterial& m = p.materials[p.inputs.walls.cell(f.tile.x, f.tile.y)];
+                const float reflects = std::max({m.albedo.r, m.albedo.g, m.albedo.b}),
+                            emits = std::max({m.emission.r, m.emission.g, m.emission.b});
+                auto add = [&](const Emitter& e) {
+                    t.emitters_.push_back(e);
+                    t.total_ += double(e.bound);
+                    t.cumulative_.push_back(t.total_);
+                };
+                if (emits > 0.0f)
+                    for (int k = 0; k < res; ++k) add({.face = f, .segment = k, .source = {}, .emission = true, .bound = emits});
+                if (reflects <= 0.0f) continue; // a black wall sends no light on
                 for (const SourceRef s : sources) {
                     if (source_face_bound(p.inputs, s, f, 0.0f, 1.0f) <= 0.0f)
                         continue; // whole face dark
@@ -47,9 +58,7 @@ EmitterTable EmitterTable::build(const Problem& p) {
                         const float bound = source_face_bound(p.inputs, s, f, float(k) / float(res),
                                                               float(k + 1) / float(res));
                         if (bound <= 0.0f) continue;
-                        t.emitters_.push_back({f, k, s, bound});
-                        t.total_ += double(bound);
-                        t.cumulative_.push_back(t.total_);
+                        add({.face = f, .segment = k, .source = s, .emission = false, .bound = reflects * bound});
                     }
                 }
             }

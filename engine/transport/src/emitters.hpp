@@ -11,17 +11,23 @@
 
 namespace lantern::transport {
 
+// A face segment that sends light out: reflecting one source's direct light (weighted by
+// its material's albedo), or its material's own emission.
 struct Emitter {
     FaceRef face;
     int segment = 0; // 0..resolution-1 along the face
     SourceRef source;
-    float bound = 0.0f; // source_face_bound over the segment
+    bool emission = false; // the material's emission (source unused)
+    // An upper bound of the brightest channel the segment sends out per unit length:
+    // max(albedo) x source_face_bound over the segment, or max(emission).
+    float bound = 0.0f;
 };
 
 class EmitterTable {
   public:
     // Exposed faces of the domain's wall tiles whose air side is inside the domain, split
-    // into `domain.resolution` segments, paired with every source that can light them.
+    // into `domain.resolution` segments, paired with every source that can light them (when
+    // their material reflects) and with their material's emission (when it emits).
     static EmitterTable build(const Problem& problem);
 
     bool empty() const { return emitters_.empty(); }

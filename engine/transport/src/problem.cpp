@@ -48,8 +48,7 @@ Domain make_domain(const gi::GiWindow& window, const gi::GiWindow& dw, const gi:
     for (int y = 0; y < d.height; ++y)
         for (int x = 0; x < d.width; ++x)
             d.wall[std::size_t(y) * std::size_t(d.width) + std::size_t(x)] =
-                walls.is_wall(d.min_tile.x + x / d.resolution, d.min_tile.y + y / d.resolution) ? 1
-                                                                                                : 0;
+                walls.cell(d.min_tile.x + x / d.resolution, d.min_tile.y + y / d.resolution);
     return d;
 }
 
@@ -73,6 +72,8 @@ Result<Problem> make_problem(const scene::Scene& scene, const TransportSettings&
     p.inputs.proxies = std::move(sources.proxies);
     p.inputs.proxy_ids = std::move(sources.proxy_ids);
     p.domain = make_domain(*window, dw, p.inputs.walls, settings.margin);
+    p.inputs.settings.wall_albedo = settings.albedo; // the default wall's
+    p.materials = gi::material_table(p.inputs);
     return p;
 }
 

@@ -181,14 +181,12 @@ void store_indirect(const BatchMoments& m, TransportResult& r) {
 void solve_indirect(const Problem& p, const TransportSettings& s, const SolveOptions& o,
                     TransportResult& r, std::int64_t start) {
     const EmitterTable emitters = EmitterTable::build(p);
-    if (emitters.empty() || s.albedo == 0.0f) { // no light leaves a wall: the indirect is exactly 0
+    if (emitters.empty()) { // no light leaves a wall: the indirect is exactly 0
         r.stats.converged = true;
         return;
     }
-    const double weight_bound =
-        double(s.albedo) * emitters.total_bound() / double(p.domain.resolution);
+    const double weight_bound = emitters.total_bound() / double(p.domain.resolution);
     TraceParams params;
-    params.albedo = double(s.albedo);
     params.max_bounces = s.max_bounces;
     params.roulette_weight = 0.25 * weight_bound;
     params.fixed_point =

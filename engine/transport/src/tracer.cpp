@@ -164,7 +164,8 @@ void trace_path(const Problem& p, const FaceLayout& layout, const TraceParams& p
         if (!fly(p.domain, ray, weight * scale, tally, hit)) return;
         deposit_face(p.domain, layout, tally, hit, weight * scale);
         if (reflections >= params.max_bounces) return;
-        weight *= params.albedo;
+        weight *= p.albedo(p.domain.cell(hit.wall)); // the hit tile's material
+        if (!(std::max(weight.x, std::max(weight.y, weight.z)) > 0.0)) return; // a black wall
         if (!survive(weight, params.roulette_weight, rng)) return;
         ray = Ray{hit.point, diffuse_direction(hit.face, rng), hit.air};
     }
@@ -190,9 +191,9 @@ void trace_photons(const Problem& p, const EmitterTable& emitters, const FaceLay
                    Tally& tally) {
     Rng rng(stream);
     const double res = double(p.domain.resolution);
-    // A photon of the segment (length 1/res) lit by one source carries albedo x E x length /
-    // pdf, pdf = bound / total: at most albedo x total / res (E <= bound).
-    const double emit_scale = params.albedo * emitters.total_bound() / res;
+    // A photon of the segment (length 1/res) carries (albedo x E, or the emission) x length /
+    // pdf, pdf = bound / total: at most total / res (each channel <= bound).
+    const double emit_scale = emitters.total_bound() / res;
     // Deposits are fluence (weight x track / texel area = weight x t_texels x res) and
     // irradiance (weight / segment length = weight x res).
     TraceParams scaled = params;
@@ -200,9 +201,12 @@ void trace_photons(const Problem& p, const EmitterTable& emitters, const FaceLay
     for (std::uint32_t n = 0; n < photons; ++n) {
         const Emitter& e = emitters.pick(rng.uniform());
         const double s = (double(e.segment) + rng.uniform()) / res;
-        const glm::vec3 irradiance =
-            source_face_irradiance(p.inputs, e.source, e.face, face_point(e.face, float(s)));
-        glm::dvec3 weight = glm::dvec3(irradiance) * (emit_scale / double(e.bound));
+        const std::uint8_t cell = p.inputs.walls.cell(e.face.tile.x, e.face.tile.y);
+        const glm::dvec3 sent =
+            e.emission ? p.emission(cell)
+                       : p.albedo(cell) * glm::dvec3(source_face_irradiance(p.inputs, e.source, e.face,
+                                                                            face_point(e.face, float(s))));
+        glm::dvec3 weight = sent * (emit_scale / double(e.bound));
         if (!survive(weight, params.roulette_weight, rng)) continue;
         trace_path(p, layout, scaled, launch(p.domain, e, s, rng), weight, rng, tally);
     }

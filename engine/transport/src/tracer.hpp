@@ -22,12 +22,12 @@ struct Tally {
 };
 
 struct TraceParams {
-    double albedo = 0.5;
     int max_bounces = 64;
     // Photons whose brightest channel falls below this play Russian roulette. Photon
-    // weights (light power per channel) never exceed albedo x EmitterTable::total_bound() /
-    // resolution: emission weights are bounded so (emitters.hpp) and roulette survivors are
-    // raised to roulette_weight, which must not exceed it either.
+    // weights (light power per channel) never exceed EmitterTable::total_bound() /
+    // resolution: emission weights are bounded so (emitters.hpp), reflection (albedo <= 1)
+    // only lowers them, and roulette survivors are raised to roulette_weight, which must not
+    // exceed it either.
     double roulette_weight = 0.25;
     double fixed_point = 1.0; // tally units per light unit of one deposit
 };

@@ -2,7 +2,7 @@
 //
 // Requires before inclusion: a block instance `pc` with ivec4 `grid` (width, height,
 // origin x, origin z) and ivec4 `grid_phase` (the GI passes' push constants, or the game's
-// frame uniforms), and `usamplerBuffer u_walls` (R8_UINT, 1 = wall).
+// frame uniforms), and `usamplerBuffer u_walls` (R8_UINT, 0 = air, else a wall and its material).
 #ifndef LANTERN_GI_WALLS_GLSL
 #define LANTERN_GI_WALLS_GLSL
 
@@ -13,13 +13,16 @@ bool in_grid(int x, int z) {
     int c = x - pc.grid.z, r = z - pc.grid.w;
     return c >= 0 && r >= 0 && c < pc.grid.x && r < pc.grid.y;
 }
-bool is_wall(int x, int z) {
-    if (!in_grid(x, z)) return false; // out of bounds is air
+// The tile's cell value: 0 air (also out of bounds), else a wall of that material
+// (lantern/scene/scene.hpp: 1 the default wall, 2 + k the scene's material k).
+uint wall_cell(int x, int z) {
+    if (!in_grid(x, z)) return 0u;
     int c = x - pc.grid.z + pc.grid_phase.x, r = z - pc.grid.w + pc.grid_phase.y;
     if (c >= pc.grid.x) c -= pc.grid.x;
     if (r >= pc.grid.y) r -= pc.grid.y;
-    return texelFetch(u_walls, r * pc.grid.x + c).r != 0u;
+    return texelFetch(u_walls, r * pc.grid.x + c).r;
 }
+bool is_wall(int x, int z) { return wall_cell(x, z) != 0u; }
 bool is_wall(ivec2 c) { return is_wall(c.x, c.y); }
 
 #endif

@@ -18,8 +18,7 @@ using vk::PassRecorder;
 
 // GatherParams of gi_gather.comp.glsl, field by field.
 struct GatherParams {
-    std::int32_t origin_x = 0, origin_z = 0, offset = 0, tiles = 0, rays = 0, noise = 0, window = 0;
-    float albedo = 0;
+    std::int32_t origin_x = 0, origin_z = 0, offset = 0, tiles = 0, rays = 0, noise = 0, window = 0, pad = 0;
 };
 
 // Without lit faces (gi.wall_lighting off, no face computed) there is nothing to reflect: the
@@ -50,7 +49,7 @@ Tex direct_face(int f) {
 }
 
 struct GatherState : vk::PassState {
-    UploadedArray directions, noise, faces, ground;
+    UploadedArray directions, noise, faces, ground, materials;
     int face_rows = 0, ground_rows = 0;
 };
 
@@ -116,6 +115,8 @@ void record_gather(PassRecorder& r) {
         s.ground_rows = pad_rows(ground_now);
         if (s.face_rows) upload_array(r, s.faces, std::span<const glm::uvec2>(faces_now), VK_FORMAT_R32G32_UINT, "gather face texels");
         if (s.ground_rows) upload_array(r, s.ground, std::span<const glm::uvec2>(ground_now), VK_FORMAT_R32G32_UINT, "gather ground texels");
+        const std::vector<GpuMaterial> table = material_table(in);
+        upload_array(r, s.materials, std::span<const GpuMaterial>(table), VK_FORMAT_R32G32B32A32_SFLOAT, "gather materials");
         r.cmd.barrier_transfer_to_compute();
     }
     int mode = 0;
@@ -152,7 +153,8 @@ void record_gather(PassRecorder& r) {
     writes.uniform_texel_buffer(6, r.view(previous ? source : out0))
         .uniform_texel_buffer(7, s.directions.view)
         .uniform_texel_buffer(8, s.noise.view)
-        .uniform_texel_buffer(13, mode == 0 ? s.faces.view : mode == 2 ? s.ground.view : s.noise.view);
+        .uniform_texel_buffer(13, mode == 0 ? s.faces.view : mode == 2 ? s.ground.view : s.noise.view)
+        .uniform_texel_buffer(14, s.materials.view);
     if (mode == 1) {
         for (int face = 0; face < 4; ++face) {
             const Tex t = Tex(int(Tex::wall_indirect_px) + face);
@@ -172,8 +174,7 @@ void record_gather(PassRecorder& r) {
               .tiles = f.tiles.x | (f.tiles.y << 16),
               .rays = mode == 0 ? in.settings.gather.face_rays : in.settings.gather.rays,
               .noise = f.noise_origin.x | (f.noise_origin.y << 8) | (g.scale << 16),
-              .window = in.window.width | (in.window.height << 16),
-              .albedo = in.settings.wall_albedo};
+              .window = in.window.width | (in.window.height << 16)};
     r.cmd.push_constants(p);
     r.dispatch(size.x, size.y);
     r.cmd.barrier_compute_to_compute();

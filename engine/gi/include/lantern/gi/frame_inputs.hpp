@@ -36,6 +36,14 @@ struct alignas(16) GpuShadowProxy {
 };
 static_assert(sizeof(GpuShadowProxy) == 48);
 
+// A wall material as the passes read it (scene::Material, docs/scenes.md "materials").
+struct alignas(16) GpuMaterial {
+    glm::vec4 albedo;   // rgb: reflectance; a: unused
+    glm::vec4 emission; // rgb: radiosity the faces leave unlit; a: unused
+};
+static_assert(sizeof(GpuMaterial) == 32);
+inline constexpr int material_table_size = 256; // one entry per wall cell value
+
 // The wall grid as the passes read it: a width x height rectangle of tiles starting at world
 // tile `origin`, stored toroidally so that a streaming world can move the rectangle and
 // rewrite only the chunks that changed. Tile (x, z) inside the rectangle is
@@ -61,6 +69,8 @@ struct WallView {
         return std::size_t(c) + std::size_t(r) * std::size_t(width);
     }
     bool is_wall(int x, int z) const { return contains(x, z) && cells[index(x, z)] != 0; }
+    // The cell's value (0 air, else its wall material; scene.hpp), 0 outside.
+    std::uint8_t cell(int x, int z) const { return contains(x, z) ? cells[index(x, z)] : std::uint8_t(0); }
 };
 
 // A byte range [begin, end) of a WallView's cells that changed.
@@ -79,7 +89,19 @@ struct FrameInputs {
     std::vector<GpuShadowProxy> proxies; // culled by reach, closest max_shadow_proxies kept
     // Scene indices of what was kept, in the order above (tests and the HUD use them).
     std::vector<std::uint32_t> point_light_ids, emissive_ids, proxy_ids;
+    // The scene's wall materials: cell value 2 + k is materials[k]. Cell value 1, and a value
+    // past the list, is the default wall: grey settings.wall_albedo, no emission. Empty: every
+    // wall is the default. Part of the walls' input key.
+    std::vector<GpuMaterial> materials;
 };
+
+// The material of a wall cell value (0, air: all zero).
+GpuMaterial material_of(const FrameInputs& in, std::uint8_t cell);
+// Every cell value's material, for the GPU (material_table_size entries).
+std::vector<GpuMaterial> material_table(const FrameInputs& in);
+// Whether any material the walls can hold emits light.
+bool has_emissive_materials(const FrameInputs& in);
+GpuMaterial pack_material(const scene::Material& m);
 
 // Distance from p to the window's world rectangle (0 inside).
 float distance_to_window(const GiWindow& window, glm::vec2 p);
@@ -133,4 +155,6 @@ template <>
 inline constexpr bool hash_as_bytes<gi::GpuDirectionalLight> = true;
 template <>
 inline constexpr bool hash_as_bytes<gi::GpuShadowProxy> = true;
+template <>
+inline constexpr bool hash_as_bytes<gi::GpuMaterial> = true;
 } // namespace lantern

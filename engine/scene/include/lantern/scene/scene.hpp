@@ -177,11 +177,29 @@ struct ShadowProxy {
     friend bool operator==(const ShadowProxy&, const ShadowProxy&) = default;
 };
 
+// A wall material (seed 004's meta pass; docs/scenes.md, "materials"): what a wall tile
+// reflects and emits where bounce light is physical (gi.method = gather, the transport
+// reference, the bake). A lit face leaves with radiosity B = albedo x E + emission.
+struct Material {
+    std::string name;
+    glm::vec3 albedo{0.5f};   // linear RGB reflectance, each in [0, 1]
+    glm::vec3 emission{0.0f}; // linear RGB radiosity the faces leave with unlit (light units)
+
+    friend bool operator==(const Material&, const Material&) = default;
+};
+
+// Wall cell values: 0 air, 1 the default wall (grey gi.wall_albedo, no emission), and
+// 2 + k the scene's material k. Every wall test is `cell != 0`.
+inline constexpr std::uint8_t default_wall_cell = 1;
+inline constexpr int first_material_cell = 2;
+inline constexpr int max_materials = 256 - first_material_cell; // 254
+inline constexpr std::uint8_t material_cell(int material) { return std::uint8_t(first_material_cell + material); }
+
 struct WallGrid {
     int width = 0;
     int height = 0;
     glm::ivec2 origin{0};            // world tile of cell (0, 0)
-    std::vector<std::uint8_t> cells; // row-major, cells[col + row * width], 1 = wall
+    std::vector<std::uint8_t> cells; // row-major, cells[col + row * width]: 0 air, else a wall (its material, above)
 
     bool is_wall_tile(int x, int z) const {
         int c = x - origin.x, r = z - origin.y;
@@ -233,6 +251,7 @@ struct Scene {
     std::vector<EmissiveLight> emissive_lights;
     std::vector<DirectionalLight> directional_lights;
     std::vector<ShadowProxy> shadow_proxies;
+    std::vector<Material> materials; // cell value 2 + k is materials[k]
 
     friend bool operator==(const Scene&, const Scene&) = default;
 };

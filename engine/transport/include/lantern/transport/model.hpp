@@ -2,8 +2,9 @@
 //
 // Transport is two-dimensional ("flatland"): light travels in the ground plane over the
 // wall grid. The ground is not a surface of the transport: it neither reflects nor absorbs,
-// it is where fluence is read. Wall tiles are opaque Lambertian reflectors of one grey
-// albedo; tiles outside the wall grid are air.
+// it is where fluence is read. Wall tiles are opaque Lambertian reflectors, each with its
+// material's RGB albedo and emission (scene::Material; the default wall is grey
+// TransportSettings::albedo and does not glow); tiles outside the wall grid are air.
 //
 // Quantities, in Lantern's light units:
 // - fluence: radiance integrated over all directions of the plane. Lantern's ground
@@ -22,7 +23,7 @@
 // so a face with normal n receives E = fluence x max(0, n . l): Lantern's face weighting,
 // evaluated at the point on the face instead of at the wall texel's centre.
 //
-// Reflection: a face with irradiance E leaves with radiosity B = albedo x E, as radiance
+// Reflection: a face with irradiance E leaves with radiosity B = albedo x E + emission, as radiance
 // B / 2 in every direction of its half-plane (in 2D the cosine integrates to 2 over the
 // half circle).
 //

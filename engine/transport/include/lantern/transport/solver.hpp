@@ -6,7 +6,7 @@
 // padding at `settings.resolution` texels per world unit:
 // - direct fluence at every air texel centre, exactly (no noise; model.hpp);
 // - indirect fluence averaged over every air texel, by light tracing: photons leave the
-//   directly lit wall faces (importance-sampled per face segment and source), reflect
+//   directly lit (or glowing) wall faces (importance-sampled per face segment and source), reflect
 //   diffusely off walls until absorbed (albedo, Russian roulette) or `max_bounces`
 //   reflections, and deposit power x track length / texel area in every texel they cross
 //   (the track-length estimator, unbiased for the texel average);
@@ -53,7 +53,7 @@ class JobSystem;
 namespace lantern::transport {
 
 struct TransportSettings {
-    float albedo = 0.5f;                 // grey wall reflectance, [0, 1]
+    float albedo = 0.5f;                 // the default wall's grey reflectance, [0, 1] (materials have their own)
     int max_bounces = 64;                // wall reflections per path, 1..1024 (1: single bounce)
     int resolution = 16;                 // output texels per world unit, 1..32 (as gi.resolution)
     int margin = 8;                      // tiles of transport domain around the window, 0..256
