@@ -761,3 +761,16 @@ TEST(SceneLoader, MoreMaterialsThanCellValuesAreRefused) {
     EXPECT_EQ(parse_scene_error(scene_with("\"materials\": [" + list + "]")),
               "t.json:2:14: materials: has 255 materials, above the limit of 254");
 }
+
+TEST(SceneLoader, LightModesAreRealtimeUnlessSaid) {
+    const Scene s = parse_scene_ok(scene_with(R"("point_lights": [{"position": [0, 0]}, {"position": [1, 0], "mode": "mixed"}],
+        "emissive_lights": [{"position": [0, 0], "mode": "baked"}],
+        "directional_lights": [{"direction": [0, -1, 0], "mode": "mixed"}])"));
+    ASSERT_EQ(s.point_lights.size(), 2u);
+    EXPECT_EQ(s.point_lights[0].mode, LightMode::realtime);
+    EXPECT_EQ(s.point_lights[1].mode, LightMode::mixed);
+    EXPECT_EQ(s.emissive_lights[0].mode, LightMode::baked);
+    EXPECT_EQ(s.directional_lights[0].mode, LightMode::mixed);
+    EXPECT_EQ(parse_scene_error(scene_with(R"("point_lights": [{"position": [0, 0], "mode": "static"}])")),
+              "t.json:2:47: point_lights[0].mode: expected one of \"realtime\", \"mixed\", \"baked\", got \"static\"");
+}

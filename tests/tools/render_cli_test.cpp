@@ -78,6 +78,7 @@ TEST(EveryExecutable, HelpVersionAndBadOptions) {
         {std::string(LANTERN_BENCH_EXE) + " seed-table", "lantern-bench seed-table"},
         {LANTERN_DEMO_EXE, "lantern-demo"},
         {LANTERN_GAME_EXE, "lantern"},
+        {LANTERN_BAKE_EXE, "lantern-bake"},
     };
     for (const auto& [exe, name] : programs) {
         const RunResult help = run_exe(exe, "--help");
@@ -268,4 +269,44 @@ TEST(RenderCli, VulkanAndCpuBackendsAgree) {
     auto c = run((dir.path() / "scene.json").string() + " --quiet --backend cpu --out " + dir.file("c.png"));
     ASSERT_EQ(c.status, 0) << c.output;
     EXPECT_EQ(lantern::test::read_file(dir.path() / "v.png"), lantern::test::read_file(dir.path() / "c.png"));
+}
+
+// lantern-bake end to end: a scene with a baked light bakes its chunks with a summary line,
+// a second run reuses them all, a damaged file is named and re-baked; bad input exits 2
+// with one line and writes nothing.
+TEST(BakeCli, BakesReusesAndRefusesBadInput) {
+    TempDir dir;
+    write(dir.path() / "s.json", R"({
+  "lantern_scene": 1,
+  "materials": [ { "name": "lava", "albedo": [0.3, 0.1, 0.05], "emission": [1.5, 0.5, 0.1], "symbol": "L" } ],
+  "world": { "rows": ["##########", "#........#", "#..#.....L", "#........#", "##########"], "origin": [30, 30] },
+  "view": { "center": [35.0, 32.5] },
+  "point_lights": [ { "position": [32.5, 32.5], "radius": 6.0, "mode": "baked" } ]
+})");
+    const std::string out = (dir.path() / "cache").string();
+    const RunResult first = run_exe(LANTERN_BAKE_EXE, (dir.path() / "s.json").string() + " --out " + out + " --resolution 2 --margin 2");
+    ASSERT_EQ(first.status, 0) << first.output;
+    // Tiles 30..39 x 30..34 touch chunks (0, 0) and (1, 0), (0, 1) and (1, 1).
+    EXPECT_NE(first.output.find("4 chunks: 4 baked, 0 reused"), std::string::npos) << first.output;
+    EXPECT_EQ(file_count(out), 4u);
+    const RunResult second = run_exe(LANTERN_BAKE_EXE, (dir.path() / "s.json").string() + " --out " + out + " --resolution 2 --margin 2");
+    ASSERT_EQ(second.status, 0) << second.output;
+    EXPECT_NE(second.output.find("4 chunks: 0 baked, 4 reused"), std::string::npos) << second.output;
+    write(fs::path(out) / "chunk_0_0.lbk", "not a bake");
+    const RunResult third = run_exe(LANTERN_BAKE_EXE, (dir.path() / "s.json").string() + " --out " + out + " --resolution 2 --margin 2");
+    ASSERT_EQ(third.status, 0) << third.output;
+    EXPECT_NE(third.output.find("chunk_0_0.lbk: truncated (10 bytes); baking it again"), std::string::npos) << third.output;
+    EXPECT_NE(third.output.find("1 baked, 3 reused"), std::string::npos) << third.output;
+    const std::vector<std::pair<std::string, std::string>> bad = {
+        {"--out x", "lantern-bake: WORLD is required (see --help)\n"},
+        {(dir.path() / "s.json").string(), "lantern-bake: --out DIR is required (see --help)\n"},
+        {"a.json --out x --shard 4/4", "lantern-bake: --shard: expected I/N with 0 <= I < N (e.g. 0/4), got '4/4' (see --help)\n"},
+        {(dir.path() / "none.json").string() + " --out x", (dir.path() / "none.json").string() + ": cannot open: No such file or directory\n"},
+    };
+    for (const auto& [args, expect] : bad) {
+        const RunResult r = run_exe(LANTERN_BAKE_EXE, args);
+        EXPECT_EQ(r.status, 2) << args;
+        EXPECT_EQ(r.output, expect) << args;
+    }
+    EXPECT_FALSE(fs::exists("x")) << "bad input writes nothing";
 }

@@ -44,6 +44,11 @@ constexpr std::array<EnumName<TreeMode>, 2> tree_modes{{
     {"wall", TreeMode::wall},
     {"proxy", TreeMode::proxy},
 }};
+constexpr std::array<EnumName<LightMode>, 3> light_modes{{
+    {"realtime", LightMode::realtime},
+    {"mixed", LightMode::mixed},
+    {"baked", LightMode::baked},
+}};
 constexpr std::array<EnumName<ProxyShape>, 2> proxy_shapes{{
     {"box", ProxyShape::box},
     {"circle", ProxyShape::circle},
@@ -499,34 +504,37 @@ void apply_temperature(Fields& fields, glm::vec3& color) {
 
 void read_point_light(Reader& reader, const json::Value& value, const std::string& path,
                       PointLight& light) {
-    Fields fields(reader, value, path, {"position", "height", "color", "temperature", "intensity", "radius"});
+    Fields fields(reader, value, path, {"position", "height", "color", "temperature", "intensity", "radius", "mode"});
     fields.required("position", light.position, world_coordinate)
         .optional("height", light.height, at_least(0.0))
         .optional("color", light.color, at_least(0.0))
         .optional("intensity", light.intensity, at_least(0.0))
-        .optional("radius", light.radius, greater_than(0.0));
+        .optional("radius", light.radius, greater_than(0.0))
+        .optional("mode", light.mode, light_modes);
     apply_temperature(fields, light.color);
 }
 
 void read_emissive_light(Reader& reader, const json::Value& value, const std::string& path,
                          EmissiveLight& light) {
-    Fields fields(reader, value, path, {"position", "color", "temperature", "intensity", "radius"});
+    Fields fields(reader, value, path, {"position", "color", "temperature", "intensity", "radius", "mode"});
     fields.required("position", light.position, world_coordinate)
         .optional("color", light.color, at_least(0.0))
         .optional("intensity", light.intensity, at_least(0.0))
-        .optional("radius", light.radius, greater_than(0.0));
+        .optional("radius", light.radius, greater_than(0.0))
+        .optional("mode", light.mode, light_modes);
     apply_temperature(fields, light.color);
 }
 
 void read_directional_light(Reader& reader, const json::Value& value, const std::string& path,
                             DirectionalLight& light) {
     Fields fields(reader, value, path,
-                  {"direction", "color", "temperature", "intensity", "base_shadow_distance", "bounce_intensity"});
+                  {"direction", "color", "temperature", "intensity", "base_shadow_distance", "bounce_intensity", "mode"});
     fields.required("direction", light.direction, any_number)
         .optional("color", light.color, at_least(0.0))
         .optional("intensity", light.intensity, at_least(0.0))
         .optional("base_shadow_distance", light.base_shadow_distance, at_least(0.0))
-        .optional("bounce_intensity", light.bounce_intensity, at_least(0.0));
+        .optional("bounce_intensity", light.bounce_intensity, at_least(0.0))
+        .optional("mode", light.mode, light_modes);
     apply_temperature(fields, light.color);
     if (!fields.ok()) return;
     // In double: the squares of tiny float components would underflow to 0 in float.

@@ -129,12 +129,19 @@ struct GiSettings {
     friend bool operator==(const GiSettings&, const GiSettings&) = default;
 };
 
+// How a light reaches the GI (seed 004's light modes): live every frame, direct light live
+// and its bounce light baked (mixed), or both baked (lantern-bake; docs/baked.md). The bake
+// holds mixed and baked lights; until a world's bake is loaded at run time every light
+// is lit live, whatever its mode.
+enum class LightMode : std::uint8_t { realtime, mixed, baked };
+
 struct PointLight {
     glm::vec2 position{0.0f}; // world x, z
     float height = 1.0f;      // above the ground (used by later height-aware passes)
     glm::vec3 color{1.0f};    // linear RGB
     float intensity = 1.0f;   // multiplies color
     float radius = 8.0f;      // world units, > 0
+    LightMode mode = LightMode::realtime;
 
     friend bool operator==(const PointLight&, const PointLight&) = default;
 };
@@ -144,6 +151,7 @@ struct EmissiveLight {
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
     float radius = 4.0f;
+    LightMode mode = LightMode::realtime;
 
     friend bool operator==(const EmissiveLight&, const EmissiveLight&) = default;
 };
@@ -154,6 +162,7 @@ struct DirectionalLight {
     float intensity = 1.0f;
     float base_shadow_distance = 4.0f; // world units, scaled by 1 / max(|direction.y|, 0.02)
     float bounce_intensity = 0.5f;
+    LightMode mode = LightMode::realtime;
 
     friend bool operator==(const DirectionalLight&, const DirectionalLight&) = default;
 };

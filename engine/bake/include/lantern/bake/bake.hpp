@@ -1,0 +1,136 @@
+// Baked GI (seed 004's light maps, adapted to the grid; docs/baked.md): the light of a
+// world's static lights, solved once per streaming chunk by the converged physical method
+// (gi.method = gather, lantern/gi/gather.hpp) and kept in cache files keyed by everything
+// the light depends on.
+//
+// What a chunk's bake holds, at BakeSettings::resolution texels a tile over its 32 x 32
+// tiles (the game's streaming chunk):
+//   ground       baked direct light (lights of mode `baked`) + baked indirect light (the
+//                bounce light of `mixed` and `baked` lights and the glow of emissive
+//                materials), fluence at texel centres, 0 in walls;
+//   faces[f]     the same on wall face f (+X, -X, +Z, -Z) at wall texels, as Lantern's wall
+//                textures hold it.
+// Light from outside the chunk is included: lights in reach of it, and walls within
+// BakeSettings::margin tiles that reflect light into it (the gather's margin).
+//
+// Determinism: a chunk's bake is a function of its inputs alone (the gather's rays are
+// fixed in the world, no random numbers, one thread per chunk), so any split of the
+// chunks over threads, processes or machines (bake_world's shards) gives the same bytes.
+//
+// Cache files: <dir>/chunk_<x>_<z>.lbk, written atomically; a file is used only when its
+// size, format version and key all check out (load_chunk says why not otherwise).
+//
+// Threads: every function is reentrant; bake_world runs chunks on a JobSystem's workers
+// and must be called from its main thread.
+#pragma once
+
+#include "lantern/core/result.hpp"
+#include "lantern/scene/scene.hpp"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace lantern::jobs {
+class JobSystem;
+}
+
+namespace lantern::bake {
+
+inline constexpr int chunk_tiles = 32;               // the game's streaming chunk
+inline constexpr std::uint32_t bake_code_version = 1; // raise when the bake's output changes
+
+struct BakeSettings {
+    int resolution = 4; // texels per tile, 1..16
+    int margin = 32;    // tiles around the chunk whose walls reflect or send light into it, 0..64
+    int rays = 256;      // gather rays per ground texel, 1..1024 (the live default is 32)
+    int face_rays = 128; // gather rays per face texel, 1..1024
+
+    friend bool operator==(const BakeSettings&, const BakeSettings&) = default;
+};
+// Errors read "bake.<field>: <what is wrong>" (exit status 2).
+Result<void> validate_settings(const BakeSettings& settings);
+
+// Chunk (x, z) covers the tiles [32 x, 32 x + 32) x [32 z, 32 z + 32).
+struct ChunkId {
+    int x = 0, z = 0;
+    friend bool operator==(const ChunkId&, const ChunkId&) = default;
+};
+
+// The chunks a scene's wall grid touches, row by row (z, then x).
+std::vector<ChunkId> scene_chunks(const scene::Scene& scene);
+// Shard `shard` of `shards` (0 <= shard < shards): every shards-th chunk of the list,
+// starting at index shard, so the shards partition the list whatever its order of baking.
+std::vector<ChunkId> shard_of(const std::vector<ChunkId>& chunks, int shard, int shards);
+
+struct ChunkBake {
+    ChunkId id;
+    std::uint64_t key = 0;
+    int resolution = 0;
+    // No baked light reaches the chunk: no textures (ground and faces empty, all zero).
+    bool empty = true;
+    // RGB per texel, row-major, (32 x resolution)^2 texels each.
+    std::vector<float> ground;
+    std::array<std::vector<float>, 4> faces;
+
+    int side() const { return chunk_tiles * resolution; }
+    friend bool operator==(const ChunkBake&, const ChunkBake&) = default;
+};
+
+// Hash of everything the chunk's bake depends on: the solver (name, code version, its
+// settings and the scene's gi settings), the chunk, the walls and materials within reach,
+// and the mixed and baked lights and shadow proxies that reach it.
+std::uint64_t chunk_key(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings);
+// Solves the chunk (one thread; about a second at the defaults).
+ChunkBake bake_chunk(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings);
+
+// ---- cache files
+
+std::string chunk_file_name(ChunkId chunk); // "chunk_<x>_<z>.lbk"
+std::vector<std::byte> encode_chunk(const ChunkBake& bake);
+// Errors name what is wrong: "truncated", "not a Lantern bake file", "format version N",
+// "sizes do not match" ... (never trusts a size it read before checking it against the bytes).
+Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes);
+// The chunk's cache file in `dir` when it exists, decodes and holds `key`; otherwise
+// nullopt and, in `why`, the reason ("missing", "stale: made for other inputs", a decode
+// error).
+std::optional<ChunkBake> load_chunk(const std::string& dir, ChunkId chunk, std::uint64_t key,
+                                    std::string* why = nullptr);
+// Writes the cache file atomically (a bake killed midway leaves the previous file).
+Result<void> save_chunk(const std::string& dir, const ChunkBake& bake);
+
+// ---- a whole world
+
+struct BakeProgress {
+    int done = 0, total = 0; // chunks
+    int baked = 0, reused = 0;
+    double seconds = 0.0;
+};
+
+struct BakeOptions {
+    jobs::JobSystem* jobs = nullptr; // chunks in parallel when set
+    int shard = 0, shards = 1;       // bake only shard_of(scene_chunks(scene), shard, shards)
+    bool force = false;              // bake even where a valid cache exists
+    // Called on the calling thread as chunks finish (progress bars).
+    std::function<void(const BakeProgress&)> progress;
+    // Called on the calling thread for each cache file found unusable (and re-baked).
+    std::function<void(const std::string& message)> warn;
+};
+
+struct BakeReport {
+    int chunks = 0; // in this shard
+    int baked = 0, reused = 0;
+    int empty = 0; // chunks no baked light reaches (their files hold no textures)
+    double seconds = 0.0;
+};
+
+// Bakes the world's chunks (of this shard) into `dir`, reusing every valid cache file.
+// Errors (exit status 2): invalid settings or shard, a folder that cannot be written.
+Result<BakeReport> bake_world(const scene::Scene& scene, const std::string& dir, const BakeSettings& settings,
+                              const BakeOptions& options = {});
+
+} // namespace lantern::bake

@@ -1,0 +1,254 @@
+// One chunk's bake and its key (bake.hpp).
+#include "lantern/bake/bake.hpp"
+
+#include "lantern/core/assert.hpp"
+#include "lantern/core/hash.hpp"
+#include "lantern/gi/frame_inputs.hpp"
+#include "lantern/gi/pass_table.hpp"
+#include "lantern/gi/passes.hpp"
+#include "lantern/gi/reference.hpp"
+#include "lantern/gi/window.hpp"
+#include "lantern/scene/loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lantern::bake {
+namespace {
+
+using scene::LightMode;
+
+int floor_div(int a, int b) { // b > 0
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+// The scene's gi settings as the bake runs them: the gather method at the bake's
+// resolution and margin, every face, no blur (the cache holds the solve itself).
+scene::GiSettings bake_gi(const scene::Scene& s, const BakeSettings& b) {
+    scene::GiSettings gi = s.gi;
+    gi.method = scene::GiMethod::gather;
+    gi.resolution = b.resolution;
+    gi.padding = 1.0f;
+    gi.window_snap = scene::WindowSnap::tile;
+    gi.gather.margin = b.margin;
+    gi.gather.rays = b.rays;
+    gi.gather.face_rays = b.face_rays;
+    // The live method's bounces over its frames, in one frame: the ground is gathered once.
+    gi.gather.bounces = std::min(64, gi.gather.bounces * gi.gather.frames);
+    gi.gather.frames = 1;
+    gi.gather.scale = scene::HeatScale::full;
+    gi.wall_lighting = true;
+    gi.wall_faces = {};
+    gi.blur = false;
+    gi.max_lights = std::max(gi.max_lights, 1 << 20); // the bake is not a frame: no cap
+    gi.max_shadow_proxies = std::max(gi.max_shadow_proxies, 1 << 20);
+    return gi;
+}
+
+scene::OrthoView chunk_view(ChunkId c) {
+    const float half = float(chunk_tiles) / 2.0f;
+    return {glm::vec2(float(c.x * chunk_tiles) + half, float(c.z * chunk_tiles) + half),
+            glm::vec2(float(chunk_tiles))};
+}
+
+// Which lights a solve sees.
+enum class Lights { bounce, direct }; // bounce: mixed and baked; direct: baked only
+
+bool keeps(LightMode mode, Lights which) {
+    return which == Lights::bounce ? mode != LightMode::realtime : mode == LightMode::baked;
+}
+
+// The scene without its walls (the solve views the caller's), with the lights `which`
+// keeps and the bake's gi settings.
+scene::Scene lights_of(const scene::Scene& s, const BakeSettings& b, Lights which) {
+    scene::Scene out;
+    out.wall_height = s.wall_height;
+    out.gi = bake_gi(s, b);
+    out.view = s.view;
+    for (const auto& l : s.point_lights)
+        if (keeps(l.mode, which)) out.point_lights.push_back(l);
+    for (const auto& l : s.emissive_lights)
+        if (keeps(l.mode, which)) out.emissive_lights.push_back(l);
+    for (const auto& l : s.directional_lights)
+        if (keeps(l.mode, which)) out.directional_lights.push_back(l);
+    out.shadow_proxies = s.shadow_proxies;
+    out.materials = s.materials;
+    return out;
+}
+
+struct ChunkProblem {
+    gi::GiWindow window;
+    glm::ivec2 offset{0};  // window texel of the chunk's texel (0, 0)
+    gi::FrameInputs bounce; // mixed and baked lights, the glow of materials
+    gi::FrameInputs direct; // baked lights
+};
+
+gi::FrameInputs inputs_for(const scene::Scene& s, const BakeSettings& b, Lights which, const gi::GiWindow& w) {
+    gi::FrameInputs in = gi::gather_frame_inputs(lights_of(s, b, which), w);
+    in.walls = gi::WallView::of(s.walls);
+    return in;
+}
+
+ChunkProblem make_problem(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
+    ChunkProblem p;
+    const scene::GiSettings gi = bake_gi(s, b);
+    std::optional<gi::GiWindow> w = gi::compute_window(chunk_view(c), gi);
+    LANTERN_ASSERT(w.has_value(), "a chunk's window is always valid");
+    p.window = *w;
+    p.offset = {int(std::lround((float(c.x * chunk_tiles) - w->view.min_x) * float(b.resolution))),
+                int(std::lround((float(c.z * chunk_tiles) - w->view.min_z) * float(b.resolution)))};
+    p.bounce = inputs_for(s, b, Lights::bounce, p.window);
+    p.direct = inputs_for(s, b, Lights::direct, p.window);
+    return p;
+}
+
+// Whether a glowing wall lies in the solve's window (materials elsewhere send it nothing).
+bool glows_in(const gi::FrameInputs& in) {
+    if (!gi::has_emissive_materials(in)) return false;
+    const gi::GiWindow& w = in.window;
+    const int x0 = int(std::floor(w.view.min_x)), z0 = int(std::floor(w.view.min_z));
+    const int x1 = int(std::ceil(w.view.min_x + w.view.width)), z1 = int(std::ceil(w.view.min_z + w.view.height));
+    for (int z = z0; z < z1; ++z)
+        for (int x = x0; x < x1; ++x) {
+            const std::uint8_t cell = in.walls.cell(x, z);
+            if (cell == 0) continue;
+            const glm::vec4 e = gi::material_of(in, cell).emission;
+            if (e.r > 0.0f || e.g > 0.0f || e.b > 0.0f) return true;
+        }
+    return false;
+}
+
+bool has_light(const gi::FrameInputs& in) {
+    return !in.point_lights.empty() || !in.emissive_lights.empty() || !in.directional_lights.empty();
+}
+
+// How far beyond the window the walls can change its light: the longest light radius and
+// sun shadow reach, plus a wall height for the suns' tall walls.
+int wall_reach(const gi::FrameInputs& in) {
+    float reach = 0.0f;
+    for (const auto& l : in.point_lights) reach = std::max(reach, l.position_radius.z);
+    for (const auto& l : in.directional_lights)
+        reach = std::max(reach, l.direction_base.w * l.color_multiplier.w + in.wall_height);
+    return int(std::ceil(std::min(reach, float(1 << 20)))) + 1;
+}
+
+void hash_walls(Hasher& h, const scene::WallGrid& g, glm::ivec2 lo, glm::ivec2 hi) {
+    const int c0 = std::max(lo.x - g.origin.x, 0), c1 = std::min(hi.x - g.origin.x, g.width - 1);
+    const int r0 = std::max(lo.y - g.origin.y, 0), r1 = std::min(hi.y - g.origin.y, g.height - 1);
+    h.add(c0 + g.origin.x).add(c1 + g.origin.x).add(r0 + g.origin.y).add(r1 + g.origin.y);
+    for (int r = r0; r <= r1 && c0 <= c1; ++r)
+        h.add_bytes(&g.cells[std::size_t(r) * std::size_t(g.width) + std::size_t(c0)], std::size_t(c1 - c0 + 1));
+}
+
+void hash_inputs(Hasher& h, const gi::FrameInputs& in) {
+    h.add(gi::hash_window(in.window))
+        .add_span(std::span(in.point_lights))
+        .add_span(std::span(in.emissive_lights))
+        .add_span(std::span(in.directional_lights))
+        .add_span(std::span(in.proxies))
+        .add_span(std::span(in.materials));
+}
+
+// Copies the chunk's texels of a window texture (rgb) out.
+std::vector<float> crop(const gi::Texture* t, const ChunkProblem& p, int side) {
+    std::vector<float> out(std::size_t(side) * std::size_t(side) * 3, 0.0f);
+    if (!t) return out;
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            const float* v = t->at(p.offset.x + x, p.offset.y + y);
+            std::copy(v, v + 3, out.begin() + (std::ptrdiff_t(y) * side + x) * 3);
+        }
+    return out;
+}
+
+void add(std::vector<float>& to, const std::vector<float>& from) {
+    for (std::size_t i = 0; i < to.size(); ++i) to[i] += from[i];
+}
+
+} // namespace
+
+Result<void> validate_settings(const BakeSettings& s) {
+    if (s.resolution < 1 || s.resolution > 16)
+        return make_error("bake.resolution: must be an integer in [1, 16], got " + std::to_string(s.resolution));
+    if (s.margin < 0 || s.margin > 64)
+        return make_error("bake.margin: must be an integer in [0, 64], got " + std::to_string(s.margin));
+    if (s.rays < 1 || s.rays > 1024)
+        return make_error("bake.rays: must be an integer in [1, 1024], got " + std::to_string(s.rays));
+    if (s.face_rays < 1 || s.face_rays > 1024)
+        return make_error("bake.face_rays: must be an integer in [1, 1024], got " + std::to_string(s.face_rays));
+    return {};
+}
+
+std::vector<ChunkId> scene_chunks(const scene::Scene& s) {
+    std::vector<ChunkId> out;
+    if (s.walls.width <= 0 || s.walls.height <= 0) return out;
+    const int x0 = floor_div(s.walls.origin.x, chunk_tiles), x1 = floor_div(s.walls.origin.x + s.walls.width - 1, chunk_tiles);
+    const int z0 = floor_div(s.walls.origin.y, chunk_tiles), z1 = floor_div(s.walls.origin.y + s.walls.height - 1, chunk_tiles);
+    for (int z = z0; z <= z1; ++z)
+        for (int x = x0; x <= x1; ++x) out.push_back({x, z});
+    return out;
+}
+
+std::vector<ChunkId> shard_of(const std::vector<ChunkId>& chunks, int shard, int shards) {
+    std::vector<ChunkId> out;
+    for (std::size_t i = std::size_t(shard); i < chunks.size(); i += std::size_t(shards)) out.push_back(chunks[i]);
+    return out;
+}
+
+std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
+    const ChunkProblem p = make_problem(s, c, b);
+    Hasher h;
+    const char solver[] = "lantern-bake/gather";
+    h.add_bytes(solver, sizeof(solver)).add(bake_code_version).add(b.resolution).add(b.margin).add(b.rays).add(b.face_rays);
+    h.add(c.x).add(c.z);
+    for (double v : scene::gi_setting_values(bake_gi(s, b))) h.add(v);
+    h.add(s.wall_height);
+    hash_inputs(h, p.bounce);
+    hash_inputs(h, p.direct);
+    // The walls the light can meet: the window and every light's reach around it.
+    const int reach = std::max(wall_reach(p.bounce), wall_reach(p.direct));
+    const glm::ivec2 lo(int(std::floor(p.window.view.min_x)), int(std::floor(p.window.view.min_z)));
+    const glm::ivec2 hi(int(std::ceil(p.window.view.min_x + p.window.view.width)),
+                        int(std::ceil(p.window.view.min_z + p.window.view.height)));
+    hash_walls(h, s.walls, lo - reach, hi + reach);
+    return h.value();
+}
+
+ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
+    ChunkBake out;
+    out.id = c;
+    out.key = chunk_key(s, c, b);
+    out.resolution = b.resolution;
+    const ChunkProblem p = make_problem(s, c, b);
+    const bool bounce = has_light(p.bounce) || glows_in(p.bounce);
+    const bool direct = has_light(p.direct);
+    if (!bounce && !direct) return out; // no baked light reaches the chunk
+    out.empty = false;
+    const int side = out.side();
+    // Bounce light: the gather converged (the live method's frames x bounces, in one frame).
+    gi::ReferenceStore store;
+    if (bounce) {
+        gi::Convergence convergence;
+        for (int f = 0; f < p.bounce.settings.gather.frames; ++f) {
+            gi::PassPlan plan = gi::plan_passes(p.bounce, false);
+            gi::derive_keys(p.bounce, plan, gi::input_keys_of(p.bounce), &convergence);
+            gi::execute_reference(p.bounce, plan, plan.run, {}, store);
+            convergence.advance(plan.run);
+        }
+    }
+    out.ground = crop(store.find(gi::Tex::indirect), p, side);
+    for (int f = 0; f < 4; ++f)
+        out.faces[std::size_t(f)] = crop(store.find(gi::Tex(int(gi::Tex::wall_indirect_px) + f)), p, side);
+    // Direct light of the baked lights, exactly as the live direct passes compute it.
+    if (direct) {
+        gi::DirectTextures d = gi::reference_direct(p.direct);
+        gi::reference_directional(p.direct, d);
+        add(out.ground, crop(&d.direct, p, side));
+        for (int f = 0; f < 4; ++f)
+            if (d.wall_direct[std::size_t(f)].width > 0)
+                add(out.faces[std::size_t(f)], crop(&d.wall_direct[std::size_t(f)], p, side));
+    }
+    return out;
+}
+
+} // namespace lantern::bake

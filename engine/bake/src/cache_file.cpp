@@ -1,0 +1,142 @@
+// Chunk cache files (bake.hpp, docs/baked.md "Cache files"). Layout, little-endian:
+//   char[8]  magic "LGIBAKE\0"
+//   u32      format version (bake_code_version)
+//   u32      flags: 1 = holds textures (else an empty chunk: no payload)
+//   u64      key (chunk_key)
+//   i32 x 3  chunk x, chunk z, resolution (texels per tile)
+//   u32      reserved, 0
+//   u64      payload bytes
+//   u64      hash of the payload
+//   payload  ground, then faces +X, -X, +Z, -Z: (32 x resolution)^2 texels x RGB, IEEE half
+#include "lantern/bake/bake.hpp"
+
+#include "lantern/core/file.hpp"
+#include "lantern/core/hash.hpp"
+
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+namespace lantern::bake {
+namespace {
+
+constexpr char magic[8] = {'L', 'G', 'I', 'B', 'A', 'K', 'E', '\0'};
+constexpr std::size_t header_bytes = 8 + 4 + 4 + 8 + 4 * 3 + 4 + 8 + 8;
+constexpr int texture_count = 5;
+
+template <typename T>
+void put(std::vector<std::byte>& out, T v) {
+    const auto* p = reinterpret_cast<const std::byte*>(&v);
+    out.insert(out.end(), p, p + sizeof(T));
+}
+
+template <typename T>
+T get(const std::uint8_t* p) {
+    T v;
+    std::memcpy(&v, p, sizeof(T));
+    return v;
+}
+
+std::size_t payload_bytes(int resolution) {
+    const std::size_t side = std::size_t(chunk_tiles) * std::size_t(resolution);
+    return side * side * 3 * sizeof(std::uint16_t) * texture_count;
+}
+
+} // namespace
+
+std::string chunk_file_name(ChunkId c) {
+    return "chunk_" + std::to_string(c.x) + "_" + std::to_string(c.z) + ".lbk";
+}
+
+std::vector<std::byte> encode_chunk(const ChunkBake& b) {
+    std::vector<std::byte> payload;
+    if (!b.empty) {
+        payload.reserve(payload_bytes(b.resolution));
+        auto halves = [&](const std::vector<float>& v) {
+            // Above half's range (65504) a texel is clamped: light that bright is white anyway.
+            for (float f : v) put(payload, std::uint16_t(glm::packHalf1x16(std::min(f, 65504.0f))));
+        };
+        halves(b.ground);
+        for (const auto& f : b.faces) halves(f);
+    }
+    std::vector<std::byte> out;
+    out.reserve(header_bytes + payload.size());
+    out.insert(out.end(), reinterpret_cast<const std::byte*>(magic), reinterpret_cast<const std::byte*>(magic) + 8);
+    put(out, bake_code_version);
+    put(out, std::uint32_t(b.empty ? 0 : 1));
+    put(out, b.key);
+    put(out, std::int32_t(b.id.x));
+    put(out, std::int32_t(b.id.z));
+    put(out, std::int32_t(b.resolution));
+    put(out, std::uint32_t(0));
+    put(out, std::uint64_t(payload.size()));
+    put(out, Hasher().add_bytes(payload.data(), payload.size()).value());
+    out.insert(out.end(), payload.begin(), payload.end());
+    return out;
+}
+
+Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
+    if (bytes.size() < header_bytes) return make_error("truncated (" + std::to_string(bytes.size()) + " bytes)");
+    const std::uint8_t* p = bytes.data();
+    if (std::memcmp(p, magic, 8) != 0) return make_error("not a Lantern bake file");
+    const auto version = get<std::uint32_t>(p + 8);
+    if (version != bake_code_version)
+        return make_error("format version " + std::to_string(version) + ", this build reads " +
+                          std::to_string(bake_code_version));
+    const auto flags = get<std::uint32_t>(p + 12);
+    ChunkBake b;
+    b.key = get<std::uint64_t>(p + 16);
+    b.id = {get<std::int32_t>(p + 24), get<std::int32_t>(p + 28)};
+    b.resolution = get<std::int32_t>(p + 32);
+    const auto size = get<std::uint64_t>(p + 40);
+    const auto hash = get<std::uint64_t>(p + 48);
+    if (flags > 1 || get<std::uint32_t>(p + 36) != 0) return make_error("unknown flags");
+    if (b.resolution < 1 || b.resolution > 16) return make_error("resolution " + std::to_string(b.resolution));
+    b.empty = flags == 0;
+    const std::uint64_t expected = b.empty ? 0 : payload_bytes(b.resolution);
+    if (size != expected || bytes.size() - header_bytes != expected)
+        return make_error("sizes do not match (" + std::to_string(bytes.size()) + " bytes, expected " +
+                          std::to_string(header_bytes + expected) + ")");
+    const std::uint8_t* payload = p + header_bytes;
+    if (Hasher().add_bytes(payload, std::size_t(size)).value() != hash) return make_error("damaged (hash mismatch)");
+    if (b.empty) return b;
+    const std::size_t n = std::size_t(b.side()) * std::size_t(b.side()) * 3;
+    auto read = [&](std::vector<float>& v, std::size_t index) {
+        v.resize(n);
+        const std::uint8_t* at = payload + index * n * sizeof(std::uint16_t);
+        for (std::size_t i = 0; i < n; ++i) v[i] = glm::unpackHalf1x16(get<std::uint16_t>(at + i * 2));
+    };
+    read(b.ground, 0);
+    for (std::size_t f = 0; f < 4; ++f) read(b.faces[f], f + 1);
+    for (const auto* v : {&b.ground, &b.faces[0], &b.faces[1], &b.faces[2], &b.faces[3]})
+        for (float x : *v)
+            if (!std::isfinite(x) || x < 0.0f) return make_error("holds a negative or non-finite value");
+    return b;
+}
+
+std::optional<ChunkBake> load_chunk(const std::string& dir, ChunkId c, std::uint64_t key, std::string* why) {
+    const std::string path = (std::filesystem::path(dir) / chunk_file_name(c)).string();
+    auto fail = [&](std::string reason) -> std::optional<ChunkBake> {
+        if (why) *why = path + ": " + std::move(reason);
+        return std::nullopt;
+    };
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return fail("missing");
+    auto bytes = read_binary_file(path, header_bytes + payload_bytes(16));
+    if (!bytes) return fail(bytes.error().message);
+    auto b = decode_chunk(*bytes);
+    if (!b) return fail(b.error().message);
+    if (!(b->id == c)) return fail("holds chunk " + std::to_string(b->id.x) + ", " + std::to_string(b->id.z));
+    if (b->key != key) return fail("stale: baked for other inputs (walls, materials, lights or settings changed)");
+    return std::move(*b);
+}
+
+Result<void> save_chunk(const std::string& dir, const ChunkBake& b) {
+    const std::vector<std::byte> bytes = encode_chunk(b);
+    return write_file_atomic((std::filesystem::path(dir) / chunk_file_name(b.id)).string(), bytes);
+}
+
+} // namespace lantern::bake

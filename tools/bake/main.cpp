@@ -1,0 +1,154 @@
+// lantern-bake: bakes a world's static light into chunk cache files (docs/baked.md).
+//
+//   lantern-bake WORLD --out DIR [--shard I/N] [--resolution R] [--margin M] [--force] [--threads N]
+//
+// WORLD is a scene file (docs/scenes.md) or a Moving AI map (walls only: then only glowing
+// materials could light it, and a map has none, so every chunk is empty). A second run
+// reuses every cache file whose key still matches; unusable files are named and re-baked.
+#include "lantern/bake/bake.hpp"
+#include "lantern/core/cli.hpp"
+#include "lantern/core/clock.hpp"
+#include "lantern/core/png.hpp"
+#include "lantern/gi/shading.hpp"
+
+#include <glm/common.hpp>
+#include "lantern/jobs/job_system.hpp"
+#include "lantern/scene/loader.hpp"
+#include "lantern/transport/progress.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+using namespace lantern;
+
+namespace {
+
+Result<scene::Scene> load_world(const std::string& path) {
+    if (path.ends_with(".map")) {
+        auto map = scene::import_moving_ai_map(path);
+        if (!map) return map.error();
+        scene::Scene s;
+        s.source = path;
+        s.walls = std::move(map->walls);
+        return s;
+    }
+    return scene::load_scene(path);
+}
+
+std::optional<std::string> parse_shard(std::string_view text, int& shard, int& shards) {
+    const std::size_t slash = text.find('/');
+    auto number = [](std::string_view t, int& out) {
+        const auto r = std::from_chars(t.data(), t.data() + t.size(), out);
+        return r.ec == std::errc() && r.ptr == t.data() + t.size();
+    };
+    if (slash == std::string_view::npos || !number(text.substr(0, slash), shard) ||
+        !number(text.substr(slash + 1), shards) || shards < 1 || shards > 1000000 || shard < 0 || shard >= shards)
+        return "expected I/N with 0 <= I < N (e.g. 0/4), got '" + std::string(text.substr(0, 40)) + "'";
+    return std::nullopt;
+}
+
+// The baked light of every chunk of this shard as one picture, top down: ground light
+// tone-mapped (ACES), walls grey with their brightest face's light.
+Result<void> write_picture(const scene::Scene& scene, const std::string& dir, const bake::BakeSettings& b,
+                           const bake::BakeOptions& o, const std::string& path) {
+    const std::vector<bake::ChunkId> all = bake::scene_chunks(scene);
+    if (all.empty()) return make_error("lantern-bake: --image: the world has no chunks");
+    const std::vector<bake::ChunkId> chunks = bake::shard_of(all, o.shard, o.shards);
+    int x0 = all.front().x, x1 = all.front().x, z0 = all.front().z, z1 = all.front().z;
+    for (const bake::ChunkId c : all)
+        x0 = std::min(x0, c.x), x1 = std::max(x1, c.x), z0 = std::min(z0, c.z), z1 = std::max(z1, c.z);
+    const int side = bake::chunk_tiles * b.resolution;
+    const int w = (x1 - x0 + 1) * side, h = (z1 - z0 + 1) * side;
+    if (std::int64_t(w) * h > (std::int64_t(1) << 28)) return make_error("lantern-bake: --image: the picture would be too large");
+    std::vector<std::uint8_t> rgb(std::size_t(w) * std::size_t(h) * 3, 0);
+    for (const bake::ChunkId c : chunks) {
+        auto chunk = bake::load_chunk(dir, c, bake::chunk_key(scene, c, b));
+        if (!chunk || chunk->empty) continue;
+        for (int y = 0; y < side; ++y)
+            for (int x = 0; x < side; ++x) {
+                const std::size_t i = (std::size_t(y) * std::size_t(side) + std::size_t(x)) * 3;
+                glm::vec3 v(chunk->ground[i], chunk->ground[i + 1], chunk->ground[i + 2]);
+                for (const auto& f : chunk->faces) v = glm::max(v, glm::vec3(f[i], f[i + 1], f[i + 2]) * 0.5f);
+                const glm::vec3 t = gi::tone_map(v, scene::ToneMap::aces, 4.0f);
+                const std::size_t o8 = (std::size_t((c.z - z0) * side + y) * std::size_t(w) + std::size_t((c.x - x0) * side + x)) * 3;
+                for (int k = 0; k < 3; ++k) rgb[o8 + std::size_t(k)] = std::uint8_t(std::lround(std::clamp(t[k], 0.0f, 1.0f) * 255.0f));
+            }
+    }
+    return write_png(path, w, h, 3, rgb);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::string world, out;
+    bake::BakeSettings settings;
+    bake::BakeOptions options;
+    int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    cli::Parser p("lantern-bake", "WORLD --out DIR [options]",
+                  "Bakes the static light of a scene (or map) into one cache file per 32 x 32-tile chunk:\n"
+                  "the direct light of lights with \"mode\": \"baked\" and the bounce light of \"mixed\" and\n"
+                  "\"baked\" lights and glowing materials, solved by the converged gather method. A second run\n"
+                  "reuses every file whose inputs did not change (docs/baked.md).");
+    p.positionals("WORLD", "a scene file (.json) or a Moving AI map (.map)", [&](std::string_view v) -> std::optional<std::string> {
+        if (!world.empty()) return "one WORLD only, got a second: '" + std::string(v.substr(0, 40)) + "'";
+        world = std::string(v);
+        return std::nullopt;
+    });
+    p.text("--out", "DIR", "the cache folder (created if missing)", out);
+    p.custom("--shard", "I/N", "bake only shard I of N (every N-th chunk from the I-th); all N shards "
+                               "together write the same files as one run", [&](std::string_view v) {
+        return parse_shard(v, options.shard, options.shards);
+    });
+    p.integer("--resolution", "R", "texels per tile (default 4)", settings.resolution, 1, 16);
+    p.integer("--margin", "M", "tiles around a chunk whose walls reflect light into it (default 8)", settings.margin, 0, 64);
+    p.integer("--threads", "N", "threads (default: the machine's cores)", threads, 1, 256);
+    p.flag("--force", "bake every chunk, even where a valid cache file exists", options.force);
+    std::string image;
+    p.text("--image", "FILE.png", "also draw this shard's baked light, top down, as one picture", image);
+    p.epilog("Exit status: 0 done, 2 bad input (a message names the file, line and column).");
+    if (auto exit = p.parse(argc, argv)) return *exit;
+    if (world.empty()) {
+        std::fprintf(stderr, "%s\n", p.message("WORLD is required").c_str());
+        return 2;
+    }
+    if (out.empty()) {
+        std::fprintf(stderr, "%s\n", p.message("--out DIR is required").c_str());
+        return 2;
+    }
+    auto scene = load_world(world);
+    if (!scene) {
+        std::fprintf(stderr, "%s\n", scene.error().message.c_str());
+        return scene.error().exit_code;
+    }
+    jobs::JobSystem::Config config;
+    config.worker_threads = threads - 1;
+    jobs::JobSystem jobs(config);
+    options.jobs = &jobs;
+    transport::ProgressBar bar("bake");
+    options.progress = [&](const bake::BakeProgress& pr) {
+        char status[128];
+        std::snprintf(status, sizeof(status), "%d/%d chunks (%d reused) %.1f s", pr.done, pr.total, pr.reused, pr.seconds);
+        bar.update(pr.total ? double(pr.done) / double(pr.total) : 1.0, status);
+    };
+    options.warn = [](const std::string& m) { std::fprintf(stderr, "lantern-bake: %s\n", m.c_str()); };
+    auto report = bake::bake_world(*scene, out, settings, options);
+    if (!report) {
+        std::fprintf(stderr, "lantern-bake: %s\n", report.error().message.c_str());
+        return report.error().exit_code;
+    }
+    char status[160];
+    std::snprintf(status, sizeof(status), "%d chunks: %d baked, %d reused, %d without baked light, %.2f s", report->chunks,
+                  report->baked, report->reused, report->empty, report->seconds);
+    if (!image.empty())
+        if (auto ok = write_picture(*scene, out, settings, options, image); !ok) {
+            std::fprintf(stderr, "%s\n", ok.error().message.c_str());
+            return ok.error().exit_code;
+        }
+    bar.finish(std::string(status) + " (shard " + std::to_string(options.shard) + "/" +
+               std::to_string(options.shards) + ") in " + out);
+    return 0;
+}
