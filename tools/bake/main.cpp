@@ -6,6 +6,7 @@
 // materials could light it, and a map has none, so every chunk is empty). A second run
 // reuses every cache file whose key still matches; unusable files are named and re-baked.
 #include "lantern/bake/bake.hpp"
+#include "lantern/bake/bricks.hpp"
 #include "lantern/core/cli.hpp"
 #include "lantern/core/clock.hpp"
 #include "lantern/core/png.hpp"
@@ -81,6 +82,63 @@ Result<void> write_picture(const scene::Scene& scene, const std::string& dir, co
     return write_png(path, w, h, 3, rgb);
 }
 
+// The world's baked ground light as one field (every chunk of the world found in `dir`).
+std::optional<bake::Field> world_field(const scene::Scene& scene, const std::string& dir, const bake::BakeSettings& b) {
+    const std::vector<bake::ChunkId> all = bake::scene_chunks(scene);
+    if (all.empty()) return std::nullopt;
+    int x0 = all.front().x, x1 = x0, z0 = all.front().z, z1 = z0;
+    for (const bake::ChunkId c : all)
+        x0 = std::min(x0, c.x), x1 = std::max(x1, c.x), z0 = std::min(z0, c.z), z1 = std::max(z1, c.z);
+    const int side = bake::chunk_tiles * b.resolution;
+    bake::Field f;
+    f.width = (x1 - x0 + 1) * side;
+    f.height = (z1 - z0 + 1) * side;
+    f.rgb.assign(std::size_t(f.width) * std::size_t(f.height) * 3, 0.0f);
+    f.air.assign(std::size_t(f.width) * std::size_t(f.height), 0);
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+            const int tx = x0 * bake::chunk_tiles + x / b.resolution, tz = z0 * bake::chunk_tiles + y / b.resolution;
+            f.air[std::size_t(y) * std::size_t(f.width) + std::size_t(x)] = scene.walls.is_wall_tile(tx, tz) ? 0 : 1;
+        }
+    for (const bake::ChunkId c : all) {
+        auto chunk = bake::load_chunk(dir, c, bake::chunk_key(scene, c, b));
+        if (!chunk || chunk->empty) continue;
+        for (int y = 0; y < side; ++y)
+            std::copy_n(&chunk->ground[std::size_t(y * side) * 3], side * 3,
+                        &f.rgb[(std::size_t((c.z - z0) * side + y) * std::size_t(f.width) + std::size_t((c.x - x0) * side)) * 3]);
+    }
+    return f;
+}
+
+// Seed 002's claim measured: memory of the adaptive bricks against a dense grid, and the
+// error each adds (RGBM included), over the open ground.
+void brick_report(const bake::Field& f, const std::vector<float>& eps_list) {
+    const double dense_rgbm = double(f.width) * f.height * 4, dense_half = double(f.width) * f.height * 6;
+    std::printf("\n%d x %d probes; dense: %.2f MB as RGBM8, %.2f MB as RGB half\n", f.width, f.height, dense_rgbm / 1e6,
+                dense_half / 1e6);
+    std::printf("| eps | bricks (level 0/1/2/3) | empty cells | atlas + indirection | vs dense RGBM8 | rel. RMS error | max error |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
+    for (float eps : eps_list) {
+        const bake::BrickAtlas a = bake::build_bricks(f, eps);
+        double err2 = 0.0, ref2 = 0.0, worst = 0.0;
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) {
+                if (!f.air[std::size_t(y) * std::size_t(f.width) + std::size_t(x)]) continue;
+                const glm::vec3 want = f.at(x, y), got = bake::sample_bricks(a, float(x) + 0.5f, float(y) + 0.5f);
+                for (int c = 0; c < 3; ++c) {
+                    const double d = double(got[c]) - double(want[c]);
+                    err2 += d * d;
+                    ref2 += double(want[c]) * double(want[c]);
+                    worst = std::max(worst, std::abs(d));
+                }
+            }
+        std::printf("| %g | %d (%d/%d/%d/%d) | %d | %.3f MB | %.1f %% | %.2f %% | %.4f |\n", double(eps), a.bricks(),
+                    a.bricks_per_level[0], a.bricks_per_level[1], a.bricks_per_level[2], a.bricks_per_level[3], a.empty_cells,
+                    double(a.bytes()) / 1e6, 100.0 * double(a.bytes()) / dense_rgbm,
+                    ref2 > 0.0 ? 100.0 * std::sqrt(err2 / ref2) : 0.0, worst);
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -108,6 +166,23 @@ int main(int argc, char** argv) {
     p.integer("--threads", "N", "threads (default: the machine's cores)", threads, 1, 256);
     p.flag("--force", "bake every chunk, even where a valid cache file exists", options.force);
     std::string image;
+    std::vector<float> brick_eps;
+    p.custom("--bricks", "EPS,...", "then report the adaptive brick storage of the baked light (seed 002) at these colour "
+                                    "ranges: memory against a dense grid and the error each adds",
+             [&](std::string_view v) -> std::optional<std::string> {
+                 brick_eps.clear();
+                 std::string list(v);
+                 for (std::size_t at = 0; at <= list.size();) {
+                     const std::size_t comma = std::min(list.find(',', at), list.size());
+                     float e = 0.0f;
+                     const auto r = std::from_chars(list.data() + at, list.data() + comma, e);
+                     if (r.ec != std::errc() || r.ptr != list.data() + comma || !(e >= 0.0f) || e > 1e6f)
+                         return "expected numbers >= 0 separated by commas, got '" + list.substr(0, 40) + "'";
+                     brick_eps.push_back(e);
+                     at = comma + 1;
+                 }
+                 return std::nullopt;
+             });
     p.text("--image", "FILE.png", "also draw this shard's baked light, top down, as one picture", image);
     p.epilog("Exit status: 0 done, 2 bad input (a message names the file, line and column).");
     if (auto exit = p.parse(argc, argv)) return *exit;
@@ -148,6 +223,8 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s\n", ok.error().message.c_str());
             return ok.error().exit_code;
         }
+    if (!brick_eps.empty())
+        if (auto f = world_field(*scene, out, settings)) brick_report(*f, brick_eps);
     bar.finish(std::string(status) + " (shard " + std::to_string(options.shard) + "/" +
                std::to_string(options.shards) + ") in " + out);
     return 0;

@@ -1,0 +1,199 @@
+// Adaptive bricks (bricks.hpp).
+#include "lantern/bake/bricks.hpp"
+
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lantern::bake {
+namespace {
+
+int clampi(int v, int lo, int hi) { return std::min(std::max(v, lo), hi); }
+
+// Wall texels take the mean of their open neighbours, twice, so bilinear filtering across a
+// wall's edge does not pull light to black (lightmap dilation). Open texels keep their value.
+Field dilated(const Field& f) {
+    Field out = f;
+    std::vector<std::uint8_t> known = f.air;
+    for (int pass = 0; pass < 2; ++pass) {
+        std::vector<float> rgb = out.rgb;
+        std::vector<std::uint8_t> next = known;
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(f.width) + std::size_t(x);
+                if (known[i]) continue;
+                glm::vec3 sum(0.0f);
+                int n = 0;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int nx = x + dx, ny = y + dy;
+                        if (nx < 0 || ny < 0 || nx >= f.width || ny >= f.height) continue;
+                        const std::size_t j = std::size_t(ny) * std::size_t(f.width) + std::size_t(nx);
+                        if (!known[j]) continue;
+                        sum += out.at(nx, ny);
+                        ++n;
+                    }
+                if (n == 0) continue;
+                for (int c = 0; c < 3; ++c) rgb[i * 3 + std::size_t(c)] = sum[c] / float(n);
+                next[i] = 1;
+            }
+        out.rgb = std::move(rgb);
+        known = std::move(next);
+    }
+    return out;
+}
+
+struct Builder {
+    const Field& f; // dilated
+    const Field& original;
+    float eps;
+    BrickAtlas& out;
+    std::vector<std::vector<std::uint8_t>> bricks; // 6 x 6 x RGBA8 each
+    std::vector<int> cell_brick, cell_level;       // per level-0 cell; -1 empty
+
+    // The probe (i, j) of a level-`level` brick at grid origin o: the box mean of its s x s
+    // texels (clamped to the field).
+    glm::vec3 probe(glm::ivec2 o, int level, int i, int j) const {
+        const int s = 1 << level;
+        glm::vec3 sum(0.0f);
+        for (int y = 0; y < s; ++y)
+            for (int x = 0; x < s; ++x)
+                sum += f.at(clampi(o.x + i * s + x, 0, f.width - 1), clampi(o.y + j * s + y, 0, f.height - 1));
+        return sum / float(s * s);
+    }
+
+    // Colour range over the cell and its apron (one probe spacing around it).
+    float range(glm::ivec2 o, int level) const {
+        const int s = 1 << level, side = brick_probes * s;
+        glm::vec3 lo(1e30f), hi(-1e30f);
+        for (int y = o.y - s; y < o.y + side + s; ++y)
+            for (int x = o.x - s; x < o.x + side + s; ++x) {
+                const glm::vec3 v = f.at(clampi(x, 0, f.width - 1), clampi(y, 0, f.height - 1));
+                lo = glm::min(lo, v);
+                hi = glm::max(hi, v);
+            }
+        const glm::vec3 r = hi - lo;
+        return std::max({r.x, r.y, r.z});
+    }
+
+    // Open ground within one level-0 brick (4 texels) of the cell (the seed's margin).
+    bool near_air(glm::ivec2 o, int side) const {
+        for (int y = std::max(0, o.y - brick_probes); y < std::min(f.height, o.y + side + brick_probes); ++y)
+            for (int x = std::max(0, o.x - brick_probes); x < std::min(f.width, o.x + side + brick_probes); ++x)
+                if (original.air[std::size_t(y) * std::size_t(f.width) + std::size_t(x)]) return true;
+        return false;
+    }
+
+    void store(glm::ivec2 o, int level) {
+        std::vector<std::uint8_t> b(brick_texels * brick_texels * 4);
+        for (int j = -1; j <= brick_probes; ++j)
+            for (int i = -1; i <= brick_probes; ++i)
+                encode_rgbm(probe(o, level, i, j), &b[std::size_t(((j + 1) * brick_texels + (i + 1)) * 4)]);
+        const int index = int(bricks.size());
+        bricks.push_back(std::move(b));
+        ++out.bricks_per_level[level];
+        const int cells = 1 << level; // level-0 cells a side
+        for (int cy = 0; cy < cells; ++cy)
+            for (int cx = 0; cx < cells; ++cx) {
+                const int x = o.x / brick_probes + cx, y = o.y / brick_probes + cy;
+                if (x >= out.cells_x || y >= out.cells_y) continue;
+                cell_brick[std::size_t(y * out.cells_x + x)] = index;
+                cell_level[std::size_t(y * out.cells_x + x)] = level;
+            }
+    }
+
+    void visit(glm::ivec2 o, int level) {
+        const int side = brick_probes << level;
+        if (o.x >= f.width || o.y >= f.height) return;
+        if (!near_air(o, side)) return; // wholly inside rock: empty
+        if (level == 0 || range(o, level) <= eps) {
+            store(o, level);
+            return;
+        }
+        const int half = side / 2;
+        for (int k = 0; k < 4; ++k) visit(o + glm::ivec2((k & 1) * half, (k >> 1) * half), level - 1);
+    }
+};
+
+glm::vec4 texel_normalised(const BrickAtlas& a, int x, int y) {
+    const std::size_t i = (std::size_t(y) * std::size_t(a.atlas_bricks_x * brick_texels) + std::size_t(x)) * 4;
+    return glm::vec4(a.atlas[i], a.atlas[i + 1], a.atlas[i + 2], a.atlas[i + 3]) / 255.0f;
+}
+
+} // namespace
+
+void encode_rgbm(glm::vec3 c, std::uint8_t out[4]) {
+    c = glm::max(c, glm::vec3(0.0f));
+    const float m = std::clamp(std::max({c.r, c.g, c.b}) / rgbm_range, 0.0f, 1.0f);
+    const int m8 = std::max(1, int(std::ceil(m * 255.0f))); // rounded up: no channel clips
+    const float scale = 255.0f / (rgbm_range * float(m8) / 255.0f);
+    for (int k = 0; k < 3; ++k) out[k] = std::uint8_t(std::clamp(int(std::lround(c[k] * scale)), 0, 255));
+    out[3] = std::uint8_t(m8);
+}
+
+glm::vec3 decode_rgbm(const std::uint8_t in[4]) {
+    return glm::vec3(in[0], in[1], in[2]) / 255.0f * (float(in[3]) / 255.0f) * rgbm_range;
+}
+
+BrickAtlas build_bricks(const Field& field, float eps) {
+    BrickAtlas out;
+    out.cells_x = (field.width + brick_probes - 1) / brick_probes;
+    out.cells_y = (field.height + brick_probes - 1) / brick_probes;
+    const Field f = dilated(field);
+    Builder b{f, field, eps, out, {}, {}, {}};
+    b.cell_brick.assign(std::size_t(out.cells_x) * std::size_t(out.cells_y), -1);
+    b.cell_level.assign(b.cell_brick.size(), 0);
+    const int top = brick_probes << (brick_levels - 1);
+    for (int y = 0; y < field.height; y += top)
+        for (int x = 0; x < field.width; x += top) b.visit({x, y}, brick_levels - 1);
+    // Atlas: bricks in rows of a square's width.
+    const int n = int(b.bricks.size());
+    out.atlas_bricks_x = std::max(1, int(std::ceil(std::sqrt(double(n)))));
+    out.atlas_bricks_y = std::max(1, (n + out.atlas_bricks_x - 1) / out.atlas_bricks_x);
+    const int aw = out.atlas_bricks_x * brick_texels;
+    out.atlas.assign(std::size_t(aw) * std::size_t(out.atlas_bricks_y * brick_texels) * 4, 0);
+    for (int k = 0; k < n; ++k) {
+        const int bx = k % out.atlas_bricks_x, by = k / out.atlas_bricks_x;
+        for (int y = 0; y < brick_texels; ++y)
+            std::copy_n(&b.bricks[std::size_t(k)][std::size_t(y * brick_texels * 4)], brick_texels * 4,
+                        &out.atlas[(std::size_t(by * brick_texels + y) * std::size_t(aw) + std::size_t(bx * brick_texels)) * 4]);
+    }
+    out.indirection.assign(std::size_t(out.cells_x) * std::size_t(out.cells_y) * 4, 0);
+    for (std::size_t c = 0; c < b.cell_brick.size(); ++c) {
+        const int k = b.cell_brick[c];
+        if (k < 0) {
+            ++out.empty_cells;
+            continue;
+        }
+        const int bx = k % out.atlas_bricks_x, by = k / out.atlas_bricks_x;
+        out.indirection[c * 4 + 0] = std::uint8_t(bx & 0xFF);
+        out.indirection[c * 4 + 1] = std::uint8_t(by & 0xFF);
+        out.indirection[c * 4 + 2] = std::uint8_t(((bx >> 8) & 0xF) | (((by >> 8) & 0xF) << 4));
+        out.indirection[c * 4 + 3] = std::uint8_t(b.cell_level[c] + 1);
+    }
+    return out;
+}
+
+glm::vec3 sample_bricks(const BrickAtlas& a, float x, float y) {
+    const int cx = clampi(int(std::floor(x / float(brick_probes))), 0, a.cells_x - 1);
+    const int cy = clampi(int(std::floor(y / float(brick_probes))), 0, a.cells_y - 1);
+    const std::uint8_t* ind = &a.indirection[(std::size_t(cy) * std::size_t(a.cells_x) + std::size_t(cx)) * 4];
+    if (ind[3] == 0) return glm::vec3(0.0f);
+    const int level = ind[3] - 1, s = 1 << level, side = brick_probes * s;
+    const int bx = ind[0] | ((ind[2] & 0xF) << 8), by = ind[1] | ((ind[2] >> 4) << 8);
+    const glm::vec2 o(std::floor(x / float(side)) * float(side), std::floor(y / float(side)) * float(side));
+    // Continuous probe index, then the brick texel (apron at 0): in [0.5, 4.5].
+    const float tx = (x - o.x) / float(s) - 0.5f + 1.0f, ty = (y - o.y) / float(s) - 0.5f + 1.0f;
+    const int x0 = clampi(int(std::floor(tx)), 0, brick_texels - 2), y0 = clampi(int(std::floor(ty)), 0, brick_texels - 2);
+    const float fx = tx - float(x0), fy = ty - float(y0);
+    auto at = [&](int i, int j) { return texel_normalised(a, bx * brick_texels + i, by * brick_texels + j); };
+    // Bilinear on the stored RGBM values, then decode: what a hardware sampler gives.
+    const glm::vec4 v = (at(x0, y0) * (1.0f - fx) + at(x0 + 1, y0) * fx) * (1.0f - fy) +
+                        (at(x0, y0 + 1) * (1.0f - fx) + at(x0 + 1, y0 + 1) * fx) * fy;
+    return glm::vec3(v) * v.a * rgbm_range;
+}
+
+} // namespace lantern::bake
