@@ -342,3 +342,81 @@ TEST(Bake, NoSeamsAtChunkBorders) {
     EXPECT_LT(worst_seam(BakeSettings{}.margin), 0.05);
     EXPECT_GT(worst_seam(8), 0.2) << "the test sees a seam where there is one";
 }
+
+// Light probes (seed 004's, in 2D): a probe beside a glowing lava wall is lit orange from
+// that side; a probe's fluence is the baked ground light at its place; a lone baked light
+// arrives from its direction; the cache file keeps the probes exactly.
+TEST(Bake, ProbesBesideLavaAreLitOrangeFromThatSide) {
+    scene::Scene s;
+    std::vector<std::string> rows(32, std::string(32, '#'));
+    for (int z = 4; z < 28; ++z) rows[std::size_t(z)].replace(4, 24, std::string(24, '.'));
+    s.walls.width = s.walls.height = 32;
+    for (const std::string& r : rows)
+        for (char c : r) s.walls.cells.push_back(c == '#' ? 1 : 0);
+    s.materials = {{"lava", {0.3f, 0.1f, 0.05f}, {1.5f, 0.5f, 0.1f}}};
+    for (int z = 10; z < 22; ++z) s.walls.cells[std::size_t(z * 32 + 3)] = scene::material_cell(0); // the west wall, x = 3
+    BakeSettings b = quick();
+    b.rays = 512;
+    const bake::ChunkBake chunk = bake::bake_chunk(s, {0, 0}, b);
+    ASSERT_FALSE(chunk.empty);
+    // The probe at (4.5, 16.5), a tile and a half east of the lava's face on x = 4.
+    const std::size_t k = std::size_t(8 * bake::chunk_probes + 2);
+    ASSERT_EQ(chunk.probe_valid[k], 1);
+    const bake::CircularHarmonics& h = chunk.probes[k];
+    const glm::vec3 west = h.irradiance(3.14159265f), east = h.irradiance(0.0f);
+    std::printf("facing the lava (%.3f %.3f %.3f), facing away (%.3f %.3f %.3f)\n", west.r, west.g, west.b, east.r, east.g,
+                east.b);
+    EXPECT_GT(west.r, 4.0f * east.r) << "lit from the lava's side";
+    EXPECT_GT(west.r, 2.0f * west.g);
+    EXPECT_GT(west.g, 2.0f * west.b) << "orange";
+    // Its fluence is the ground light baked at the same place (texel (9, 33) at 2 a tile).
+    const glm::vec3 ground = texel(chunk.ground, chunk.side(), 9, 33);
+    EXPECT_NEAR(h.fluence().r, ground.r, 0.05f * ground.r);
+    EXPECT_EQ(chunk.probe_valid[0], 0) << "a probe in rock";
+    // Through a cache file, the probes are kept bit for bit.
+    TempDir dir;
+    ASSERT_TRUE(bake::save_chunk(dir.path().string(), chunk).ok());
+    auto again = bake::load_chunk(dir.path().string(), {0, 0}, chunk.key);
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->probes, chunk.probes);
+    EXPECT_EQ(again->probe_valid, chunk.probe_valid);
+}
+
+TEST(Bake, ALoneBakedLightArrivesFromItsDirection) {
+    scene::Scene s = world();
+    s.point_lights = {{{50.5f, 16.5f}, 1.0f, {1.0f, 1.0f, 1.0f}, 1.0f, 10.0f, LightMode::baked}};
+    s.materials.clear();
+    for (auto& c : s.walls.cells) c = c != 0 ? 1 : 0;
+    s.gi.wall_albedo = 0.0f; // no bounce: the probe holds the light alone
+    const bake::ChunkBake chunk = bake::bake_chunk(s, {1, 0}, quick());
+    // The probe at (54.5, 16.5): 4 tiles east of the light, which arrives from the west.
+    const bake::CircularHarmonics& h = chunk.probes[std::size_t(8 * bake::chunk_probes + 11)];
+    const float fluence = h.fluence().r;
+    EXPECT_NEAR(fluence, 0.6f, 1e-5f) << "(1 - 4 / 10)";
+    EXPECT_NEAR(h.irradiance(3.14159265f).r, fluence, 0.05f * fluence) << "facing the light: its whole fluence";
+    EXPECT_LT(h.irradiance(0.0f).r, 0.1f * fluence) << "facing away: order 2 leaves a little ringing";
+    EXPECT_LT(h.irradiance(3.14159265f / 2.0f).r, 0.15f * fluence) << "side on: grazing light, 0 (order 2 gives 0.11)";
+}
+
+TEST(Bake, ProbesInterpolateBilinearlyOverThoseThatExist) {
+    auto probe = [](float f) {
+        bake::CircularHarmonics h;
+        h.c[0] = glm::vec3(f);
+        return h;
+    };
+    const bake::CircularHarmonics a = probe(1.0f), b = probe(2.0f), c = probe(3.0f), d = probe(4.0f);
+    auto at = [&](int ix, int iz) -> const bake::CircularHarmonics* {
+        if (ix == 0 && iz == 0) return &a;
+        if (ix == 1 && iz == 0) return &b;
+        if (ix == 0 && iz == 1) return &c;
+        if (ix == 1 && iz == 1) return &d;
+        return nullptr;
+    };
+    // Probes at (0.5, 0.5), (2.5, 0.5), (0.5, 2.5), (2.5, 2.5).
+    EXPECT_FLOAT_EQ(bake::interpolate_probes(at, {0.5f, 0.5f}).fluence().r, 1.0f);
+    EXPECT_FLOAT_EQ(bake::interpolate_probes(at, {1.5f, 1.5f}).fluence().r, 2.5f);
+    EXPECT_FLOAT_EQ(bake::interpolate_probes(at, {2.0f, 0.5f}).fluence().r, 1.75f);
+    // Beyond (2.5, 2.5) only d exists among the four around: d's light.
+    EXPECT_FLOAT_EQ(bake::interpolate_probes(at, {3.0f, 3.0f}).fluence().r, 4.0f);
+    EXPECT_FLOAT_EQ(bake::interpolate_probes(at, {-3.0f, -3.0f}).fluence().r, 0.0f) << "no probe around";
+}

@@ -1,6 +1,7 @@
 // lantern-bake: bakes a world's static light into chunk cache files (docs/baked.md).
 //
-//   lantern-bake WORLD --out DIR [--shard I/N] [--resolution R] [--margin M] [--force] [--threads N]
+//   lantern-bake WORLD --out DIR [--shard I/N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
+//                [--threads N] [--force] [--image FILE.png] [--bricks EPS,...]
 //
 // WORLD is a scene file (docs/scenes.md) or a Moving AI map (walls only: then only glowing
 // materials could light it, and a map has none, so every chunk is empty). A second run
@@ -163,6 +164,8 @@ int main(int argc, char** argv) {
     });
     p.integer("--resolution", "R", "texels per tile (default 4)", settings.resolution, 1, 16);
     p.integer("--margin", "M", "tiles around a chunk whose walls reflect light into it (default 8)", settings.margin, 0, 64);
+    p.integer("--rays", "N", "gather rays per ground texel and light probe (default 256)", settings.rays, 1, 1024);
+    p.integer("--face-rays", "N", "gather rays per wall-face texel (default 128)", settings.face_rays, 1, 1024);
     p.integer("--threads", "N", "threads (default: the machine's cores)", threads, 1, 256);
     p.flag("--force", "bake every chunk, even where a valid cache file exists", options.force);
     std::string image;

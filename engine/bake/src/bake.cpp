@@ -4,6 +4,9 @@
 #include "lantern/core/assert.hpp"
 #include "lantern/core/hash.hpp"
 #include "lantern/gi/frame_inputs.hpp"
+#include "lantern/gi/gather.hpp"
+#include "lantern/gi/radiosity.hpp"
+#include "lantern/transport/model.hpp"
 #include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/passes.hpp"
 #include "lantern/gi/reference.hpp"
@@ -161,6 +164,67 @@ std::vector<float> crop(const gi::Texture* t, const ChunkProblem& p, int side) {
     return out;
 }
 
+// Each light of `in` alone, with the direction its light arrives from at a point.
+struct SingleSource {
+    gi::FrameInputs in;
+    glm::vec2 position{0.0f}; // point and emissive lights
+    bool sun = false;
+    float sun_angle = 0.0f;   // suns: the angle their light arrives from
+};
+
+std::vector<SingleSource> single_sources(const gi::FrameInputs& in) {
+    std::vector<SingleSource> out;
+    gi::FrameInputs empty = in;
+    empty.point_lights.clear();
+    empty.emissive_lights.clear();
+    empty.directional_lights.clear();
+    for (const auto& l : in.point_lights) {
+        out.push_back({empty, glm::vec2(l.position_radius), false, 0.0f});
+        out.back().in.point_lights = {l};
+    }
+    for (const auto& l : in.emissive_lights) {
+        out.push_back({empty, glm::vec2(l.position_radius), false, 0.0f});
+        out.back().in.emissive_lights = {l};
+    }
+    for (const auto& l : in.directional_lights) {
+        out.push_back({empty, glm::vec2(0.0f), true, std::atan2(-l.direction_base.z, -l.direction_base.x)});
+        out.back().in.directional_lights = {l};
+    }
+    return out;
+}
+
+// The light probe at `pos`: the bounce solve's radiance by rays (`store` after the solve;
+// none without one) and the baked lights' direct light as point sources.
+CircularHarmonics capture_probe(const ChunkProblem& p, const gi::ReferenceStore* store,
+                                const std::vector<SingleSource>& sources, glm::vec2 pos, int rays) {
+    constexpr float two_pi = 6.28318531f;
+    CircularHarmonics h;
+    if (store) {
+        const gi::GatherFrame f = gi::gather_frame(p.bounce);
+        gi::FaceTextures direct{};
+        for (int face = 0; face < 4; ++face) direct[std::size_t(face)] = store->find(gi::Tex(int(gi::Tex::wall_direct_px) + face));
+        const gi::Texture* faces = store->find(gi::gather_face_target(p.bounce.settings.gather.bounces - 1));
+        const glm::vec2 rel = (pos - glm::vec2(f.origin_tile)) * float(gi::gather_unit);
+        const glm::ivec2 fixed(int(std::lround(rel.x)), int(std::lround(rel.y)));
+        const glm::ivec2 cell = fixed / gi::gather_unit; // inside the window: non-negative
+        const std::vector<glm::ivec2>& dirs = gi::radiosity_directions();
+        for (int k = 0; k < rays; ++k) {
+            const int index = (k * 4096) / rays;
+            const gi::GatherHit hit = gi::gather_trace(p.bounce, f, fixed, cell, dirs[std::size_t(index)]);
+            if (hit.face < 0) continue;
+            const glm::vec3 radiance = gi::gather_radiosity(p.bounce, direct, faces, hit.face, hit.texel) * 0.5f;
+            h.add_ray(two_pi * float(index) / 4096.0f, radiance, two_pi / float(rays));
+        }
+    }
+    for (const SingleSource& s : sources) {
+        const glm::vec3 fluence = transport::direct_fluence(s.in, pos);
+        if (fluence == glm::vec3(0.0f)) continue;
+        const glm::vec2 to = s.position - pos;
+        h.add_delta(s.sun ? s.sun_angle : std::atan2(to.y, to.x), fluence);
+    }
+    return h;
+}
+
 void add(std::vector<float>& to, const std::vector<float>& from) {
     for (std::size_t i = 0; i < to.size(); ++i) to[i] += from[i];
 }
@@ -224,6 +288,8 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
     const bool direct = has_light(p.direct);
     if (!bounce && !direct) return out; // no baked light reaches the chunk
     out.empty = false;
+    out.probes.assign(std::size_t(chunk_probes * chunk_probes), CircularHarmonics{});
+    out.probe_valid.assign(out.probes.size(), 0);
     const int side = out.side();
     // Bounce light: the gather converged (the live method's frames x bounces, in one frame).
     gi::ReferenceStore store;
@@ -239,6 +305,16 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
     out.ground = crop(store.find(gi::Tex::indirect), p, side);
     for (int f = 0; f < 4; ++f)
         out.faces[std::size_t(f)] = crop(store.find(gi::Tex(int(gi::Tex::wall_indirect_px) + f)), p, side);
+    // Light probes: rays into the bounce solve, the baked lights as point sources.
+    const std::vector<SingleSource> sources = single_sources(p.direct);
+    for (int j = 0; j < chunk_probes; ++j)
+        for (int i = 0; i < chunk_probes; ++i) {
+            const glm::ivec2 tile(c.x * chunk_tiles + i * probe_spacing, c.z * chunk_tiles + j * probe_spacing);
+            if (s.walls.is_wall_tile(tile.x, tile.y)) continue;
+            const std::size_t k = std::size_t(j * chunk_probes + i);
+            out.probes[k] = capture_probe(p, bounce ? &store : nullptr, sources, glm::vec2(tile) + 0.5f, b.rays);
+            out.probe_valid[k] = 1;
+        }
     // Direct light of the baked lights, exactly as the live direct passes compute it.
     if (direct) {
         gi::DirectTextures d = gi::reference_direct(p.direct);

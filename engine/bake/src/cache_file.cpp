@@ -7,7 +7,8 @@
 //   u32      reserved, 0
 //   u64      payload bytes
 //   u64      hash of the payload
-//   payload  ground, then faces +X, -X, +Z, -Z: (32 x resolution)^2 texels x RGB, IEEE half
+//   payload  ground, then faces +X, -X, +Z, -Z: (32 x resolution)^2 texels x RGB, IEEE half;
+//            then 16 x 16 light probes: 5 x RGB float32 each, then one validity byte each
 #include "lantern/bake/bake.hpp"
 
 #include "lantern/core/file.hpp"
@@ -40,9 +41,12 @@ T get(const std::uint8_t* p) {
     return v;
 }
 
+constexpr std::size_t probe_count = std::size_t(chunk_probes) * std::size_t(chunk_probes);
+constexpr std::size_t probe_floats = 5 * 3;
+
 std::size_t payload_bytes(int resolution) {
     const std::size_t side = std::size_t(chunk_tiles) * std::size_t(resolution);
-    return side * side * 3 * sizeof(std::uint16_t) * texture_count;
+    return side * side * 3 * sizeof(std::uint16_t) * texture_count + probe_count * (probe_floats * sizeof(float) + 1);
 }
 
 } // namespace
@@ -61,6 +65,10 @@ std::vector<std::byte> encode_chunk(const ChunkBake& b) {
         };
         halves(b.ground);
         for (const auto& f : b.faces) halves(f);
+        for (const CircularHarmonics& h : b.probes)
+            for (const glm::vec3& v : h.c)
+                for (int k = 0; k < 3; ++k) put(payload, v[k]);
+        for (std::uint8_t valid : b.probe_valid) put(payload, valid);
     }
     std::vector<std::byte> out;
     out.reserve(header_bytes + payload.size());
@@ -114,6 +122,19 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
     for (const auto* v : {&b.ground, &b.faces[0], &b.faces[1], &b.faces[2], &b.faces[3]})
         for (float x : *v)
             if (!std::isfinite(x) || x < 0.0f) return make_error("holds a negative or non-finite value");
+    const std::uint8_t* probes = payload + texture_count * n * sizeof(std::uint16_t);
+    b.probes.resize(probe_count);
+    b.probe_valid.resize(probe_count);
+    for (std::size_t i = 0; i < probe_count; ++i)
+        for (std::size_t k = 0; k < probe_floats; ++k) {
+            const float x = get<float>(probes + (i * probe_floats + k) * sizeof(float));
+            if (!std::isfinite(x)) return make_error("holds a non-finite probe");
+            b.probes[i].c[k / 3][int(k % 3)] = x;
+        }
+    for (std::size_t i = 0; i < probe_count; ++i) {
+        b.probe_valid[i] = probes[probe_count * probe_floats * sizeof(float) + i];
+        if (b.probe_valid[i] > 1) return make_error("holds a probe flag other than 0 or 1");
+    }
     return b;
 }
 

@@ -52,6 +52,11 @@ int texel_center_fixed(int i_with_offset, int span, int resolution) {
 
 } // namespace
 
+glm::vec3 gather_radiosity(const FrameInputs& in, const FaceTextures& direct, const Texture* faces, int face,
+                           glm::ivec2 t) {
+    return radiosity_at(in, gather_frame(in), direct, faces, face, t);
+}
+
 HeatGrid gather_grid(const FrameInputs& in) {
     return heat_grid(in.window, in.settings.gather.scale);
 }

@@ -9,7 +9,11 @@
 //                bounce light of `mixed` and `baked` lights and the glow of emissive
 //                materials), fluence at texel centres, 0 in walls;
 //   faces[f]     the same on wall face f (+X, -X, +Z, -Z) at wall texels, as Lantern's wall
-//                textures hold it.
+//                textures hold it;
+//   probes       light probes for things that move (probes.hpp): every 2 tiles, at the
+//                centres of tiles (32 x + 2 i + 0.5, 32 z + 2 j + 0.5), the same light as
+//                circular harmonics (the baked lights' direct light as point sources, the
+//                bounce light by rays); none in walls.
 // Light from outside the chunk is included: lights in reach of it, and walls within
 // BakeSettings::margin tiles that reflect light into it (the gather's margin).
 //
@@ -24,10 +28,12 @@
 // and must be called from its main thread.
 #pragma once
 
+#include "lantern/bake/probes.hpp"
 #include "lantern/core/result.hpp"
 #include "lantern/scene/scene.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -42,12 +48,14 @@ class JobSystem;
 namespace lantern::bake {
 
 inline constexpr int chunk_tiles = 32;               // the game's streaming chunk
+inline constexpr int probe_spacing = 2;              // tiles between light probes
+inline constexpr int chunk_probes = chunk_tiles / probe_spacing; // probes a side
 inline constexpr std::uint32_t bake_code_version = 1; // raise when the bake's output changes
 
 struct BakeSettings {
     int resolution = 4; // texels per tile, 1..16
     int margin = 32;    // tiles around the chunk whose walls reflect or send light into it, 0..64
-    int rays = 256;      // gather rays per ground texel, 1..1024 (the live default is 32)
+    int rays = 256;      // gather rays per ground texel and light probe, 1..1024 (the live default is 32)
     int face_rays = 128; // gather rays per face texel, 1..1024
 
     friend bool operator==(const BakeSettings&, const BakeSettings&) = default;
@@ -76,6 +84,9 @@ struct ChunkBake {
     // RGB per texel, row-major, (32 x resolution)^2 texels each.
     std::vector<float> ground;
     std::array<std::vector<float>, 4> faces;
+    // chunk_probes^2, row-major; probe_valid[i] 0 where the probe's tile is a wall.
+    std::vector<CircularHarmonics> probes;
+    std::vector<std::uint8_t> probe_valid;
 
     int side() const { return chunk_tiles * resolution; }
     friend bool operator==(const ChunkBake&, const ChunkBake&) = default;
@@ -87,6 +98,28 @@ struct ChunkBake {
 std::uint64_t chunk_key(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings);
 // Solves the chunk (one thread; about a second at the defaults).
 ChunkBake bake_chunk(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings);
+
+// The baked light at world point p for a surface facing angle phi, interpolated bilinearly
+// between the four probes around p, over those that exist (`probe(ix, iz)`: the probe at
+// (2 ix + 0.5, 2 iz + 0.5), nullptr in a wall or an unbaked chunk). Zero when none does.
+// Large objects sample a few points over their footprint (the LPPV equivalent).
+template <typename ProbeAt>
+CircularHarmonics interpolate_probes(ProbeAt&& probe, glm::vec2 p) {
+    const glm::vec2 g = (p - 0.5f) / float(probe_spacing);
+    const glm::ivec2 i0(int(std::floor(g.x)), int(std::floor(g.y)));
+    const glm::vec2 f = g - glm::vec2(i0);
+    CircularHarmonics sum;
+    float weight = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        const int dx = k & 1, dz = k >> 1;
+        const CircularHarmonics* h = probe(i0.x + dx, i0.y + dz);
+        if (!h) continue;
+        const float w = (dx ? f.x : 1.0f - f.x) * (dz ? f.y : 1.0f - f.y);
+        sum += *h * w;
+        weight += w;
+    }
+    return weight > 0.0f ? sum * (1.0f / weight) : CircularHarmonics{};
+}
 
 // ---- cache files
 

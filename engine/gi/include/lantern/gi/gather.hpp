@@ -32,6 +32,7 @@
 #include "lantern/gi/reference_indirect.hpp"
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include <array>
 #include <cstdint>
@@ -84,6 +85,10 @@ inline Tex gather_face_target(int step) { return step % 2 == 0 ? Tex::gather_fac
 
 // The reference's steps. `direct` holds wall_direct_px..nz (absent faces: nullptr).
 using FaceTextures = std::array<const Texture*, 4>;
+// The radiosity B leaving face `face` at window texel t (a hit of gather_trace): albedo x
+// (direct + indirect `faces`, nullptr: none) + emission, by the material of t's tile.
+glm::vec3 gather_radiosity(const FrameInputs& in, const FaceTextures& direct, const Texture* faces, int face,
+                           glm::ivec2 t);
 // One face bounce: E_indirect of every exposed face texel from B = albedo x (direct +
 // `previous`) (nullptr: no indirect yet).
 Texture reference_gather_faces(const FrameInputs& in, const FaceTextures& direct, const Texture* previous,
