@@ -7,6 +7,7 @@
 
 #include "lantern/bake/bake.hpp"
 #include "lantern/gi/frame_inputs.hpp"
+#include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/reference.hpp"
 #include "lantern/gi/window.hpp"
 #include "lantern/jobs/job_system.hpp"
@@ -134,6 +135,51 @@ TEST(Bake, LightModesDecideWhatIsBaked) {
             lit += v[0] > 0.0f ? 1 : 0;
         }
     EXPECT_GT(lit, 500);
+}
+
+// A mixed light's baked bounce light is what the live gather method computes for it, texel
+// for texel, when the live method runs with the bake's settings (its frames x bounces
+// spread over 8 frames instead of one).
+TEST(Bake, BakedBounceEqualsTheLiveGather) {
+    scene::Scene s = world();
+    s.point_lights = {s.point_lights[0]}; // the mixed light at (44.5, 15.5)
+    s.materials.clear();
+    for (auto& c : s.walls.cells) c = c != 0 ? 1 : 0;
+    const BakeSettings b = quick();
+    const bake::ChunkBake baked = bake::bake_chunk(s, {1, 0}, b);
+    ASSERT_FALSE(baked.empty);
+    scene::Scene live = s;
+    live.point_lights[0].mode = LightMode::realtime;
+    live.gi.method = scene::GiMethod::gather;
+    live.gi.resolution = b.resolution;
+    live.gi.padding = 1.0f;
+    live.gi.blur = false;
+    live.gi.gather.scale = scene::HeatScale::full;
+    live.gi.gather.margin = b.margin;
+    live.gi.gather.rays = b.rays;
+    live.gi.gather.face_rays = b.face_rays;
+    live.view = scene::OrthoView{{48.0f, 16.0f}, {32.0f, 32.0f}};
+    const gi::GiWindow w = *gi::compute_window(live.view, live.gi);
+    const gi::FrameInputs in = gi::gather_frame_inputs(live, w);
+    gi::Convergence convergence;
+    gi::ReferenceStore store;
+    for (int f = 0; f < live.gi.gather.frames; ++f) {
+        gi::PassPlan plan = gi::plan_passes(in, false);
+        gi::derive_keys(in, plan, gi::input_keys_of(in), &convergence);
+        gi::execute_reference(in, plan, plan.run, {}, store);
+        convergence.advance(plan.run);
+    }
+    const gi::Texture& indirect = store.at(gi::Tex::indirect);
+    const int side = baked.side(), offset = b.margin * b.resolution;
+    int lit = 0;
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            const float* v = indirect.at(x + offset, y + offset);
+            const glm::vec3 got = texel(baked.ground, side, x, y);
+            for (int c = 0; c < 3; ++c) ASSERT_EQ(got[c], v[c]) << x << ", " << y;
+            lit += v[0] > 0.0f ? 1 : 0;
+        }
+    EXPECT_GT(lit, 1000);
 }
 
 TEST(Bake, SecondRunReusesEveryCacheAndAnEditRebakesOnlyTheChunksItReaches) {
