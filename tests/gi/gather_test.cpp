@@ -144,6 +144,20 @@ TEST(GatherReference, AWhiteWallBesideRedRockTurnsPink) {
     EXPECT_GT(indirect_w.g, indirect.g) << "white rock reflects more green than red rock";
 }
 
+// Seed 004's albedo boost: every wall albedo a becomes a^(1 / boost), materials' and the
+// default's; boost 1 leaves them bit for bit.
+TEST(GatherReference, AlbedoBoostRaisesEveryWallAlbedo) {
+    Scene s = as_gather(gi_test::comparison_scene("rooms").scene);
+    s.materials[0].albedo = {0.25f, 0.64f, 0.01f};
+    s.gi.wall_albedo = 0.36f;
+    FrameInputs in = inputs_of(s);
+    EXPECT_EQ(glm::vec3(material_of(in, lantern::scene::material_cell(0)).albedo), s.materials[0].albedo);
+    in.settings.albedo_boost = 2.0f;
+    EXPECT_EQ(glm::vec3(material_of(in, lantern::scene::material_cell(0)).albedo), glm::vec3(0.5f, 0.8f, 0.1f));
+    EXPECT_FLOAT_EQ(material_of(in, lantern::scene::default_wall_cell).albedo.g, 0.6f);
+    EXPECT_EQ(material_of(in, lantern::scene::material_cell(2)).emission, in.materials[2].emission) << "emission unchanged";
+}
+
 TEST(GatherReference, AGlowingWallLightsARoomWithoutLights) {
     std::vector<std::string> rows(12, std::string(12, '#'));
     for (int z = 3; z < 9; ++z) rows[std::size_t(z)].replace(3, 6, "......");

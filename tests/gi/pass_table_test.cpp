@@ -85,6 +85,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"gather.frames", {5, "5"}},
         {"gather.margin", {2, "2"}},
         {"wall_albedo", {0.3, "0.3"}},
+        {"albedo_boost", {2.0, "2.0"}},
     };
     const std::map<std::string, std::string> second = {
         {"resolution", "5"}, {"padding", "1.5"}, {"window_snap", "tile"}, {"sun_shadow_method", "dda"}, {"shadow_method", "shadow_map"}, {"proxy_wall_shadows", "full"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
@@ -97,6 +98,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"radiosity.accumulate", "5"}, {"radiosity.noise", "off"}, {"radiosity.frames", "7"},
         {"gather.scale", "full"}, {"gather.rays", "5"}, {"gather.face_rays", "6"}, {"gather.bounces", "1"},
         {"gather.frames", "7"}, {"gather.margin", "3"}, {"wall_albedo", "0.7"},
+        {"albedo_boost", "3.0"},
     };
     if (auto it = values.find(key); it != values.end())
         return it->second.first != v ? it->second.second : second.at(key);

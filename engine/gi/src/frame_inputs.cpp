@@ -100,8 +100,14 @@ GpuMaterial pack_material(const scene::Material& m) {
 GpuMaterial material_of(const FrameInputs& in, std::uint8_t cell) {
     if (cell == 0) return {glm::vec4(0.0f), glm::vec4(0.0f)};
     const std::size_t k = std::size_t(cell) - std::size_t(scene::first_material_cell);
-    if (cell >= scene::first_material_cell && k < in.materials.size()) return in.materials[k];
-    return {glm::vec4(glm::vec3(in.settings.wall_albedo), 0.0f), glm::vec4(0.0f)};
+    GpuMaterial m = cell >= scene::first_material_cell && k < in.materials.size()
+                        ? in.materials[k]
+                        : GpuMaterial{glm::vec4(glm::vec3(in.settings.wall_albedo), 0.0f), glm::vec4(0.0f)};
+    // Seed 004's meta pass: albedo^(1 / boost), clamped (boost 1 leaves it bit for bit).
+    if (in.settings.albedo_boost != 1.0f)
+        for (int c = 0; c < 3; ++c)
+            m.albedo[c] = std::clamp(std::pow(m.albedo[c], 1.0f / in.settings.albedo_boost), 0.0f, 1.0f);
+    return m;
 }
 
 std::vector<GpuMaterial> material_table(const FrameInputs& in) {

@@ -181,6 +181,7 @@ Result<std::uint64_t> cache_key(const scene::Scene& scene, const TransportSettin
     h.add_span(std::span<const std::uint8_t>(scene.walls.cells));
     h.add(scene.wall_height).add(scene.gi.light_softness).add(scene.gi.directional_angle_scale);
     hash_lights(h, scene);
+    if (scene.gi.albedo_boost != 1.0f) h.add(scene.gi.albedo_boost); // (keys without it stay as they were)
     if (!scene.materials.empty()) { // (keys of scenes without materials stay as they were)
         h.add(scene.materials.size());
         for (const scene::Material& m : scene.materials)

@@ -185,6 +185,8 @@ HudActions Hud::draw(const HudInputs& in) {
             ImGui::SliderInt("bounces a frame", &r.bounces, 1, 16);
             ImGui::SliderInt("margin (tiles)", &r.margin, 0, 16);
             ImGui::SliderFloat("wall albedo", &g.wall_albedo, 0.0f, 1.0f);
+            ImGui::SameLine();
+            ImGui::SliderFloat("albedo boost", &g.albedo_boost, 1.0f, 10.0f);
         }
         if (g.method != scene::GiMethod::heat) {
             // The bounce stepper (systems::ConvergeControl): radiosity adds a bounce a frame,

@@ -229,8 +229,8 @@ constexpr Tex gather_keeps[] = {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::w
                                 Tex::wall_direct_nz};
 constexpr std::string_view gather_settings[] = {
     "gather.scale",  "gather.rays",   "gather.face_rays", "gather.bounces", "gather.frames",
-    "wall_albedo",   "wall_lighting", "wall_faces.px",    "wall_faces.nx",  "wall_faces.pz",
-    "wall_faces.nz"};
+    "wall_albedo",   "albedo_boost",  "wall_lighting",    "wall_faces.px",  "wall_faces.nx",
+    "wall_faces.pz", "wall_faces.nz"};
 
 } // namespace
 

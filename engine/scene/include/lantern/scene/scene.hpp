@@ -125,6 +125,9 @@ struct GiSettings {
     RadiositySettings radiosity; // gi.method = radiosity
     GatherSettings gather;       // gi.method = gather
     float wall_albedo = 0.5f;    // walls' grey albedo where bounce light is physical (gi.method = gather)
+    // Seed 004's meta pass: every wall albedo a (materials' and the default's) becomes
+    // clamp(a^(1 / albedo_boost), 0, 1) in the physical bounce (gather, transport, bake).
+    float albedo_boost = 1.0f;
 
     friend bool operator==(const GiSettings&, const GiSettings&) = default;
 };
