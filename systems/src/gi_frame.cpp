@@ -44,6 +44,7 @@ void set_reason(std::string& out, std::string_view prefix, std::string_view why)
 
 struct LightGatherState {
     std::uint64_t window_hash = ~0ull;
+    bool baked = false; // a bake was used (light modes honoured)
     std::unordered_set<std::uint64_t> kept; // entities kept last time (hysteresis)
 };
 
@@ -63,16 +64,23 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
     const GiView& view = w.resource<GiView>();
     const GiConfig& config = w.resource<GiConfig>();
     const std::uint64_t window_hash = hash_window(view.window);
-    const bool changed = window_hash != state.window_hash || pool_changed_since<PointLight>(w, ctx.last_run) ||
+    // With a bake, baked lights leave the live passes and mixed lights keep only their
+    // direct light (the `mixed` row); without one every light is realtime.
+    const bool baked = w.resource<BakedGi>().light != nullptr;
+    auto live = [baked](scene::LightMode m) { return !baked || m != scene::LightMode::baked; };
+    auto mixed = [baked](scene::LightMode m) { return baked && m == scene::LightMode::mixed; };
+    const bool changed = window_hash != state.window_hash || baked != state.baked || pool_changed_since<PointLight>(w, ctx.last_run) ||
                          pool_changed_since<EmissiveLight>(w, ctx.last_run) ||
                          pool_changed_since<DirectionalLight>(w, ctx.last_run);
     if (!changed) return; // nothing to redo: last frame's lists stand
     state.window_hash = window_hash;
+    state.baked = baked;
     GatheredLights out;
     if (view.window) {
         const gi::GiWindow& win = *view.window;
         std::vector<gi::Offer> offers;
-        const auto points = by_entity<PointLight>(w);
+        auto points = by_entity<PointLight>(w);
+        std::erase_if(points, [&](const auto& p) { return !live(p.second->mode); });
         for (std::uint32_t i = 0; i < points.size(); ++i) {
             const auto& [e, l] = points[i];
             // Stable priority: lights kept last frame get a head start, so lights near the
@@ -86,17 +94,22 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
         state.kept.clear();
         for (std::uint32_t i : kept) {
             const auto& [e, l] = points[i];
+            state.kept.insert(e.bits());
+            if (mixed(l->mode)) {
+                out.mixed_points.push_back(gi::pack_light(l->position, l->color, l->intensity, l->radius));
+                continue;
+            }
             out.points.push_back(gi::pack_light(l->position, l->color, l->intensity, l->radius));
             out.point_entities.push_back(e);
-            state.kept.insert(e.bits());
         }
         offers.clear();
-        const auto emissives = by_entity<EmissiveLight>(w);
+        auto emissives = by_entity<EmissiveLight>(w);
+        std::erase_if(emissives, [&](const auto& p) { return !live(p.second->mode); });
         for (std::uint32_t i = 0; i < emissives.size(); ++i)
             offers.push_back({emissives[i].second->position, emissives[i].second->radius, i});
         for (std::uint32_t i : gi::gather_offers(offers, win, offers.size())) {
             const EmissiveLight& l = *emissives[i].second;
-            out.emissives.push_back(gi::pack_light(l.position, l.color, l.intensity, l.radius));
+            (mixed(l.mode) ? out.mixed_emissives : out.emissives).push_back(gi::pack_light(l.position, l.color, l.intensity, l.radius));
         }
         for (const auto& [e, d] : by_entity<DirectionalLight>(w))
             if (gi::sun_adds_light(d->color, d->intensity))
@@ -104,7 +117,9 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
                     {d->direction, d->color, d->intensity, d->base_shadow_distance, d->bounce_intensity},
                     config.settings.method));
     }
-    out.hash = hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives);
+    out.hash = hash_vector(Hasher(hash_vector(Hasher(hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives)),
+                                              out.mixed_points)),
+                           out.mixed_emissives);
     out.suns_hash = hash_vector(Hasher(), out.suns);
     w.resource<GatheredLights>() = std::move(out);
 }
@@ -145,7 +160,8 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, g
     // The walls' key covers their materials too (what they reflect and emit).
     const std::uint64_t walls = in.materials.empty() ? wall_version
                                                      : Hasher().add(wall_version).add_span(std::span(in.materials)).value();
-    const gi::InputKeys inputs{gi::hash_window(in.window), walls, lights_hash, proxies_hash, suns_hash};
+    const gi::InputKeys inputs{gi::hash_window(in.window), walls, lights_hash, proxies_hash, suns_hash,
+                               in.baked ? in.baked->key : 0};
     return gi::derive_keys(in, plan, inputs, convergence);
 }
 
@@ -161,6 +177,7 @@ GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const
     world_.set_resource<GatheredProxies>();
     world_.set_resource<FramePasses>();
     world_.set_resource<WallDistanceField>();
+    world_.set_resource<BakedGi>();
     gpu_lane_ = profile::add_gpu_lane(profile::intern("GPU: " + backend_->name()));
     if (options.add_game_systems) options.add_game_systems(schedule_);
     add_systems();
@@ -201,7 +218,7 @@ void GiFrame::add_systems() {
     auto light_state = std::make_shared<LightGatherState>();
     schedule_.add("light_gather", [light_state](ecs::SystemContext& ctx) { gather_lights(ctx, *light_state); })
         .reads<PointLight, EmissiveLight, DirectionalLight>()
-        .reads_resource<GiView, GiConfig>()
+        .reads_resource<GiView, GiConfig, BakedGi>()
         .writes_resource<GatheredLights>();
 
     auto proxy_state = std::make_shared<ProxyGatherState>();
@@ -230,8 +247,13 @@ void GiFrame::add_systems() {
         in.settings = config.settings;
         in.point_lights = lights.points;
         in.emissive_lights = lights.emissives;
+        in.mixed_lights = lights.mixed_points;
+        in.mixed_emissives = lights.mixed_emissives;
         in.directional_lights = lights.suns;
         in.proxies = proxies.proxies;
+        in.materials.clear();
+        for (const scene::Material& m : config.materials) in.materials.push_back(gi::pack_material(m));
+        in.baked = w.resource<BakedGi>().light;
         f.plan = gi::plan_passes(in, config.lit_image);
         // The bounce stepper: a restart starts the converging rows afresh; while they are held,
         // a step advances them by one frame (gpu_submit advances them otherwise).
@@ -261,7 +283,7 @@ void GiFrame::add_systems() {
             }
         }
     })
-        .reads_resource<GiView, GiConfig, GatheredLights, GatheredProxies, Streaming>()
+        .reads_resource<GiView, GiConfig, GatheredLights, GatheredProxies, Streaming, BakedGi>()
         .reads<GICache, Camera>()
         .writes_resource<FramePasses>();
 

@@ -13,15 +13,13 @@ bool WorldSource::is_wall(glm::ivec2 tile) const {
 void CaveSource::generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const {
     for (int r = 0; r < chunk_size; ++r)
         for (int c = 0; c < chunk_size; ++c)
-            cells[std::size_t(r * chunk_size + c)] =
-                scene::cave_wall(coord.x * chunk_size + c, coord.y * chunk_size + r, params_) ? 1 : 0;
+            cells[std::size_t(r * chunk_size + c)] = scene::cave_cell(coord.x * chunk_size + c, coord.y * chunk_size + r, params_);
 }
 
 void GridSource::generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const {
     for (int r = 0; r < chunk_size; ++r)
         for (int c = 0; c < chunk_size; ++c)
-            cells[std::size_t(r * chunk_size + c)] =
-                grid_.is_wall_tile(coord.x * chunk_size + c, coord.y * chunk_size + r) ? 1 : 0;
+            cells[std::size_t(r * chunk_size + c)] = grid_.cell(coord.x * chunk_size + c, coord.y * chunk_size + r); // material kept
 }
 
 } // namespace lantern::systems

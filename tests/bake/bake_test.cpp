@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -465,4 +467,91 @@ TEST(Bake, ProbesInterpolateBilinearlyOverThoseThatExist) {
     // Beyond (2.5, 2.5) only d exists among the four around: d's light.
     EXPECT_FLOAT_EQ(bake::interpolate_probes(at, {3.0f, 3.0f}).fluence().r, 4.0f);
     EXPECT_FLOAT_EQ(bake::interpolate_probes(at, {-3.0f, -3.0f}).fluence().r, 0.0f) << "no probe around";
+}
+
+// At run time (bake::load_world_light, the frame's `baked` row): a baked light looks as the
+// same light does live when the live method is the bake's solver with the bake's settings:
+// direct + indirect light live equal the baked light the frame adds, on the ground and on
+// every exposed wall face, within the bricks' colour range and RGBM's rounding.
+TEST(BakeAtRunTime, ABakedLightLooksAsItDoesLive) {
+    scene::Scene s = world();
+    s.point_lights = {s.point_lights[0]};
+    s.point_lights[0].mode = LightMode::baked;
+    s.materials.clear();
+    for (auto& c : s.walls.cells) c = c != 0 ? 1 : 0;
+    const BakeSettings b = quick();
+    TempDir dir;
+    auto light = bake::load_world_light(s, dir.path().string(), b);
+    ASSERT_TRUE(light.ok()) << light.error().message;
+    ASSERT_TRUE(*light);
+    scene::Scene live = s;
+    live.point_lights[0].mode = LightMode::realtime;
+    live.gi.method = scene::GiMethod::gather;
+    live.gi.resolution = b.resolution;
+    live.gi.padding = 1.0f;
+    live.gi.blur = false;
+    live.gi.gather.scale = scene::HeatScale::full;
+    live.gi.gather.margin = b.margin;
+    live.gi.gather.rays = b.rays;
+    live.gi.gather.face_rays = b.face_rays;
+    live.view = scene::OrthoView{{48.0f, 16.0f}, {32.0f, 32.0f}}; // chunk (1, 0)
+    auto run = [](const gi::FrameInputs& in, int frames) {
+        gi::Convergence convergence;
+        gi::ReferenceStore store;
+        for (int f = 0; f < frames; ++f) {
+            gi::PassPlan plan = gi::plan_passes(in, false);
+            gi::derive_keys(in, plan, gi::input_keys_of(in), &convergence);
+            gi::execute_reference(in, plan, plan.run, {}, store);
+            convergence.advance(plan.run);
+        }
+        return store;
+    };
+    const gi::GiWindow w = *gi::compute_window(live.view, live.gi);
+    const gi::ReferenceStore a = run(gi::gather_frame_inputs(live, w), live.gi.gather.frames);
+    scene::Scene baked_scene = bake::live_scene(s);
+    baked_scene.gi = live.gi;
+    EXPECT_TRUE(baked_scene.point_lights.empty()) << "the baked light leaves the live passes";
+    gi::FrameInputs in = gi::gather_frame_inputs(baked_scene, w);
+    in.baked = *light;
+    const gi::ReferenceStore bs = run(in, 1);
+    auto rgb = [](const gi::Texture* t, int x, int y) {
+        if (!t) return glm::vec3(0.0f);
+        const float* v = t->at(x, y);
+        return glm::vec3(v[0], v[1], v[2]);
+    };
+    int ground = 0, faces = 0;
+    double err2 = 0.0, ref2 = 0.0;
+    for (int y = 0; y < w.height; ++y)
+        for (int x = 0; x < w.width; ++x) {
+            const glm::vec2 p = w.texel_center(x, y);
+            if (p.x < 32.0f || p.x >= 64.0f || p.y < 0.0f || p.y >= 32.0f) continue; // the chunk
+            const glm::ivec2 cell(int(std::floor(p.x)), int(std::floor(p.y)));
+            const bool wall = s.walls.is_wall_tile(cell.x, cell.y);
+            auto check = [&](glm::vec3 want, glm::vec3 got) {
+                for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], want[c], 0.012f + 0.01f * want[c]) << x << ", " << y;
+                const glm::vec3 d = got - want;
+                err2 += double(glm::dot(d, d));
+                ref2 += double(glm::dot(want, want));
+            };
+            if (!wall) {
+                check(rgb(a.find(gi::Tex::direct), x, y) + rgb(a.find(gi::Tex::indirect), x, y),
+                      rgb(bs.find(gi::Tex::direct), x, y) + rgb(bs.find(gi::Tex::indirect), x, y));
+                ++ground;
+                continue;
+            }
+            const glm::vec4 mask = gi::wall_face_mask(in.walls, cell);
+            for (int f = 0; f < 4; ++f)
+                if (mask[f] > 0.0f) {
+                    const gi::Tex direct = gi::Tex(int(gi::Tex::wall_direct_px) + f);
+                    const gi::Tex indirect = gi::Tex(int(gi::Tex::wall_indirect_px) + f);
+                    check(rgb(a.find(direct), x, y) + rgb(a.find(indirect), x, y),
+                          rgb(bs.find(direct), x, y) + rgb(bs.find(indirect), x, y));
+                    ++faces;
+                }
+        }
+    std::printf("ground texels %d, face texels %d, relative RMS difference %.3f %%\n", ground, faces,
+                100.0 * std::sqrt(err2 / std::max(ref2, 1e-30)));
+    EXPECT_GT(ground, 2000);
+    EXPECT_GT(faces, 100);
+    EXPECT_LT(std::sqrt(err2 / ref2), 0.01);
 }

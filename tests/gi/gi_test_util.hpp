@@ -1,11 +1,15 @@
 // Small scenes built in code for the GI tests.
 #pragma once
 
+#include "lantern/gi/baked_light.hpp"
 #include "lantern/gi/frame_inputs.hpp"
 #include "lantern/scene/scene.hpp"
 
 #include <glm/geometric.hpp>
 
+#include <array>
+#include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,5 +36,31 @@ inline lantern::scene::Scene open_scene(glm::vec2 center, glm::vec2 size, int re
     s.gi.padding = 1.0f;
     return s;
 }
+
+// A smooth, coloured baked light over tiles [origin, origin + tiles) at `res` texels a tile:
+// every layer a different pattern, open where the walls say (as bake::runtime_light does).
+inline std::shared_ptr<const lantern::gi::BakedLight> synthetic_bake(const lantern::gi::WallView& walls, glm::ivec2 origin, glm::ivec2 tiles, int res,
+                                                 float eps, std::uint64_t key) {
+    std::array<lantern::gi::Field, lantern::gi::baked_layers> layers;
+    static constexpr glm::ivec2 across[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    for (int l = 0; l < lantern::gi::baked_layers; ++l) {
+        lantern::gi::Field& f = layers[std::size_t(l)];
+        f = lantern::gi::Field(tiles.x * res, tiles.y * res);
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) {
+                const glm::ivec2 tile = origin + glm::ivec2(x / res, y / res);
+                const bool wall = walls.is_wall(tile.x, tile.y);
+                const std::size_t i = std::size_t(y) * std::size_t(f.width) + std::size_t(x);
+                f.air[i] = l == 0 ? !wall
+                                  : wall && !walls.is_wall(tile.x + across[l - 1].x, tile.y + across[l - 1].y);
+                const float u = float(x) / float(res), v = float(y) / float(res);
+                f.rgb[i * 3 + 0] = 0.6f + 0.5f * std::sin(0.31f * u + float(l));
+                f.rgb[i * 3 + 1] = 0.4f + 0.3f * std::cos(0.23f * v - 0.5f * float(l));
+                f.rgb[i * 3 + 2] = 0.05f * float(l + 1) + 0.02f * u;
+            }
+    }
+    return std::make_shared<const lantern::gi::BakedLight>(lantern::gi::make_baked_light(origin, res, layers, eps, key));
+}
+
 
 } // namespace gi_test

@@ -24,7 +24,8 @@ using namespace lantern::gi;
 
 namespace {
 
-// Rooms with point lights and an emissive, plus a sun and a shadow proxy: every pass runs.
+// Rooms with point lights and an emissive, plus a sun and a shadow proxy, and (with_bake) a
+// baked light: every pass runs.
 scene::Scene every_pass_scene() {
     scene::Scene s = gi_test::comparison_scene("rooms").scene;
     scene::DirectionalLight sun;
@@ -37,6 +38,7 @@ scene::Scene every_pass_scene() {
     proxy.size = {0.4f, 0.4f};
     s.shadow_proxies.push_back(proxy);
     s.gi.heat_rounds = 6;
+    s.point_lights[1].mode = scene::LightMode::mixed; // its direct light by the mixed row
     return s;
 }
 
@@ -116,11 +118,19 @@ struct FrameRun {
     ReferenceStore store;
 };
 
+// A baked light over the rooms, fixed in the world (a window change does not change it),
+// and the scene's mixed lights as a bake has them.
+void with_bake(FrameInputs& in, const scene::Scene& s) {
+    in.baked = gi_test::synthetic_bake(in.walls, {-16, -16}, {64, 64}, 2, 0.01f, std::uint64_t(in.walls.width));
+    split_for_bake(in, s);
+}
+
 FrameRun run(const scene::Scene& s, const Method* keys_method = nullptr) {
     FrameRun r;
     auto window = compute_window(s.view, s.gi);
     EXPECT_TRUE(window);
     r.in = gather_frame_inputs(s, *window);
+    with_bake(r.in, s);
     r.plan = plan_passes(r.in, true);
     r.inputs = input_keys_of(r.in);
     r.keys = keys_method ? derive_keys(*keys_method, r.in, r.plan, r.inputs) : derive_keys(r.in, r.plan, r.inputs);
@@ -303,6 +313,7 @@ TEST(PassTable, TextureBudget) {
     auto window = compute_window(s.view, s.gi);
     ASSERT_TRUE(window);
     FrameInputs in = gather_frame_inputs(s, *window);
+    with_bake(in, s);
     const PassPlan plan = plan_passes(in, true);
     ASSERT_EQ(plan.run, rows_of(method(scene::GiMethod::heat))) << "every pass runs";
     const std::uint64_t texels = std::uint64_t(in.window.width) * std::uint64_t(in.window.height);

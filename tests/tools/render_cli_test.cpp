@@ -5,11 +5,14 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
@@ -309,4 +312,93 @@ TEST(BakeCli, BakesReusesAndRefusesBadInput) {
         EXPECT_EQ(r.output, expect) << args;
     }
     EXPECT_FALSE(fs::exists("x")) << "bad input writes nothing";
+}
+
+namespace {
+
+// A colour PFM as lantern-render --dump writes it (docs/scenes.md): RGB floats, rows in order.
+std::vector<float> read_pfm_rgb(const fs::path& path, int& width, int& height) {
+    const std::string bytes = lantern::test::read_file(path);
+    std::size_t at = 0;
+    auto token = [&] {
+        while (at < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[at]))) ++at;
+        const std::size_t start = at;
+        while (at < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[at]))) ++at;
+        return bytes.substr(start, at - start);
+    };
+    if (token() != "PF") return {};
+    width = std::stoi(token());
+    height = std::stoi(token());
+    token(); // scale
+    ++at;    // the one whitespace byte before the data
+    std::vector<float> out(std::size_t(width) * std::size_t(height) * 3);
+    if (bytes.size() < at + out.size() * 4) return {};
+    std::memcpy(out.data(), bytes.data() + at, out.size() * 4);
+    return out;
+}
+
+// Ground light the frame dumped: direct + indirect, per texel and channel.
+std::vector<float> ground_light(const fs::path& dump) {
+    int w = 0, h = 0, w2 = 0, h2 = 0;
+    std::vector<float> direct = read_pfm_rgb(dump / "direct.pfm", w, h), indirect = read_pfm_rgb(dump / "indirect.pfm", w2, h2);
+    if (direct.empty() || indirect.size() != direct.size()) return {};
+    for (std::size_t i = 0; i < direct.size(); ++i) direct[i] += indirect[i];
+    return direct;
+}
+
+} // namespace
+
+// lantern-render --bake: the scene's baked light and glowing lava come from its bake (baked
+// first where missing), the frame adds them in its `baked` pass and the live passes leave
+// them out; with the live method the bake's solver at the bake's settings the picture is
+// the live one, on both backends.
+TEST(RenderCli, ABakeLightsTheSceneAsTheLivePassesDo) {
+    TempDir dir;
+    const std::string scene = R"({
+  "lantern_scene": 1,
+  "materials": [ { "name": "lava", "albedo": [0.3, 0.1, 0.05], "emission": [1.5, 0.5, 0.1], "symbol": "L" } ],
+  "world": { "rows": ["##########", "#........#", "#..#.....L", "#........#", "##########"], "origin": [30, 30] },
+  "view": { "center": [35.0, 32.5], "size": [10.0, 5.0] },
+  "gi": { "method": "gather", "resolution": 2, "padding": 1.0, "blur": false, "ao": { "enabled": false },
+          "gather": { "scale": "full", "margin": 2, "rays": 32, "face_rays": 32, "frames": 1, "bounces": 4 } },
+  "point_lights": [ { "position": [32.5, 32.5], "radius": 6.0, "mode": "MODE" } ]
+})";
+    auto with_mode = [&](const char* mode) {
+        std::string s = scene;
+        s.replace(s.find("MODE"), 4, mode);
+        return s;
+    };
+    write(dir.path() / "baked.json", with_mode("baked"));
+    write(dir.path() / "live.json", with_mode("realtime"));
+    // A margin of 8 tiles: every chunk's solve sees the whole room (the lava too).
+    const std::string bake = " --bake " + dir.file("cache") + " --bake-resolution 2 --bake-margin 8 --bake-rays 32 --bake-face-rays 32";
+    for (const char* backend : {"cpu", "vulkan"}) {
+        const std::string b = std::string(" --backend ") + backend;
+        const RunResult live = run(dir.file("live.json") + b + " --quiet --dump " + dir.file(std::string("live_") + backend));
+        if (live.status == 1 && live.output.find("no Vulkan device") != std::string::npos) LANTERN_SKIP_NO_GPU(live.output);
+        ASSERT_EQ(live.status, 0) << live.output;
+        const RunResult baked = run(dir.file("baked.json") + b + bake + " --timings " + dir.file("t.json") + " --dump " +
+                                    dir.file(std::string("baked_") + backend));
+        ASSERT_EQ(baked.status, 0) << baked.output;
+        // The first run bakes (with progress), the second reuses the cache.
+        EXPECT_NE(baked.output.find(std::string(backend) == "cpu" ? "(0 reused)" : "(4 reused)"), std::string::npos) << baked.output;
+        auto t = nlohmann::json::parse(lantern::test::read_file(dir.path() / "t.json"));
+        EXPECT_EQ(t["lights"]["point"], 0) << "the baked light left the live passes";
+        bool ran = false;
+        for (const auto& p : t["passes"])
+            if (p["name"] == "baked") ran = p["ran"].get<bool>();
+        EXPECT_TRUE(ran);
+        const std::vector<float> a = ground_light(dir.path() / (std::string("live_") + backend)),
+                                 c = ground_light(dir.path() / (std::string("baked_") + backend));
+        ASSERT_FALSE(a.empty());
+        ASSERT_EQ(a.size(), c.size());
+        double err2 = 0.0, ref2 = 0.0;
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            err2 += double(c[i] - a[i]) * double(c[i] - a[i]);
+            ref2 += double(a[i]) * double(a[i]);
+        }
+        std::printf("%s: baked against live, relative RMS %.3f %%\n", backend, 100.0 * std::sqrt(err2 / ref2));
+        EXPECT_LT(std::sqrt(err2 / ref2), 0.02) << backend;
+        EXPECT_GT(ref2, 1.0);
+    }
 }

@@ -7,7 +7,7 @@
 // materials could light it, and a map has none, so every chunk is empty). A second run
 // reuses every cache file whose key still matches; unusable files are named and re-baked.
 #include "lantern/bake/bake.hpp"
-#include "lantern/bake/bricks.hpp"
+#include "lantern/gi/bricks.hpp"
 #include "lantern/core/cli.hpp"
 #include "lantern/core/clock.hpp"
 #include "lantern/core/png.hpp"
@@ -84,14 +84,14 @@ Result<void> write_picture(const scene::Scene& scene, const std::string& dir, co
 }
 
 // The world's baked ground light as one field (every chunk of the world found in `dir`).
-std::optional<bake::Field> world_field(const scene::Scene& scene, const std::string& dir, const bake::BakeSettings& b) {
+std::optional<gi::Field> world_field(const scene::Scene& scene, const std::string& dir, const bake::BakeSettings& b) {
     const std::vector<bake::ChunkId> all = bake::scene_chunks(scene);
     if (all.empty()) return std::nullopt;
     int x0 = all.front().x, x1 = x0, z0 = all.front().z, z1 = z0;
     for (const bake::ChunkId c : all)
         x0 = std::min(x0, c.x), x1 = std::max(x1, c.x), z0 = std::min(z0, c.z), z1 = std::max(z1, c.z);
     const int side = bake::chunk_tiles * b.resolution;
-    bake::Field f;
+    gi::Field f;
     f.width = (x1 - x0 + 1) * side;
     f.height = (z1 - z0 + 1) * side;
     f.rgb.assign(std::size_t(f.width) * std::size_t(f.height) * 3, 0.0f);
@@ -113,19 +113,19 @@ std::optional<bake::Field> world_field(const scene::Scene& scene, const std::str
 
 // Seed 002's claim measured: memory of the adaptive bricks against a dense grid, and the
 // error each adds (RGBM included), over the open ground.
-void brick_report(const bake::Field& f, const std::vector<float>& eps_list) {
+void brick_report(const gi::Field& f, const std::vector<float>& eps_list) {
     const double dense_rgbm = double(f.width) * f.height * 4, dense_half = double(f.width) * f.height * 6;
     std::printf("\n%d x %d probes; dense: %.2f MB as RGBM8, %.2f MB as RGB half\n", f.width, f.height, dense_rgbm / 1e6,
                 dense_half / 1e6);
     std::printf("| eps | bricks (level 0/1/2/3) | empty cells | atlas + indirection | vs dense RGBM8 | rel. RMS error | max error |\n");
     std::printf("|---|---|---|---|---|---|---|\n");
     for (float eps : eps_list) {
-        const bake::BrickAtlas a = bake::build_bricks(f, eps);
+        const gi::BrickAtlas a = gi::build_bricks(f, eps);
         double err2 = 0.0, ref2 = 0.0, worst = 0.0;
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) {
                 if (!f.air[std::size_t(y) * std::size_t(f.width) + std::size_t(x)]) continue;
-                const glm::vec3 want = f.at(x, y), got = bake::sample_bricks(a, float(x) + 0.5f, float(y) + 0.5f);
+                const glm::vec3 want = f.at(x, y), got = gi::sample_bricks(a, float(x) + 0.5f, float(y) + 0.5f);
                 for (int c = 0; c < 3; ++c) {
                     const double d = double(got[c]) - double(want[c]);
                     err2 += d * d;
@@ -162,10 +162,7 @@ int main(int argc, char** argv) {
                                "together write the same files as one run", [&](std::string_view v) {
         return parse_shard(v, options.shard, options.shards);
     });
-    p.integer("--resolution", "R", "texels per tile (default 4)", settings.resolution, 1, 16);
-    p.integer("--margin", "M", "tiles around a chunk whose walls reflect light into it (default 8)", settings.margin, 0, 64);
-    p.integer("--rays", "N", "gather rays per ground texel and light probe (default 256)", settings.rays, 1, 1024);
-    p.integer("--face-rays", "N", "gather rays per wall-face texel (default 128)", settings.face_rays, 1, 1024);
+    bake::add_settings_options(p, settings, "--");
     p.integer("--threads", "N", "threads (default: the machine's cores)", threads, 1, 256);
     p.flag("--force", "bake every chunk, even where a valid cache file exists", options.force);
     std::string image;

@@ -1,5 +1,6 @@
 #include "render_cli.hpp"
 
+#include "lantern/bake/bake.hpp"
 #include "lantern/core/cli.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/json_writer.hpp"
@@ -27,6 +28,8 @@ struct Options {
     std::string out, dump, timings;
     std::string backend = "vulkan";
     std::vector<std::string> sets;
+    std::string bake;
+    bake::BakeSettings bake_settings;
     int frames = 1;
     bool quiet = false;
 };
@@ -70,6 +73,12 @@ std::optional<int> parse_args(int argc, char** argv, Options& o) {
               "lists, per frame, which passes ran and why the others did not; the\n"
               "outputs are the last frame's",
               o.frames, 1, 100000);
+    p.text("--bake", "DIR",
+           "light the scene's mixed and baked lights and glowing materials from its bake in DIR\n"
+           "(docs/baked.md): chunks missing or stale there are baked first (as lantern-bake does),\n"
+           "then the frame adds the baked light and the live passes leave it out",
+           o.bake);
+    bake::add_settings_options(p, o.bake_settings, "--bake-");
     p.flag("--quiet", "no progress output on stderr", o.quiet);
     p.epilog("Exit status: 0 ok, 1 runtime failure (e.g. no Vulkan device), 2 bad input. Nothing is\n"
              "written unless the frame succeeded; every file is written atomically.");
@@ -274,10 +283,25 @@ int render_main(int argc, char** argv) {
     auto backend = make_backend(o, jobs);
     if (!backend) return fail(backend.error().message, backend.error().exit_code);
     const std::string device_name = backend->backend->name();
+    std::shared_ptr<const gi::BakedLight> baked;
+    if (!o.bake.empty()) {
+        bake::BakeOptions options;
+        options.jobs = &jobs;
+        if (!o.quiet)
+            options.progress = [](const bake::BakeProgress& p) {
+                std::fprintf(stderr, "lantern-render: bake %d/%d chunks (%d reused) %.1f s\n", p.done, p.total, p.reused, p.seconds);
+            };
+        options.warn = [](const std::string& m) { std::fprintf(stderr, "lantern-render: %s\n", m.c_str()); };
+        auto light = bake::load_world_light(*scene, o.bake, o.bake_settings, options);
+        if (!light) return fail(light.error().message, light.error().exit_code);
+        baked = std::move(*light);
+        *scene = bake::live_scene(*scene); // the bake holds the rest
+    }
     ecs::World world;
     systems::SceneWorld sw = systems::populate_world(*scene, world);
     sw.config.lit_image = !o.out.empty();
     systems::GiFrame frame(world, jobs, sw.source, std::move(backend->backend), sw.config);
+    world.resource<systems::BakedGi>().light = baked;
     frame.warm_up();
     profile::set_enabled(true);
     std::vector<FrameRecord> records;

@@ -72,8 +72,10 @@ scene::Scene lights_of(const scene::Scene& s, const BakeSettings& b, Lights whic
         if (keeps(l.mode, which)) out.point_lights.push_back(l);
     for (const auto& l : s.emissive_lights)
         if (keeps(l.mode, which)) out.emissive_lights.push_back(l);
+    // A mixed sun is lit as a realtime one (the frame's mixed row carries point and emissive
+    // lights only): its bounce stays live, so the bake leaves it out.
     for (const auto& l : s.directional_lights)
-        if (keeps(l.mode, which)) out.directional_lights.push_back(l);
+        if (keeps(l.mode == LightMode::mixed ? LightMode::realtime : l.mode, which)) out.directional_lights.push_back(l);
     out.shadow_proxies = s.shadow_proxies;
     out.materials = s.materials;
     return out;

@@ -93,6 +93,25 @@ FrameInputs gather_frame_inputs(const scene::Scene& s, const GiWindow& window) {
     return in;
 }
 
+void split_for_bake(FrameInputs& in, const scene::Scene& s) {
+    auto split = [](std::vector<GpuPointLight>& live, std::vector<std::uint32_t>& ids, std::vector<GpuPointLight>& mixed,
+                    const auto& lights) {
+        std::vector<GpuPointLight> kept;
+        std::vector<std::uint32_t> kept_ids;
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            const scene::LightMode mode = lights[ids[k]].mode;
+            if (mode == scene::LightMode::mixed) mixed.push_back(live[k]);
+            if (mode != scene::LightMode::realtime) continue;
+            kept.push_back(live[k]);
+            kept_ids.push_back(ids[k]);
+        }
+        live = std::move(kept);
+        ids = std::move(kept_ids);
+    };
+    split(in.point_lights, in.point_light_ids, in.mixed_lights, s.point_lights);
+    split(in.emissive_lights, in.emissive_ids, in.mixed_emissives, s.emissive_lights);
+}
+
 GpuMaterial pack_material(const scene::Material& m) {
     return {glm::vec4(m.albedo, 0.0f), glm::vec4(m.emission, 0.0f)};
 }

@@ -87,20 +87,20 @@ static_assert(rows_in_order(), "builtin_textures must list the textures in the o
 // Seed 000's heat diffusion: the pipeline order.
 constexpr const PassRow* heat_rows[] = {
     &rows::conduction, &rows::ao,   &rows::direct,        &rows::directional, &rows::emission,
-    &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::lit,
+    &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::mixed, &rows::baked, &rows::lit,
 };
 // Seed 003's radiosity: the same direct light and emission, then the distance field and the
 // raymarch in place of heat; the blur is the seed's denoiser.
 constexpr const PassRow* radiosity_rows[] = {
     &rows::conduction,     &rows::ao,        &rows::direct, &rows::directional,   &rows::emission,
-    &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::lit,
+    &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::mixed, &rows::baked, &rows::lit,
 };
 
 // The gather method (physical): Lantern's direct light, then the wall faces' bounces and the
 // ground gather in place of emission and heat; the blur smooths the gather's ray pattern.
 // (It writes wall_indirect_* itself: no wall_indirect row.)
 constexpr const PassRow* gather_rows[] = {
-    &rows::conduction, &rows::ao, &rows::direct, &rows::directional, &rows::gather, &rows::blur, &rows::lit,
+    &rows::conduction, &rows::ao, &rows::direct, &rows::directional, &rows::gather, &rows::blur, &rows::mixed, &rows::baked, &rows::lit,
 };
 
 // The registry: the built-in textures, rows and methods, then what add_texture/add_row
@@ -186,6 +186,7 @@ std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan&
     if (row.inputs & input_suns) h.add(inputs.suns);
     if (row.inputs & input_wall_height) h.add(in.wall_height);
     if (row.inputs & input_walls_in_window) h.add(plan.has_walls_in_window);
+    if (row.inputs & input_baked) h.add(inputs.baked);
     for (int i : setting_indices(row)) h.add(i).add(settings[std::size_t(i)]);
     return h.value();
 }
@@ -371,9 +372,15 @@ InputKeys input_keys_of(const FrameInputs& in) {
     walls.add_bytes(in.walls.cells, std::size_t(in.walls.width) * std::size_t(in.walls.height));
     walls.add_span(std::span(in.materials)); // what the walls reflect and emit
     k.walls = walls.value();
-    k.lights = Hasher().add_span(std::span(in.point_lights)).add_span(std::span(in.emissive_lights)).value();
+    k.lights = Hasher()
+                   .add_span(std::span(in.point_lights))
+                   .add_span(std::span(in.emissive_lights))
+                   .add_span(std::span(in.mixed_lights))
+                   .add_span(std::span(in.mixed_emissives))
+                   .value();
     k.proxies = Hasher().add_span(std::span(in.proxies)).value();
     k.suns = Hasher().add_span(std::span(in.directional_lights)).value();
+    k.baked = in.baked ? in.baked->key : 0;
     return k;
 }
 

@@ -307,6 +307,8 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
             out.wall_direct[f] = Texture(std::string("wall_direct_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
             if (unfold) out.wall_upper[f] = Texture(std::string("wall_upper_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
         }
+    // No point or emissive lights: every output is zero (as the GPU clears them, face flags too).
+    if (in.point_lights.empty() && in.emissive_lights.empty()) return out;
     std::optional<PointMaps> maps;
     if (in.settings.shadow_method == scene::ShadowMethod::shadow_map && !in.point_lights.empty()) maps = build_point_maps(in);
     const PointMaps* map = maps ? &*maps : nullptr;

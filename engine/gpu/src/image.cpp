@@ -74,6 +74,7 @@ std::uint32_t image_texel_size(VkFormat format) {
         return 2;
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_R8G8B8A8_UINT:
     case VK_FORMAT_B8G8R8A8_UNORM:
     case VK_FORMAT_B8G8R8A8_SRGB:
     case VK_FORMAT_A2B10G10R10_UNORM_PACK32:

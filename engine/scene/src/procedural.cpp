@@ -34,6 +34,21 @@ bool cave_wall(int x, int z, const CaveParams& p) {
     return n > p.wall_threshold;
 }
 
+std::vector<Material> cave_materials() {
+    return {{"lava", {0.35f, 0.12f, 0.05f}, {2.0f, 0.7f, 0.15f}},
+            {"crystal", {0.45f, 0.55f, 0.8f}, {0.25f, 0.55f, 1.4f}}};
+}
+
+std::uint8_t cave_cell(int x, int z, const CaveParams& p) {
+    if (!cave_wall(x, z, p)) return 0;
+    if (!p.minerals) return 1;
+    // Patches of a sparse noise, only where the rock meets open ground (a vein you can see).
+    const float lava = value_noise(x, z, 9, p.seed + 7001u), crystal = value_noise(x, z, 7, p.seed + 9103u);
+    if (lava < 0.78f && crystal < 0.8f) return 1;
+    if (cave_wall(x + 1, z, p) && cave_wall(x - 1, z, p) && cave_wall(x, z + 1, p) && cave_wall(x, z - 1, p)) return 1;
+    return material_cell(lava - 0.78f >= crystal - 0.8f ? cave_lava : cave_crystal);
+}
+
 WallGrid generate_caves(glm::ivec2 origin, glm::ivec2 size, const CaveParams& params) {
     WallGrid g;
     g.width = size.x;
@@ -43,7 +58,7 @@ WallGrid generate_caves(glm::ivec2 origin, glm::ivec2 size, const CaveParams& pa
     for (int r = 0; r < size.y; ++r)
         for (int c = 0; c < size.x; ++c)
             g.cells[std::size_t(c) + std::size_t(r) * std::size_t(size.x)] =
-                cave_wall(origin.x + c, origin.y + r, params) ? 1 : 0;
+                cave_cell(origin.x + c, origin.y + r, params);
     return g;
 }
 

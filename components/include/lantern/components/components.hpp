@@ -28,6 +28,9 @@ struct PointLight {
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
     float radius = 8.0f;
+    // realtime; mixed: direct light live, bounce from the bake; baked: all from the bake.
+    // Honoured while the frame uses a bake (systems::BakedGi), else every light is realtime.
+    scene::LightMode mode = scene::LightMode::realtime;
 };
 
 // A light without shadows (crystals, lava, spells); not capped.
@@ -36,6 +39,7 @@ struct EmissiveLight {
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
     float radius = 4.0f;
+    scene::LightMode mode = scene::LightMode::realtime; // as PointLight's
 };
 
 // Sun or moon.

@@ -104,6 +104,7 @@ struct DirectionalParams {
 constexpr std::uint32_t feature_upper = 1;   // unfolded proxy shadows (unfolds_proxy_shadows)
 constexpr std::uint32_t feature_sun_map = 2; // gi.sun_shadow_method shadow_map
 constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
+constexpr std::uint32_t feature_accumulate = 8; // add to the outputs (the mixed lights' pass)
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
@@ -185,8 +186,7 @@ struct DirectState : vk::PassState {
 
 // Uploads this frame's point-light maps and the lights with their headers; false (the
 // DDA) when the maps exceed what a storage buffer holds.
-bool upload_point_maps(PassRecorder& r, DirectState& s, bool wanted) {
-    const FrameInputs& in = r.in;
+bool upload_point_maps(PassRecorder& r, const FrameInputs& in, DirectState& s, bool wanted) {
     PointMaps maps = wanted ? build_point_maps(in) : PointMaps{};
     if (maps.bins.size() * sizeof(glm::uvec2) > r.device().capabilities().max_storage_buffer_range) {
         maps = PointMaps{};
@@ -215,32 +215,36 @@ bool upload_point_maps(PassRecorder& r, DirectState& s, bool wanted) {
     return wanted;
 }
 
-void record_direct(PassRecorder& r) {
+// The point and emissive lights of `lights` (its point_lights and emissive_lights; window,
+// walls, proxies and settings are the frame's) into the texture set `out`: written, or with
+// `accumulate` added to what the frame's own lights left there (the mixed lights' pass).
+void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<const Tex> out, bool accumulate) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
-    const auto out = direct_outputs(in);
     const std::uint32_t faces = computed_faces(in.settings);
     // No point or emissive lights: the outputs are zero. No wall in view: the shader skips
     // the faces, which stay zero.
-    const bool no_lights = in.point_lights.empty() && in.emissive_lights.empty();
-    if (no_lights || (!r.plan.has_walls_in_window && faces != 0)) {
+    const bool no_lights = lights.point_lights.empty() && lights.emissive_lights.empty();
+    if (!accumulate && (no_lights || (!r.plan.has_walls_in_window && faces != 0))) {
         for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i)
             if (r.has(out[i])) r.clear(out[i]);
         for (Tex t : upper_outputs(out))
             if (r.has(t)) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
-        if (no_lights) return;
     }
+    if (no_lights) return;
     DirectState& s = r.state<DirectState>();
+    const bool point_map = upload_point_maps(
+        r, lights, s, in.settings.shadow_method == scene::ShadowMethod::shadow_map && !lights.point_lights.empty());
     const std::uint32_t blocks_x = std::uint32_t(r.pitch(out[0]) / 4);
     const std::uint32_t blocks_y = (std::uint32_t(w.height) + r.block_h() - 1) / r.block_h();
     const std::uint32_t bins_x = (blocks_x + r.group_x() - 1) / r.group_x(), bins_y = (blocks_y + r.group_y() - 1) / r.group_y();
-    const std::uint32_t words = std::uint32_t((in.point_lights.size() + in.emissive_lights.size() + 31) / 32);
+    const std::uint32_t words = std::uint32_t((lights.point_lights.size() + lights.emissive_lights.size() + 31) / 32);
     const VkDeviceSize bin_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(bins_x) * bins_y * std::max(words, 1u) * 4);
     const std::uint32_t proxy_words = std::uint32_t((in.proxies.size() + 31) / 32);
     // Proxy masks per bin, then (when they fit in 16 MiB) per bin and point light.
     const VkDeviceSize per_bin = VkDeviceSize(bins_x) * bins_y * proxy_words * 4;
-    const VkDeviceSize per_light = per_bin * in.point_lights.size();
+    const VkDeviceSize per_light = per_bin * lights.point_lights.size();
     const bool proxy_per_light = proxy_words > 0 && per_light <= (VkDeviceSize(16) << 20);
     const VkDeviceSize proxy_bytes = std::max<VkDeviceSize>(16, per_bin + (proxy_per_light ? per_light : 0));
     for (auto [buffer, bytes, name] : {std::tuple{&s.bins, bin_bytes, "gi light bins"}, std::tuple{&s.proxy_bins, proxy_bytes, "gi proxy bins"}})
@@ -251,13 +255,15 @@ void record_direct(PassRecorder& r) {
             desc.name = name;
             *buffer = r.device().create_buffer(desc);
         }
+    const glm::ivec2 counts(int(lights.point_lights.size()), int(lights.emissive_lights.size()));
     r.cmd.bind(r.pipeline<LightBinParams>("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 8, .group_y = 8}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
-                               .uniform_buffer(0, r.lights())
+                               .uniform_buffer(0, s.lights)
                                .storage_buffer(1, s.bins)
                                .uniform_buffer(2, r.proxies())
                                .storage_buffer(3, s.proxy_bins));
     auto b = r.params<LightBinParams>(w.width, w.height);
+    b.counts.x = counts.x, b.counts.y = counts.y;
     // A bin's proxy queries: its texel centres, face points (half a tile off), and with
     // unfolded proxy shadows points a wall height beyond those.
     b.pass = {.bins_x = std::int32_t(bins_x), .bins_y = std::int32_t(bins_y), .words = std::int32_t(words),
@@ -269,9 +275,8 @@ void record_direct(PassRecorder& r) {
     r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
     r.cmd.barrier_compute_to_compute();
 
-    const bool point_map =
-        upload_point_maps(r, s, in.settings.shadow_method == scene::ShadowMethod::shadow_map && !in.point_lights.empty());
-    const std::uint32_t features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (point_map ? feature_point_map : 0u);
+    const std::uint32_t features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (point_map ? feature_point_map : 0u) |
+                                   (accumulate ? feature_accumulate : 0u);
     r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
                                                           .walls = r.plan.has_walls_in_window,
                                                           .features = features,
@@ -294,6 +299,7 @@ void record_direct(PassRecorder& r) {
                                .storage_buffer(14, s.map_bins.buffer)
                                .storage_buffer(15, s.proxy_bins));
     auto p = r.params<DirectParams>(w.width, w.height);
+    p.counts.x = counts.x, p.counts.y = counts.y;
     p.pass.light_softness = in.settings.light_softness;
     p.pass.face_exponent = in.settings.wall_face_exponent;
     p.pass.wall_height = in.wall_height;
@@ -301,6 +307,7 @@ void record_direct(PassRecorder& r) {
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
+    if (accumulate) return;
     // What a later frame may need, before it does (creating it then stalls that frame): this
     // pass with proxies and walls come or gone, and the suns' pass.
     const bool sun_map = in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map;
@@ -313,8 +320,56 @@ void record_direct(PassRecorder& r) {
     }
 }
 
+void record_direct(PassRecorder& r) { record_direct_lights(r, r.in, direct_outputs(r.in), false); }
+
 void reference_direct_row(ReferenceContext& c) {
     put_direct(c.store, direct_outputs(c.in), reference_direct(c.in, c.options));
+}
+
+// ---- mixed lights: their direct light after the indirect rows (a bake holds their bounce)
+
+// The frame with the mixed lights as its point and emissive lights.
+FrameInputs mixed_inputs(const FrameInputs& in) {
+    FrameInputs m = in;
+    m.point_lights = in.mixed_lights;
+    m.emissive_lights = in.mixed_emissives;
+    m.directional_lights.clear();
+    return m;
+}
+
+TexSet mixed_writes(const FrameInputs& in) {
+    TexSet set = face_set(direct_set, in);
+    set.bits &= ~(std::uint64_t(1) << int(Tex::shadow)); // the realtime lights' shadow map stays
+    return set;
+}
+
+const char* mixed_not_needed(const FrameInputs& in, bool, bool) {
+    return in.mixed_lights.empty() && in.mixed_emissives.empty() ? "no mixed lights" : nullptr;
+}
+
+void record_mixed(PassRecorder& r) { record_direct_lights(r, mixed_inputs(r.in), direct_set, true); }
+
+// Adds the rgb of `add` to texture t of the store (its alpha kept), quantised as stored.
+void add_rgb(ReferenceStore& store, Tex t, const Texture& add) {
+    if (add.width == 0 || !store.find(t)) return;
+    Texture sum = store.at(t);
+    for (int y = 0; y < sum.height; ++y)
+        for (int x = 0; x < sum.width; ++x) {
+            const float* a = sum.at(x, y);
+            const float* b = add.at(x, y);
+            const float v[4] = {a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3]};
+            sum.store(x, y, v);
+        }
+    store.put(t, std::move(sum));
+}
+
+void reference_mixed_row(ReferenceContext& c) {
+    const DirectTextures d = reference_direct(mixed_inputs(c.in), c.options);
+    add_rgb(c.store, Tex::direct, d.direct);
+    for (std::size_t f = 0; f < 4; ++f) {
+        add_rgb(c.store, direct_set[2 + f], d.wall_direct[f]);
+        add_rgb(c.store, upper_set[f], d.wall_upper[f]);
+    }
 }
 
 // ---- directional lights
@@ -406,6 +461,9 @@ constexpr Tex ao_writes[] = {Tex::ao};
 constexpr std::string_view ao_settings[] = {"ao.enabled", "ao.radius", "ao.power", "ao.strength", "ao.dither"};
 // shadow_method is listed although the maps are exact: a change of method reruns the pass,
 // so that switching it shows what it costs.
+constexpr Tex mixed_reads[] = {Tex::direct,        Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz,
+                               Tex::wall_direct_nz, Tex::wall_upper_px,  Tex::wall_upper_nx,  Tex::wall_upper_pz,
+                               Tex::wall_upper_nz};
 constexpr std::string_view direct_settings[] = {"light_softness", "wall_face_exponent", "wall_lighting",
                                                 "wall_faces.px",  "wall_faces.nx",      "wall_faces.pz",
                                                 "wall_faces.nz",  "proxy_wall_shadows", "shadow_method"};
@@ -445,6 +503,18 @@ constinit const PassRow direct{
     .inputs = input_walls | input_lights | input_proxies | input_wall_height | input_walls_in_window,
     .record = record_direct,
     .reference = reference_direct_row,
+};
+
+constinit const PassRow mixed{
+    .pass = Pass::mixed,
+    .name = "mixed",
+    .reads = mixed_reads,
+    .writes_for = mixed_writes,
+    .settings = direct_settings,
+    .inputs = input_walls | input_lights | input_proxies | input_wall_height | input_walls_in_window,
+    .not_needed = mixed_not_needed,
+    .record = record_mixed,
+    .reference = reference_mixed_row,
 };
 
 constinit const PassRow directional{

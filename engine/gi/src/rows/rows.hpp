@@ -25,6 +25,8 @@ extern const PassRow lit;
 extern const PassRow distance_field;
 extern const PassRow radiosity;
 extern const PassRow gather;
+extern const PassRow mixed;
+extern const PassRow baked;
 
 // Records the upsample of a grid texture (heat, radiosity) into Tex::indirect (gi_upsample).
 void record_upsample(vk::PassRecorder& r, Tex src, const HeatGrid& grid);

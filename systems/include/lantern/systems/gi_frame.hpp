@@ -47,6 +47,15 @@ struct GiConfig {
     float wall_height = 2.0f;
     bool lit_image = false; // run the lit-image pass (tools); the game shades in its raster pass
     float light_hysteresis = 2.0f; // world units of priority bonus for lights kept last frame
+    // The wall materials: cell value 2 + k is materials[k] (docs/scenes.md, "Materials").
+    std::vector<scene::Material> materials;
+};
+
+// The bake's light the frame adds (docs/baked.md, "At run time"): set by whoever loads or
+// bakes it (lantern-render --bake, the game's bake system); nullptr: none. The lights and
+// materials in the world must then leave out what it holds (bake::live_scene).
+struct BakedGi {
+    std::shared_ptr<const gi::BakedLight> light;
 };
 
 struct GiView {
@@ -56,6 +65,7 @@ struct GiView {
 
 struct GatheredLights {
     std::vector<gi::GpuPointLight> points, emissives;
+    std::vector<gi::GpuPointLight> mixed_points, mixed_emissives; // with a bake (BakedGi): direct light only
     std::vector<gi::GpuDirectionalLight> suns;
     std::vector<ecs::Entity> point_entities; // kept this frame, in GPU order
     std::uint64_t hash = 0;                  // of the point lights and emissives

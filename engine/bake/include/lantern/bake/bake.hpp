@@ -30,12 +30,15 @@
 
 #include "lantern/bake/probes.hpp"
 #include "lantern/core/result.hpp"
+#include "lantern/gi/baked_light.hpp"
+#include "lantern/gi/frame_inputs.hpp"
 #include "lantern/scene/scene.hpp"
 
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -44,13 +47,16 @@
 namespace lantern::jobs {
 class JobSystem;
 }
+namespace lantern::cli {
+class Parser;
+}
 
 namespace lantern::bake {
 
 inline constexpr int chunk_tiles = 32;               // the game's streaming chunk
 inline constexpr int probe_spacing = 2;              // tiles between light probes
 inline constexpr int chunk_probes = chunk_tiles / probe_spacing; // probes a side
-inline constexpr std::uint32_t bake_code_version = 1; // raise when the bake's output changes
+inline constexpr std::uint32_t bake_code_version = 2; // raise when the bake's output changes
 
 struct BakeSettings {
     int resolution = 4; // texels per tile, 1..16
@@ -62,6 +68,9 @@ struct BakeSettings {
 };
 // Errors read "bake.<field>: <what is wrong>" (exit status 2).
 Result<void> validate_settings(const BakeSettings& settings);
+// The settings as command-line options `<prefix>resolution`, `<prefix>margin`,
+// `<prefix>rays`, `<prefix>face-rays` (lantern-bake: "--", lantern-render: "--bake-").
+void add_settings_options(cli::Parser& parser, BakeSettings& settings, const std::string& prefix);
 
 // Chunk (x, z) covers the tiles [32 x, 32 x + 32) x [32 z, 32 z + 32).
 struct ChunkId {
@@ -165,5 +174,25 @@ struct BakeReport {
 // Errors (exit status 2): invalid settings or shard, a folder that cannot be written.
 Result<BakeReport> bake_world(const scene::Scene& scene, const std::string& dir, const BakeSettings& settings,
                               const BakeOptions& options = {});
+
+// ---- at run time (docs/baked.md, "At run time")
+
+// The chunks' baked light over the rectangle of whole chunks they cover, as the frame reads
+// it (FrameInputs::baked): each chunk's ground and faces laid side by side and stored in
+// seed 002's bricks at `eps`. `walls` decides which texels hold light (open ground; the
+// exposed faces of wall tiles). A chunk without baked light (empty) holds zero. All chunks
+// have one resolution (asserted). Empty `chunks`: nullptr.
+std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,
+                                                    float eps = gi::baked_eps);
+
+// The scene as the live passes light it once its bake is used: without the `baked` lights
+// and the materials' glow, which the baked light holds. (Mixed lights stay: their direct
+// light is live.)
+scene::Scene live_scene(const scene::Scene& scene);
+
+// Bakes the world's chunks into `dir` (bake_world: reusing every valid cache file), then
+// reads them back as the frame's baked light. Errors as bake_world's.
+Result<std::shared_ptr<const gi::BakedLight>> load_world_light(const scene::Scene& scene, const std::string& dir,
+                                                               const BakeSettings& settings, const BakeOptions& options = {});
 
 } // namespace lantern::bake

@@ -6,12 +6,14 @@
 #pragma once
 
 #include "lantern/core/hash.hpp"
+#include "lantern/gi/baked_light.hpp"
 #include "lantern/gi/window.hpp"
 #include "lantern/scene/scene.hpp"
 
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace lantern::gi {
@@ -85,6 +87,10 @@ struct FrameInputs {
     scene::GiSettings settings;
     std::vector<GpuPointLight> point_lights; // culled to the window, capped at max_lights
     std::vector<GpuPointLight> emissive_lights; // culled, not capped
+    // Mixed lights while a bake is used (`baked`): their direct light is live, added by the
+    // `mixed` row after the indirect rows so that the live bounce leaves them out (the bake
+    // holds their bounce). Culled as the others; without a bake mixed lights are realtime.
+    std::vector<GpuPointLight> mixed_lights, mixed_emissives;
     std::vector<GpuDirectionalLight> directional_lights;
     std::vector<GpuShadowProxy> proxies; // culled by reach, closest max_shadow_proxies kept
     // Scene indices of what was kept, in the order above (tests and the HUD use them).
@@ -93,6 +99,10 @@ struct FrameInputs {
     // past the list, is the default wall: grey settings.wall_albedo, no emission. Empty: every
     // wall is the default. Part of the walls' input key.
     std::vector<GpuMaterial> materials;
+    // The bake's light over part of the world (docs/baked.md, "At run time"), added to the
+    // indirect textures by the `baked` row; nullptr: none. The live lights and materials
+    // then leave out what it holds (bake::live_scene).
+    std::shared_ptr<const BakedLight> baked;
 };
 
 // The material of a wall cell value (0, air: all zero).
@@ -137,6 +147,11 @@ GpuDirectionalLight pack_directional(const scene::DirectionalLight& light,
 // A dark sun (the night side of a day cycle) adds nothing and is left out, so the
 // directional pass does not run for it.
 bool sun_adds_light(glm::vec3 color, float intensity);
+
+// The frame as it is lit with a bake of `scene` (FrameInputs::baked): the mixed lights move
+// to mixed_lights / mixed_emissives, the baked lights leave (by the scene indices in
+// point_light_ids / emissive_ids, so call it on gather_frame_inputs' result).
+void split_for_bake(FrameInputs& in, const scene::Scene& scene);
 
 // A scene's lights and proxies for a window, chosen as the game's gathering systems choose
 // them (gather_offers): point lights and emissives are kept when their radius reaches the

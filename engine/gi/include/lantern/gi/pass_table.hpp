@@ -157,6 +157,7 @@ enum InputBits : std::uint32_t {
     input_suns = 1u << 3,            // directional lights
     input_wall_height = 1u << 4,     // the scene's wall height
     input_walls_in_window = 1u << 5, // whether any wall lies in the window (plan.has_walls_in_window)
+    input_baked = 1u << 6,           // the baked light (FrameInputs::baked, its key)
 };
 
 // The hashes of the frame inputs (the frame systems keep them as versions; input_keys_of
@@ -167,6 +168,7 @@ struct InputKeys {
     std::uint64_t lights = 0;
     std::uint64_t proxies = 0;
     std::uint64_t suns = 0;
+    std::uint64_t baked = 0; // FrameInputs::baked->key, 0 without
 };
 InputKeys input_keys_of(const FrameInputs& in);
 

@@ -23,6 +23,8 @@ enum class Pass : std::uint8_t {
     distance_field, // radiosity: jump flood from the walls to a distance field (seed 003)
     radiosity,      // radiosity: light image, raymarch, accumulation, upsample (seed 003)
     gather,         // gather: face bounces, wall fill, ground gather, upsample (physical)
+    mixed,          // mixed lights' direct light, after the indirect passes (their bounce is baked)
+    baked,          // the bake's light (FrameInputs::baked) added to the indirect textures
     builtin_count
 };
 // Pass ids: the built-in rows above, then rows registered at run time (add_row in

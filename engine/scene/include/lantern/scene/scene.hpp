@@ -213,10 +213,12 @@ struct WallGrid {
     glm::ivec2 origin{0};            // world tile of cell (0, 0)
     std::vector<std::uint8_t> cells; // row-major, cells[col + row * width]: 0 air, else a wall (its material, above)
 
-    bool is_wall_tile(int x, int z) const {
+    bool is_wall_tile(int x, int z) const { return cell(x, z) != 0; }
+    // The tile's cell value: 0 air (also out of bounds), else its wall material.
+    std::uint8_t cell(int x, int z) const {
         int c = x - origin.x, r = z - origin.y;
-        if (c < 0 || r < 0 || c >= width || r >= height) return false; // out of bounds is air
-        return cells[std::size_t(c) + std::size_t(r) * std::size_t(width)] != 0;
+        if (c < 0 || r < 0 || c >= width || r >= height) return 0;
+        return cells[std::size_t(c) + std::size_t(r) * std::size_t(width)];
     }
 
     friend bool operator==(const WallGrid&, const WallGrid&) = default;

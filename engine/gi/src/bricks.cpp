@@ -1,5 +1,7 @@
 // Adaptive bricks (bricks.hpp).
-#include "lantern/bake/bricks.hpp"
+#include "lantern/gi/bricks.hpp"
+
+#include "lantern/core/assert.hpp"
 
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
@@ -8,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace lantern::bake {
+namespace lantern::gi {
 namespace {
 
 int clampi(int v, int lo, int hi) { return std::min(std::max(v, lo), hi); }
@@ -46,13 +48,17 @@ Field dilated(const Field& f) {
     return out;
 }
 
+// One layer's bricks: appended to the shared brick list, its cells in cell_brick/cell_level
+// at `cell_base` (the layer's first cell).
 struct Builder {
     const Field& f; // dilated
     const Field& original;
     float eps;
     BrickAtlas& out;
-    std::vector<std::vector<std::uint8_t>> bricks; // 6 x 6 x RGBA8 each
-    std::vector<int> cell_brick, cell_level;       // per level-0 cell; -1 empty
+    std::vector<std::vector<std::uint8_t>>& bricks; // 6 x 6 x RGBA8 each, every layer's
+    std::vector<int>& cell_brick;                   // per level-0 cell of every layer; -1 empty
+    std::vector<int>& cell_level;
+    std::size_t cell_base = 0;
 
     // The probe (i, j) of a level-`level` brick at grid origin o: the box mean of its s x s
     // texels (clamped to the field).
@@ -79,7 +85,7 @@ struct Builder {
         return std::max({r.x, r.y, r.z});
     }
 
-    // Open ground within one level-0 brick (4 texels) of the cell (the seed's margin).
+    // An open texel within one level-0 brick (4 texels) of the cell (the seed's margin).
     bool near_air(glm::ivec2 o, int side) const {
         for (int y = std::max(0, o.y - brick_probes); y < std::min(f.height, o.y + side + brick_probes); ++y)
             for (int x = std::max(0, o.x - brick_probes); x < std::min(f.width, o.x + side + brick_probes); ++x)
@@ -100,8 +106,8 @@ struct Builder {
             for (int cx = 0; cx < cells; ++cx) {
                 const int x = o.x / brick_probes + cx, y = o.y / brick_probes + cy;
                 if (x >= out.cells_x || y >= out.cells_y) continue;
-                cell_brick[std::size_t(y * out.cells_x + x)] = index;
-                cell_level[std::size_t(y * out.cells_x + x)] = level;
+                cell_brick[cell_base + std::size_t(y * out.cells_x + x)] = index;
+                cell_level[cell_base + std::size_t(y * out.cells_x + x)] = level;
             }
     }
 
@@ -138,32 +144,46 @@ glm::vec3 decode_rgbm(const std::uint8_t in[4]) {
     return glm::vec3(in[0], in[1], in[2]) / 255.0f * (float(in[3]) / 255.0f) * rgbm_range;
 }
 
-BrickAtlas build_bricks(const Field& field, float eps) {
+BrickAtlas build_bricks(const Field& field, float eps) { return build_bricks(std::span<const Field>(&field, 1), eps); }
+
+BrickAtlas build_bricks(std::span<const Field> fields, float eps) {
     BrickAtlas out;
-    out.cells_x = (field.width + brick_probes - 1) / brick_probes;
-    out.cells_y = (field.height + brick_probes - 1) / brick_probes;
-    const Field f = dilated(field);
-    Builder b{f, field, eps, out, {}, {}, {}};
-    b.cell_brick.assign(std::size_t(out.cells_x) * std::size_t(out.cells_y), -1);
-    b.cell_level.assign(b.cell_brick.size(), 0);
+    LANTERN_ASSERT(!fields.empty(), "build_bricks needs a field");
+    const int width = fields[0].width, height = fields[0].height;
+    for (const Field& f : fields)
+        LANTERN_ASSERT(f.width == width && f.height == height && f.rgb.size() == std::size_t(width) * std::size_t(height) * 3 &&
+                           f.air.size() == std::size_t(width) * std::size_t(height),
+                       "build_bricks: the layers differ in size");
+    out.layers = int(fields.size());
+    out.cells_x = (width + brick_probes - 1) / brick_probes;
+    out.cells_y = (height + brick_probes - 1) / brick_probes;
+    const std::size_t layer_cells = std::size_t(out.cells_x) * std::size_t(out.cells_y);
+    std::vector<std::vector<std::uint8_t>> bricks;
+    std::vector<int> cell_brick(layer_cells * fields.size(), -1), cell_level(cell_brick.size(), 0);
     const int top = brick_probes << (brick_levels - 1);
-    for (int y = 0; y < field.height; y += top)
-        for (int x = 0; x < field.width; x += top) b.visit({x, y}, brick_levels - 1);
+    for (std::size_t layer = 0; layer < fields.size(); ++layer) {
+        const Field f = dilated(fields[layer]);
+        Builder b{f, fields[layer], eps, out, bricks, cell_brick, cell_level, layer * layer_cells};
+        for (int y = 0; y < height; y += top)
+            for (int x = 0; x < width; x += top) b.visit({x, y}, brick_levels - 1);
+    }
     // Atlas: bricks in rows of a square's width.
-    const int n = int(b.bricks.size());
+    const int n = int(bricks.size());
     out.atlas_bricks_x = std::max(1, int(std::ceil(std::sqrt(double(n)))));
     out.atlas_bricks_y = std::max(1, (n + out.atlas_bricks_x - 1) / out.atlas_bricks_x);
-    const int aw = out.atlas_bricks_x * brick_texels;
-    out.atlas.assign(std::size_t(aw) * std::size_t(out.atlas_bricks_y * brick_texels) * 4, 0);
+    LANTERN_ASSERT(out.atlas_bricks_x <= brick_max_atlas && out.atlas_bricks_y <= brick_max_atlas,
+                   "build_bricks: more bricks than 12-bit indices address");
+    const int aw = out.atlas_width();
+    out.atlas.assign(std::size_t(aw) * std::size_t(out.atlas_height()) * 4, 0);
     for (int k = 0; k < n; ++k) {
         const int bx = k % out.atlas_bricks_x, by = k / out.atlas_bricks_x;
         for (int y = 0; y < brick_texels; ++y)
-            std::copy_n(&b.bricks[std::size_t(k)][std::size_t(y * brick_texels * 4)], brick_texels * 4,
+            std::copy_n(&bricks[std::size_t(k)][std::size_t(y * brick_texels * 4)], brick_texels * 4,
                         &out.atlas[(std::size_t(by * brick_texels + y) * std::size_t(aw) + std::size_t(bx * brick_texels)) * 4]);
     }
-    out.indirection.assign(std::size_t(out.cells_x) * std::size_t(out.cells_y) * 4, 0);
-    for (std::size_t c = 0; c < b.cell_brick.size(); ++c) {
-        const int k = b.cell_brick[c];
+    out.indirection.assign(cell_brick.size() * 4, 0);
+    for (std::size_t c = 0; c < cell_brick.size(); ++c) {
+        const int k = cell_brick[c];
         if (k < 0) {
             ++out.empty_cells;
             continue;
@@ -172,15 +192,16 @@ BrickAtlas build_bricks(const Field& field, float eps) {
         out.indirection[c * 4 + 0] = std::uint8_t(bx & 0xFF);
         out.indirection[c * 4 + 1] = std::uint8_t(by & 0xFF);
         out.indirection[c * 4 + 2] = std::uint8_t(((bx >> 8) & 0xF) | (((by >> 8) & 0xF) << 4));
-        out.indirection[c * 4 + 3] = std::uint8_t(b.cell_level[c] + 1);
+        out.indirection[c * 4 + 3] = std::uint8_t(cell_level[c] + 1);
     }
     return out;
 }
 
-glm::vec3 sample_bricks(const BrickAtlas& a, float x, float y) {
+glm::vec3 sample_bricks(const BrickAtlas& a, float x, float y, int layer) {
     const int cx = clampi(int(std::floor(x / float(brick_probes))), 0, a.cells_x - 1);
     const int cy = clampi(int(std::floor(y / float(brick_probes))), 0, a.cells_y - 1);
-    const std::uint8_t* ind = &a.indirection[(std::size_t(cy) * std::size_t(a.cells_x) + std::size_t(cx)) * 4];
+    const std::size_t row = std::size_t(layer) * std::size_t(a.cells_y) + std::size_t(cy);
+    const std::uint8_t* ind = &a.indirection[(row * std::size_t(a.cells_x) + std::size_t(cx)) * 4];
     if (ind[3] == 0) return glm::vec3(0.0f);
     const int level = ind[3] - 1, s = 1 << level, side = brick_probes * s;
     const int bx = ind[0] | ((ind[2] & 0xF) << 8), by = ind[1] | ((ind[2] >> 4) << 8);
@@ -196,4 +217,4 @@ glm::vec3 sample_bricks(const BrickAtlas& a, float x, float y) {
     return glm::vec3(v) * v.a * rgbm_range;
 }
 
-} // namespace lantern::bake
+} // namespace lantern::gi

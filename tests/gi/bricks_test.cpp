@@ -1,7 +1,7 @@
-// Adaptive bricks (lantern/bake/bricks.hpp, seed 002 in 2D): RGBM's error bound, flat light
+// Adaptive bricks (lantern/gi/bricks.hpp, seed 002 in 2D): RGBM's error bound, flat light
 // in the largest bricks, a linear ramp reproduced by bilinear filtering, rock left empty, and
 // the error growing with eps while memory falls.
-#include "lantern/bake/bricks.hpp"
+#include "lantern/gi/bricks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-using namespace lantern::bake;
+using namespace lantern::gi;
 
 namespace {
 
@@ -96,4 +96,28 @@ TEST(Bricks, RockIsEmptyAndErrorGrowsWithEpsWhileMemoryFalls) {
             EXPECT_LT(error, 0.01) << "RGBM and bilinear alone";
         }
     }
+}
+
+// Layers (the ground and the four faces at run time) share one atlas; each keeps its own
+// indirection and reads back its own field.
+TEST(Bricks, LayersShareOneAtlasAndEachReadsItsOwnField) {
+    const Field ramp = field(40, 24, [](int x, int y) { return glm::vec3(0.05f * float(x), 0.02f * float(y), 0.3f); });
+    const Field flat = field(40, 24, [](int, int) { return glm::vec3(0.1f, 0.9f, 0.2f); });
+    Field dark = field(40, 24, [](int, int) { return glm::vec3(0.0f); });
+    std::fill(dark.air.begin(), dark.air.end(), std::uint8_t(0)); // nothing kept: no bricks
+    const Field layers[] = {ramp, flat, dark};
+    const BrickAtlas a = build_bricks(layers, 0.0f);
+    EXPECT_EQ(a.layers, 3);
+    EXPECT_EQ(a.indirection.size(), std::size_t(a.cells_x * a.cells_y * 3 * 4));
+    const BrickAtlas alone[] = {build_bricks(ramp, 0.0f), build_bricks(flat, 0.0f)};
+    EXPECT_EQ(a.bricks(), alone[0].bricks() + alone[1].bricks());
+    for (int y = 0; y < 24; y += 5)
+        for (int x = 0; x < 40; x += 3) {
+            const float px = float(x) + 0.5f, py = float(y) + 0.5f;
+            for (int layer = 0; layer < 2; ++layer) {
+                const glm::vec3 got = sample_bricks(a, px, py, layer), want = sample_bricks(alone[layer], px, py);
+                for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(got[c], want[c]) << layer << " at " << x << ", " << y;
+            }
+            EXPECT_EQ(sample_bricks(a, px, py, 2), glm::vec3(0.0f));
+        }
 }

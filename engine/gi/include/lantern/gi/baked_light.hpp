@@ -1,0 +1,45 @@
+// Baked light at run time (docs/baked.md, "At run time"): the light a bake holds for a
+// rectangle of the world, as seed 002's brick atlas, which the `baked` GI row samples into
+// the frame's indirect textures (ground and wall faces) so that baked lights, the glow of
+// emissive materials and the bounce light of mixed lights cost one atlas read per texel.
+//
+// The rectangle is a grid of `resolution` texels a tile from world tile `origin`; grid
+// texel (i, j) covers [origin + i / res, origin + (i + 1) / res) (rows along z alike).
+// Layers: 0 the ground (fluence at open texels), 1 + f the wall face f (+X, -X, +Z, -Z) at
+// the texels of wall tiles whose face f is exposed, as Lantern's wall textures hold it.
+//
+// Threads: immutable once built; frames share it through a shared_ptr (FrameInputs::baked).
+#pragma once
+
+#include "lantern/gi/bricks.hpp"
+
+#include <glm/vec2.hpp>
+
+#include <array>
+#include <cstdint>
+
+namespace lantern::gi {
+
+inline constexpr int baked_layers = 5;    // ground, +X, -X, +Z, -Z
+inline constexpr float baked_eps = 0.01f; // the bricks' colour range at run time (docs/baked.md)
+
+struct BakedLight {
+    glm::ivec2 origin{0}; // world tile of grid texel (0, 0)
+    int resolution = 4;   // grid texels per tile
+    int width = 0, height = 0; // grid texels
+    BrickAtlas bricks;    // baked_layers layers
+    std::uint64_t key = 0; // what it was built from: the baked row's input key
+
+    // Grid coordinates of world point p (texel i's centre at i + 0.5).
+    glm::vec2 grid(glm::vec2 p) const {
+        return (p - glm::vec2(origin)) * float(resolution);
+    }
+    // The baked light of `layer` at world point p (bilinear in the bricks), zero outside.
+    glm::vec3 sample(int layer, glm::vec2 p) const;
+};
+
+// The atlas of dense fields (each width x height texels, layer order as above) at `eps`.
+BakedLight make_baked_light(glm::ivec2 origin, int resolution, const std::array<Field, baked_layers>& layers,
+                            float eps, std::uint64_t key);
+
+} // namespace lantern::gi

@@ -1,0 +1,24 @@
+// Baked light at run time (baked_light.hpp).
+#include "lantern/gi/baked_light.hpp"
+
+namespace lantern::gi {
+
+glm::vec3 BakedLight::sample(int layer, glm::vec2 p) const {
+    const glm::vec2 g = grid(p);
+    if (!(g.x >= 0.0f && g.y >= 0.0f && g.x < float(width) && g.y < float(height))) return glm::vec3(0.0f);
+    return sample_bricks(bricks, g.x, g.y, layer);
+}
+
+BakedLight make_baked_light(glm::ivec2 origin, int resolution, const std::array<Field, baked_layers>& layers, float eps,
+                            std::uint64_t key) {
+    BakedLight out;
+    out.origin = origin;
+    out.resolution = resolution;
+    out.width = layers[0].width;
+    out.height = layers[0].height;
+    out.bricks = build_bricks(std::span<const Field>(layers), eps);
+    out.key = key;
+    return out;
+}
+
+} // namespace lantern::gi

@@ -1,0 +1,95 @@
+// Baked light (docs/baked.md, "At run time"): each window texel reads the bake's brick atlas
+// (seed 002: the indirection texel of its cell, nearest, then one bilinear read of the RGBM
+// atlas inside the brick) and adds it to the indirect light: open ground to `indirect`
+// (layer 0), the texels of a wall tile whose face f is exposed to `wall_indirect_f`
+// (layer 1 + f). Where no earlier row wrote a texture this frame it is written instead
+// (ADD_GROUND, ADD_FACES), as wall_indirect would have. C++ reference: engine/gi/src/rows/baked.cpp.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+struct BakedParams {
+    int origin_x, origin_z; // world tile of the baked grid's texel (0, 0)
+    int resolution;         // baked grid texels per tile
+    int width, height;      // baked grid texels
+    int add_ground, add_faces; // 1: add to what an earlier row wrote; 0: write
+    int pad0;
+};
+#define GI_PASS_PARAMS BakedParams
+#include "lantern/gi_common.glsl"
+
+layout(binding = 0) uniform usamplerBuffer u_walls;
+layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[1]; } u_proxies; // unused
+layout(binding = 2) uniform sampler2D u_atlas;         // RGBA8 RGBM, linear filtering
+layout(binding = 3) uniform usampler2D u_indirection;  // RGBA8_UINT, read with texelFetch
+layout(std430, binding = 4) buffer Indirect { uvec2 texels[]; } io_indirect;
+layout(std430, binding = 5) buffer FacePX { uvec2 texels[]; } io_face_px;
+layout(std430, binding = 6) buffer FaceNX { uvec2 texels[]; } io_face_nx;
+layout(std430, binding = 7) buffer FacePZ { uvec2 texels[]; } io_face_pz;
+layout(std430, binding = 8) buffer FaceNZ { uvec2 texels[]; } io_face_nz;
+
+#include "lantern/gi_shadow.glsl"
+
+const int LAYERS = 5;
+const float RGBM_RANGE = 8.0;
+
+// The baked light of `layer` at world point p: gi::sample_bricks, with the hardware's
+// bilinear filter.
+vec3 baked_sample(int layer, vec2 p) {
+    vec2 g = (p - vec2(pc.pass.origin_x, pc.pass.origin_z)) * float(pc.pass.resolution);
+    if (!(g.x >= 0.0 && g.y >= 0.0 && g.x < float(pc.pass.width) && g.y < float(pc.pass.height))) return vec3(0.0);
+    ivec2 cells = textureSize(u_indirection, 0);
+    cells.y /= LAYERS;
+    ivec2 cell = clamp(ivec2(floor(g / 4.0)), ivec2(0), cells - 1);
+    uvec4 ind = texelFetch(u_indirection, ivec2(cell.x, cell.y + layer * cells.y), 0);
+    if (ind.a == 0u) return vec3(0.0);
+    float s = float(1 << (int(ind.a) - 1)), side = 4.0 * s;
+    ivec2 brick = ivec2(int(ind.r) | (int(ind.b & 15u) << 8), int(ind.g) | (int(ind.b >> 4u) << 8));
+    vec2 o = floor(g / side) * side;
+    // The brick's texel coordinate: probe k's centre at k + 1.5 (the apron is texel 0).
+    vec2 t = vec2(brick * 6) + (g - o) / s + 1.0;
+    vec4 v = texture(u_atlas, t / vec2(textureSize(u_atlas, 0)));
+    return v.rgb * v.a * RGBM_RANGE;
+}
+
+uvec2 add_or_write(uvec2 old, vec3 value, bool add, float alpha) {
+    if (add) {
+        vec4 o = unpack_rgba16f(old);
+        return pack_rgba16f(vec4(o.rgb + value, o.a));
+    }
+    return pack_rgba16f(vec4(value, alpha));
+}
+
+void main() {
+    ivec2 o = block_origin();
+    if (o.x >= pc.size.x) return;
+    bool add_ground = pc.pass.add_ground != 0, add_faces = pc.pass.add_faces != 0;
+    for (uint r = 0; r < BLOCK_H; ++r) {
+        int y = o.y + int(r);
+        if (y >= pc.size.y) return;
+        for (int k = 0; k < 4; ++k) {
+            int x = o.x + k;
+            if (x >= pc.size.x) continue;
+            int index = texel_index(x, y);
+            vec2 p = texel_center(x, y);
+            ivec2 cell = ivec2(floor(p));
+            bool wall = is_wall(cell);
+            vec3 ground = wall ? vec3(0.0) : baked_sample(0, p);
+            if (!wall || !add_ground) io_indirect.texels[index] = add_or_write(io_indirect.texels[index], ground, add_ground, 0.0);
+            if (FACES == 0u) continue;
+            vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
+            vec3 v[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+            for (int f = 0; f < 4; ++f)
+                if (mask[f] > 0.0) v[f] = baked_sample(1 + f, p);
+            float alpha = wall ? 1.0 : 0.0;
+            // Adding touches only the exposed faces; writing writes every texel.
+            if (computes_face(FACES, 0) && (!add_faces || mask[0] > 0.0))
+                io_face_px.texels[index] = add_or_write(io_face_px.texels[index], v[0], add_faces, alpha);
+            if (computes_face(FACES, 1) && (!add_faces || mask[1] > 0.0))
+                io_face_nx.texels[index] = add_or_write(io_face_nx.texels[index], v[1], add_faces, alpha);
+            if (computes_face(FACES, 2) && (!add_faces || mask[2] > 0.0))
+                io_face_pz.texels[index] = add_or_write(io_face_pz.texels[index], v[2], add_faces, alpha);
+            if (computes_face(FACES, 3) && (!add_faces || mask[3] > 0.0))
+                io_face_nz.texels[index] = add_or_write(io_face_nz.texels[index], v[3], add_faces, alpha);
+        }
+    }
+}
