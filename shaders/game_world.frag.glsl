@@ -15,10 +15,11 @@ layout(location = 2) flat in vec4 in_color;
 layout(location = 3) flat in vec3 in_box_min;
 layout(location = 4) flat in vec3 in_box_max;
 layout(location = 5) flat in vec3 in_face_light; // WALL_TOP_PER_FACE: the top's light
+layout(location = 6) flat in vec3 in_probe_light; // lit_probes: the baked light's direction
 
 layout(location = 0) out vec4 out_color;
 
-const int MATERIAL_GROUND = 0, MATERIAL_WALL = 1, MATERIAL_PROP = 2, MATERIAL_GLOW = 3;
+const int MATERIAL_GROUND = 0, MATERIAL_WALL = 1, MATERIAL_PROP = 2, MATERIAL_GLOW = 3, MATERIAL_LIT_PROBES = 4;
 
 // ---- the pixel-art pattern: 8 texels per tile on every face, a function of world position
 
@@ -165,6 +166,7 @@ void main() {
         if (HAS_GI) {
             const vec3 normals[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
             light = WALL_TOP_PER_FACE ? in_face_light : surface_light(pos, normals[FACE]);
+            if (in_material == MATERIAL_LIT_PROBES) light = max(light + in_probe_light, vec3(0.0));
         }
         color = albedo * light + in_color.rgb * in_color.a;
     }

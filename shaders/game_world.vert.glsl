@@ -24,6 +24,7 @@ layout(location = 2) flat out vec4 out_color;   // rgb colour, a emissive
 layout(location = 3) flat out vec3 out_box_min; // the box, to keep interpolated positions on it
 layout(location = 4) flat out vec3 out_box_max;
 layout(location = 5) flat out vec3 out_face_light; // WALL_TOP_PER_FACE: the top's light
+layout(location = 6) flat out vec3 out_probe_light; // lit_probes: what the baked light's direction adds
 
 const vec3 face_normal[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
 const vec3 face_u[5] = vec3[](vec3(0, 0, 1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(1, 0, 0), vec3(1, 0, 0));
@@ -54,6 +55,20 @@ void main() {
     out_box_min = center - half_extent;
     out_box_max = center + half_extent;
     out_face_light = vec3(0.0);
+    out_probe_light = vec3(0.0);
+    if (out_material == 4) { // lit_probes: world_renderer.hpp ProbeRecord, at texel `emissive`
+        const int base = int(in_color_emissive.w + 0.5);
+        out_color.a = 0.0;
+        if (face < 4) {
+            const float pi = 3.14159265;
+            const float phi = atan(n.z, n.x);
+            const vec3 a0 = texelFetch(u_boxes, base).rgb;
+            const vec3 e = a0 / pi + (texelFetch(u_boxes, base + 1).rgb * cos(phi) + texelFetch(u_boxes, base + 2).rgb * sin(phi)) * 0.5 +
+                           (texelFetch(u_boxes, base + 3).rgb * cos(2.0 * phi) + texelFetch(u_boxes, base + 4).rgb * sin(2.0 * phi)) *
+                               (2.0 / (3.0 * pi));
+            out_probe_light = max(pi * e, vec3(0.0)) - a0;
+        }
+    }
     if (WALL_TOP_PER_FACE && HAS_GI) {
         set_gi_shading();
         out_face_light = surface_light(vec3(center.x, center.y + half_extent.y, center.z), vec3(0.0, 1.0, 0.0));

@@ -12,7 +12,7 @@ struct BakedParams {
     int resolution;         // baked grid texels per tile
     int width, height;      // baked grid texels
     int add_ground, add_faces; // 1: add to what an earlier row wrote; 0: write
-    int pad0;
+    float intensity;           // gi.baked_intensity
 };
 #define GI_PASS_PARAMS BakedParams
 #include "lantern/gi_common.glsl"
@@ -37,8 +37,7 @@ const float RGBM_RANGE = 8.0;
 vec3 baked_sample(int layer, vec2 p) {
     vec2 g = (p - vec2(pc.pass.origin_x, pc.pass.origin_z)) * float(pc.pass.resolution);
     if (!(g.x >= 0.0 && g.y >= 0.0 && g.x < float(pc.pass.width) && g.y < float(pc.pass.height))) return vec3(0.0);
-    ivec2 cells = textureSize(u_indirection, 0);
-    cells.y /= LAYERS;
+    ivec2 cells = (ivec2(pc.pass.width, pc.pass.height) + 3) / 4; // layer k's rows: k x cells.y .. (the image may be larger)
     ivec2 cell = clamp(ivec2(floor(g / 4.0)), ivec2(0), cells - 1);
     uvec4 ind = texelFetch(u_indirection, ivec2(cell.x, cell.y + layer * cells.y), 0);
     if (ind.a == 0u) return vec3(0.0);
@@ -48,7 +47,7 @@ vec3 baked_sample(int layer, vec2 p) {
     // The brick's texel coordinate: probe k's centre at k + 1.5 (the apron is texel 0).
     vec2 t = vec2(brick * 6) + (g - o) / s + 1.0;
     vec4 v = texture(u_atlas, t / vec2(textureSize(u_atlas, 0)));
-    return v.rgb * v.a * RGBM_RANGE;
+    return v.rgb * v.a * RGBM_RANGE * pc.pass.intensity;
 }
 
 uvec2 add_or_write(uvec2 old, vec3 value, bool add, float alpha) {

@@ -18,26 +18,23 @@ struct DirectParams {
 
 const bool UPPER = (FEATURES & 1u) != 0u;     // unfolded proxy shadows: write the upper-face textures
 const bool POINT_MAP = (FEATURES & 4u) != 0u; // gi.shadow_method = shadow_map: grid shadows by the lights' maps
-// The mixed lights' pass (a bake is used): adds to what the realtime lights' passes wrote
-// (rgb; the face flags and the proxies' edge heights stay; the shadow map is theirs).
-const bool ACCUMULATE = (FEATURES & 8u) != 0u;
 
 layout(constant_id = 4) const int MAX_LIGHTS = 2048; // point lights + emissives (64 KiB UBO)
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
 layout(std140, binding = 2) uniform LightBlock { GpuPointLight lights[MAX_LIGHTS]; } u_lights; // w: gi_point_map.glsl
-layout(std430, binding = 3) buffer DirectOut { uvec2 texels[]; } o_direct;
+layout(std430, binding = 3) writeonly buffer DirectOut { uvec2 texels[]; } o_direct;
 layout(std430, binding = 4) writeonly buffer ShadowOut { uvec2 texels[]; } o_shadow; // 4 rg8 texels each
-layout(std430, binding = 5) buffer FacePX { uvec2 texels[]; } o_face_px;
-layout(std430, binding = 6) buffer FaceNX { uvec2 texels[]; } o_face_nx;
-layout(std430, binding = 7) buffer FacePZ { uvec2 texels[]; } o_face_pz;
-layout(std430, binding = 8) buffer FaceNZ { uvec2 texels[]; } o_face_nz;
+layout(std430, binding = 5) writeonly buffer FacePX { uvec2 texels[]; } o_face_px;
+layout(std430, binding = 6) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
+layout(std430, binding = 7) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
+layout(std430, binding = 8) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
 layout(std430, binding = 9) readonly buffer Bins { uint masks[]; } u_bins; // gi_light_bins
-layout(std430, binding = 10) buffer UpperPX { uvec2 texels[]; } o_upper_px;
-layout(std430, binding = 11) buffer UpperNX { uvec2 texels[]; } o_upper_nx;
-layout(std430, binding = 12) buffer UpperPZ { uvec2 texels[]; } o_upper_pz;
-layout(std430, binding = 13) buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
+layout(std430, binding = 10) writeonly buffer UpperPX { uvec2 texels[]; } o_upper_px;
+layout(std430, binding = 11) writeonly buffer UpperNX { uvec2 texels[]; } o_upper_nx;
+layout(std430, binding = 12) writeonly buffer UpperPZ { uvec2 texels[]; } o_upper_pz;
+layout(std430, binding = 13) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
 layout(std430, binding = 14) readonly buffer PointMapBins { uvec2 bins[]; } u_point_map; // gi_point_map.glsl
 layout(std430, binding = 15) readonly buffer ProxyBins { uint masks[]; } u_proxy_bins; // gi_light_bins
 
@@ -186,13 +183,6 @@ void texel_light(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     FOR_EACH_BIN_LIGHT(i, points, lights) emissive_light(i, wall, p, mask, softness, t);
 }
 
-// A texel's light: written, or with ACCUMULATE added to what is there (its alpha kept).
-uvec2 store_light(uvec2 old, vec3 light, float alpha) {
-    if (!ACCUMULATE) return pack_rgba16f(vec4(light, alpha));
-    vec4 o = unpack_rgba16f(old);
-    return pack_rgba16f(vec4(o.rgb + light, o.a));
-}
-
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
@@ -218,24 +208,23 @@ void main() {
                 if (!wall || FACES != 0u) texel_light(wall, cell, p, t);
             }
             int index = texel_index(x, y);
-            o_direct.texels[index] = store_light(o_direct.texels[index], t.color, 0.0);
+            o_direct.texels[index] = pack_rgba16f(vec4(t.color, 0.0));
             if (HAS_WALLS) { // otherwise the face textures are cleared once by the host
                 float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
                 uint faces = FACES;         // a face not computed has no texture
-                if (computes_face(faces, 0)) o_face_px.texels[index] = store_light(o_face_px.texels[index], t.face[0], has_faces);
-                if (computes_face(faces, 1)) o_face_nx.texels[index] = store_light(o_face_nx.texels[index], t.face[1], has_faces);
-                if (computes_face(faces, 2)) o_face_pz.texels[index] = store_light(o_face_pz.texels[index], t.face[2], has_faces);
-                if (computes_face(faces, 3)) o_face_nz.texels[index] = store_light(o_face_nz.texels[index], t.face[3], has_faces);
+                if (computes_face(faces, 0)) o_face_px.texels[index] = pack_rgba16f(vec4(t.face[0], has_faces));
+                if (computes_face(faces, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(t.face[1], has_faces));
+                if (computes_face(faces, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(t.face[2], has_faces));
+                if (computes_face(faces, 3)) o_face_nz.texels[index] = pack_rgba16f(vec4(t.face[3], has_faces));
                 if (UPPER) {
-                    if (computes_face(faces, 0)) o_upper_px.texels[index] = store_light(o_upper_px.texels[index], t.upper[0], face_edge(t, 0));
-                    if (computes_face(faces, 1)) o_upper_nx.texels[index] = store_light(o_upper_nx.texels[index], t.upper[1], face_edge(t, 1));
-                    if (computes_face(faces, 2)) o_upper_pz.texels[index] = store_light(o_upper_pz.texels[index], t.upper[2], face_edge(t, 2));
-                    if (computes_face(faces, 3)) o_upper_nz.texels[index] = store_light(o_upper_nz.texels[index], t.upper[3], face_edge(t, 3));
+                    if (computes_face(faces, 0)) o_upper_px.texels[index] = pack_rgba16f(vec4(t.upper[0], face_edge(t, 0)));
+                    if (computes_face(faces, 1)) o_upper_nx.texels[index] = pack_rgba16f(vec4(t.upper[1], face_edge(t, 1)));
+                    if (computes_face(faces, 2)) o_upper_pz.texels[index] = pack_rgba16f(vec4(t.upper[2], face_edge(t, 2)));
+                    if (computes_face(faces, 3)) o_upper_nz.texels[index] = pack_rgba16f(vec4(t.upper[3], face_edge(t, 3)));
                 }
             }
             shadow[k] = vec2(wall ? 0.0 : t.shadow, 0.0);
         }
-        if (!ACCUMULATE)
-            o_shadow.texels[texel_index(o.x, y) / 4] = uvec2(pack_rg8x2(shadow[0], shadow[1]), pack_rg8x2(shadow[2], shadow[3]));
+        o_shadow.texels[texel_index(o.x, y) / 4] = uvec2(pack_rg8x2(shadow[0], shadow[1]), pack_rg8x2(shadow[2], shadow[3]));
     }
 }

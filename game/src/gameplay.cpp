@@ -165,7 +165,8 @@ PropParts prop_parts(PropKind kind, glm::vec2 position) {
     proxy.position = position;
     switch (kind) {
     case PropKind::crystal:
-        out.emissive = EmissiveLight{position, {0.3f, 0.6f, 1.0f}, 0.9f, 4.0f};
+        // Baked (with baked light in use): a crystal stays put.
+        out.emissive = EmissiveLight{position, {0.3f, 0.6f, 1.0f}, 0.9f, 4.0f, scene::LightMode::baked};
         break;
     case PropKind::tree:
         proxy.shape = scene::ProxyShape::circle;
@@ -178,7 +179,8 @@ PropParts prop_parts(PropKind kind, glm::vec2 position) {
         proxy.size = {0.15f, 0.15f};
         proxy.max_length = 2.0f;
         out.proxy = ShadowProxy{proxy};
-        out.light = PointLight{position + glm::vec2(0.0f, 0.4f), 2.5f, {1.0f, 0.9f, 0.7f}, 0.9f, 7.0f};
+        // Mixed: its direct light live, its bounce from the bake (with baked light in use).
+        out.light = PointLight{position + glm::vec2(0.0f, 0.4f), 2.5f, {1.0f, 0.9f, 0.7f}, 0.9f, 7.0f, scene::LightMode::mixed};
         break;
     }
     return out;

@@ -136,6 +136,10 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
         },
         true);
     p.flag("--no-player-light", "the player carries no light", [&] { o.player_light = false; });
+    p.flag("--no-bake", "light everything live: no baked light (the modes of lights are ignored)", [&] { o.bake = false; });
+    p.text("--bake-dir", "DIR",
+           "where the baked light of the world's chunks is kept (default: lantern-bake beside the save file;\n"
+           "the headless demo: in its --out folder)", o.bake_dir);
     p.integer("--workers", "N", "job-system worker threads (default: cores - 1)", o.workers, 0, 256);
     p.flag("--fixed-step", "advance 1/60 s per frame whatever the frame took", o.fixed_step);
     p.flag("--validation", "enable the Vulkan validation layers", o.validation);

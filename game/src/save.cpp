@@ -31,6 +31,14 @@ constexpr const char* width_names[] = {"projected", "max_axis"};
 constexpr const char* penumbra_names[] = {"inward", "outward", "both"};
 constexpr const char* kind_names[] = {"caves", "map", "scene"};
 
+const char* light_mode_name(scene::LightMode m) {
+    switch (m) {
+    case scene::LightMode::mixed: return "mixed";
+    case scene::LightMode::baked: return "baked";
+    default: return "realtime";
+    }
+}
+
 // One entity, on one line: {"point_light": {...}, "torch": {...}}.
 void write_entity(json::Writer& w, const SavedEntity& e) {
     w.begin_object(json::Layout::one_line);
@@ -40,14 +48,18 @@ void write_entity(json::Writer& w, const SavedEntity& e) {
         write_vec(w, "position", l.position);
         w.field("height", l.height);
         write_vec(w, "color", l.color);
-        w.field("intensity", l.intensity).field("radius", l.radius).end();
+        w.field("intensity", l.intensity).field("radius", l.radius);
+        if (l.mode != scene::LightMode::realtime) w.field("mode", light_mode_name(l.mode));
+        w.end();
     }
     if (e.emissive_light) {
         const EmissiveLight& l = *e.emissive_light;
         w.key("emissive_light").begin_object();
         write_vec(w, "position", l.position);
         write_vec(w, "color", l.color);
-        w.field("intensity", l.intensity).field("radius", l.radius).end();
+        w.field("intensity", l.intensity).field("radius", l.radius);
+        if (l.mode != scene::LightMode::realtime) w.field("mode", light_mode_name(l.mode));
+        w.end();
     }
     if (e.directional_light) {
         const DirectionalLight& l = *e.directional_light;
@@ -109,12 +121,12 @@ void read_entity(Reader& r, const json::Value& v, const std::string& path, Saved
     if (const json::Value* m = f.find("point_light")) {
         scene::PointLight l;
         scene::reading::read_point_light(r, *m, f.path_of("point_light"), l);
-        e.point_light = PointLight{l.position, l.height, l.color, l.intensity, l.radius};
+        e.point_light = PointLight{l.position, l.height, l.color, l.intensity, l.radius, l.mode};
     }
     if (const json::Value* m = f.find("emissive_light")) {
         scene::EmissiveLight l;
         scene::reading::read_emissive_light(r, *m, f.path_of("emissive_light"), l);
-        e.emissive_light = EmissiveLight{l.position, l.color, l.intensity, l.radius};
+        e.emissive_light = EmissiveLight{l.position, l.color, l.intensity, l.radius, l.mode};
     }
     if (const json::Value* m = f.find("directional_light")) {
         scene::DirectionalLight l;
@@ -170,12 +182,13 @@ void read_edit(Reader& r, const json::Value& v, const std::string& path, systems
         }
         for (int col = 0; col < n; ++col) {
             const char ch = s[std::size_t(col)];
-            if (ch != '#' && ch != '.') {
+            if (ch != '#' && ch != '.' && !(ch >= 'a' && ch <= 'z')) {
                 r.fail(json::Position{line.position().line, line.position().column + 1 + col}, p,
-                       "expected '#' (wall) or '.' (floor)");
+                       "expected '#' (wall), '.' (floor) or a..z (a wall of material 0..25)");
                 return;
             }
-            out.cells[std::size_t(row * n + col)] = ch == '#' ? 1 : 0;
+            out.cells[std::size_t(row * n + col)] =
+                ch == '#' ? scene::default_wall_cell : ch == '.' ? 0 : scene::material_cell(ch - 'a');
         }
     }
 }
@@ -254,7 +267,8 @@ std::string format_save(const SaveState& s) {
     w.key("entities").begin_array();
     for (const SavedEntity& e : s.entities) write_entity(w, e);
     w.end();
-    // Edited chunks: one row of '#' (wall) and '.' (open) per line, as in a map file.
+    // Edited chunks: one row of '#' (wall) and '.' (open) per line, as in a map file, and
+    // a..z for walls of material 0..25 (the caves' lava and crystal).
     w.key("edits").begin_array();
     constexpr int n = systems::chunk_size;
     std::string row(std::size_t(n), '.');
@@ -262,7 +276,12 @@ std::string format_save(const SaveState& s) {
         w.begin_object().key("chunk").begin_array(json::Layout::one_line).value(c.coord.x).value(c.coord.y).end();
         w.key("rows").begin_array();
         for (int y = 0; y < n; ++y) {
-            for (int x = 0; x < n; ++x) row[std::size_t(x)] = c.cells[std::size_t(y * n + x)] ? '#' : '.';
+            for (int x = 0; x < n; ++x) {
+                const int cell = c.cells[std::size_t(y * n + x)];
+                row[std::size_t(x)] = cell == 0                                  ? '.'
+                                      : cell < scene::first_material_cell || cell >= scene::first_material_cell + 26 ? '#'
+                                                                                 : char('a' + cell - scene::first_material_cell);
+            }
             w.value(row);
         }
         w.end().end();

@@ -16,6 +16,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -208,6 +209,14 @@ void append_wall_boxes(DrawList& list, const IsWall& is_wall, glm::ivec2 min_til
         }
 }
 
+glm::vec3 probe_face_light(const ProbeRecord& r, float phi) {
+    constexpr float pi = 3.14159265f;
+    const glm::vec3 a0(r.c[0]), a1(r.c[1]), b1(r.c[2]), a2(r.c[3]), b2(r.c[4]);
+    const glm::vec3 e = a0 / pi + (a1 * std::cos(phi) + b1 * std::sin(phi)) * 0.5f +
+                        (a2 * std::cos(2.0f * phi) + b2 * std::sin(2.0f * phi)) * (2.0f / (3.0f * pi));
+    return glm::max(pi * e, glm::vec3(0.0f)) - a0;
+}
+
 std::span<const Palette> builtin_palettes() {
     static const std::vector<Palette> palettes = make_palettes();
     return palettes;
@@ -321,6 +330,23 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     m.upload.clear();
     for (const auto& f : m.faces) m.upload.insert(m.upload.end(), f.rbegin(), f.rend());
     m.faces_drawn = m.upload.size();
+    // The probe records after the faces, two instances each; a lit_probes face points at its
+    // record's first texel.
+    for (BoxInstance& b : m.upload)
+        if (int(b.material) == int(Material::lit_probes)) {
+            if (list.probes.empty()) { // no record: a plain prop
+                b.material = float(int(Material::prop));
+                b.emissive = 0.0f;
+                continue;
+            }
+            const std::size_t r = std::min(std::size_t(std::max(0.0f, b.emissive)), list.probes.size() - 1);
+            b.emissive = float(3 * (m.faces_drawn + 2 * r));
+        }
+    for (const ProbeRecord& r : list.probes) {
+        BoxInstance two[2];
+        std::memcpy(static_cast<void*>(two), &r, sizeof(r));
+        m.upload.insert(m.upload.end(), two, two + 2);
+    }
     const VkDeviceSize bytes = VkDeviceSize(m.upload.size()) * sizeof(BoxInstance);
     if (bytes > m.instances.capacity()) {
         VkDeviceSize capacity = m.instances.capacity();

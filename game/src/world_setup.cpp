@@ -70,6 +70,23 @@ void scatter_torches(const systems::WorldSource& source, ecs::World& world, std:
         }
 }
 
+// Lamp posts (a mixed light: its bounce baked) in open tiles with room around them.
+void scatter_lamps(const systems::WorldSource& source, ecs::World& world, std::uint32_t seed, glm::ivec2 min,
+                   glm::ivec2 max, int cell, float chance) {
+    for (int cz = min.y / cell; cz < max.y / cell; ++cz)
+        for (int cx = min.x / cell; cx < max.x / cell; ++cx) {
+            const std::uint32_t h = mix(seed, cx, cz, 0x1A3Bu);
+            if (float(h & 0xFFFF) / 65535.0f >= chance) continue;
+            for (int attempt = 0; attempt < 12; ++attempt) {
+                const std::uint32_t r = mix(seed, cx, cz, 0x2C4u + std::uint32_t(attempt));
+                const glm::ivec2 t(cx * cell + int(r % std::uint32_t(cell)), cz * cell + int((r >> 8) % std::uint32_t(cell)));
+                if (!open_around(source, t, 1)) continue;
+                spawn_prop(world, PropKind::lamp_post, glm::vec2(t) + 0.5f);
+                break;
+            }
+        }
+}
+
 ecs::Entity spawn_sun(ecs::World& world) {
     const ecs::Entity e = world.create();
     world.emplace<Sun>(e);
@@ -131,8 +148,10 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
     glm::ivec2 spawn_from(0);
     switch (spec.kind) {
     case WorldKind::caves: {
-        auto source = std::make_shared<systems::CaveSource>(scene::CaveParams{spec.seed, spec.cave_threshold});
+        // Lava and crystal veins in the rock: the caves' baked emitters (docs/baked.md).
+        auto source = std::make_shared<systems::CaveSource>(scene::CaveParams{spec.seed, spec.cave_threshold, true});
         out.source = source;
+        out.config.materials = scene::cave_materials();
         spawn_from = find_open_tile(*source, {0, 0}, 2, 96);
         if (options.decorate) {
             scatter_crystals(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 11, 0.55f);
@@ -142,6 +161,7 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
                 spawn_torch(world, glm::vec2(t) + 0.5f, float(offset.x * 7 + offset.y) * 0.31f);
             }
             scatter_torches(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 23, 0.45f);
+            scatter_lamps(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 31, 0.35f);
         }
         out.description = "procedural caves, seed " + std::to_string(spec.seed);
         break;

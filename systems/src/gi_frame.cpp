@@ -117,9 +117,7 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
                     {d->direction, d->color, d->intensity, d->base_shadow_distance, d->bounce_intensity},
                     config.settings.method));
     }
-    out.hash = hash_vector(Hasher(hash_vector(Hasher(hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives)),
-                                              out.mixed_points)),
-                           out.mixed_emissives);
+    out.hash = hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives);
     out.suns_hash = hash_vector(Hasher(), out.suns);
     w.resource<GatheredLights>() = std::move(out);
 }
@@ -160,8 +158,10 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, g
     // The walls' key covers their materials too (what they reflect and emit).
     const std::uint64_t walls = in.materials.empty() ? wall_version
                                                      : Hasher().add(wall_version).add_span(std::span(in.materials)).value();
-    const gi::InputKeys inputs{gi::hash_window(in.window), walls, lights_hash, proxies_hash, suns_hash,
-                               in.baked ? in.baked->key : 0};
+    const gi::InputKeys inputs{gi::hash_window(in.window), walls,
+                               lights_hash, proxies_hash,
+                               suns_hash,   in.baked ? in.baked->key : 0,
+                               Hasher().add_span(std::span(in.mixed_lights)).add_span(std::span(in.mixed_emissives)).value()};
     return gi::derive_keys(in, plan, inputs, convergence);
 }
 

@@ -276,17 +276,17 @@ void Streaming::restore_edits(std::vector<EditedChunk> chunks) {
     }
 }
 
-bool Streaming::is_wall(glm::ivec2 tile) const {
+std::uint8_t Streaming::cell(glm::ivec2 tile) const {
     const glm::ivec2 coord(floor_div(tile.x, chunk_size), floor_div(tile.y, chunk_size));
     const int cell = pmod(tile.y, chunk_size) * chunk_size + pmod(tile.x, chunk_size);
     auto it = chunks_.find(key(coord));
-    if (it != chunks_.end() && !it->second.pending) return mirror_[mirror_index(tile.x, tile.y)] != 0;
+    if (it != chunks_.end() && !it->second.pending) return mirror_[mirror_index(tile.x, tile.y)];
     auto e = edits_.find(key(coord));
-    if (e != edits_.end()) return e->second[std::size_t(cell)] != 0;
+    if (e != edits_.end()) return e->second[std::size_t(cell)];
     if (auto parked = cancelled_.find(key(coord)); parked != cancelled_.end())
         for (auto edit = parked->second.pending_edits.rbegin(); edit != parked->second.pending_edits.rend(); ++edit)
-            if (edit->first == cell) return edit->second;
-    return source_->is_wall(tile);
+            if (edit->first == cell) return edit->second ? scene::default_wall_cell : 0;
+    return source_->cell(tile);
 }
 
 } // namespace lantern::systems

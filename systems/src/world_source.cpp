@@ -4,10 +4,12 @@
 
 namespace lantern::systems {
 
-bool WorldSource::is_wall(glm::ivec2 tile) const {
+bool WorldSource::is_wall(glm::ivec2 tile) const { return cell(tile) != 0; }
+
+std::uint8_t WorldSource::cell(glm::ivec2 tile) const {
     std::uint8_t cells[chunk_size * chunk_size];
     generate({floor_div(tile.x, chunk_size), floor_div(tile.y, chunk_size)}, cells);
-    return cells[pmod(tile.y, chunk_size) * chunk_size + pmod(tile.x, chunk_size)] != 0;
+    return cells[pmod(tile.y, chunk_size) * chunk_size + pmod(tile.x, chunk_size)];
 }
 
 void CaveSource::generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const {

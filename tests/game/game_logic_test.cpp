@@ -1,7 +1,12 @@
 // The game's rules without a window or GPU: collision, the following camera and picking,
 // flicker and the sun, worlds, and save files (exact round trip, clear errors, and a kill
 // during a save that leaves the previous save loadable).
+#include "lantern/game/baking.hpp"
 #include "lantern/game/gameplay.hpp"
+#include "lantern/game/options.hpp"
+#include "lantern/gi/backend.hpp"
+#include "lantern/scene/procedural.hpp"
+#include "lantern/systems/gi_frame.hpp"
 #include "lantern/game/save.hpp"
 #include "lantern/game/world_setup.hpp"
 #include "lantern/gi/window.hpp"
@@ -278,11 +283,12 @@ TEST(Saves, MalformedSavesAreRejectedWithPositions) {
     }
     // A bad character in a row is reported at its column.
     std::string rows = "[";
-    for (int i = 0; i < 32; ++i) rows += std::string(i ? "," : "") + "\"" + std::string(i == 3 ? "..x" : "...") + std::string(29, '.') + "\"";
+    for (int i = 0; i < 32; ++i) rows += std::string(i ? "," : "") + "\"" + std::string(i == 3 ? "..!" : "...") + std::string(29, '.') + "\"";
     rows += "]";
     auto r = parse_save("{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"edits\": [{\"chunk\": [0, 0], \"rows\": " + rows + "}]}", "t.json");
     ASSERT_FALSE(r);
-    EXPECT_NE(r.error().message.find("edits[0].rows[3]: expected '#' (wall) or '.' (floor)"), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find("edits[0].rows[3]: expected '#' (wall), '.' (floor) or a..z"), std::string::npos)
+        << r.error().message;
 }
 
 // A save whose world file is gone (or is not a file) names the save and the key, on one
@@ -383,4 +389,120 @@ TEST(Saves, KillDuringSaveLeavesThePreviousSaveLoadable) {
         EXPECT_EQ(loaded->edits.size(), a.edits.size());
     }
     EXPECT_EQ(torn, 0);
+}
+
+// ---- baked light (docs/baked.md, "In the game")
+
+namespace {
+
+// The caves with their veins, the GI frame on the C++ reference and the baker: what the
+// headless game runs, without a GPU. Quick bake settings (the game's are finer).
+struct BakedCaves {
+    jobs::JobSystem jobs{no_workers()};
+    ecs::World world;
+    std::unique_ptr<WorldBaker> baker;
+    std::unique_ptr<systems::GiFrame> frame;
+
+    explicit BakedCaves(const std::string& cache_dir) {
+        WorldOptions wo;
+        wo.gi = default_game_gi();
+        auto created = create_world(WorldSpec{}, world, wo);
+        EXPECT_TRUE(created.ok());
+        world.set_resource<BakedChunks>();
+        world.set_resource<BakeStatus>();
+        BakerOptions bo;
+        bo.cache_dir = cache_dir;
+        bo.settings = {.resolution = 1, .margin = 2, .rays = 8, .face_rays = 8};
+        bo.reach = 8;
+        baker = std::make_unique<WorldBaker>(bo);
+        systems::GiFrameOptions fo;
+        fo.add_game_systems = [this](ecs::Schedule& s) { add_bake_system(s, *baker); };
+        frame = std::make_unique<systems::GiFrame>(world, jobs, created->source, gi::make_reference_backend(nullptr),
+                                                   created->config, std::move(fo));
+        frame->warm_up();
+        baker->finish(world);
+    }
+    ~BakedCaves() {
+        frame.reset();
+        baker.reset();
+    }
+    const BakeStatus& status() { return world.resource<BakeStatus>(); }
+};
+
+} // namespace
+
+TEST(Baking, CavesHaveLavaAndCrystalVeinsWhereRockMeetsTheOpen) {
+    const scene::CaveParams p{1, 0.47f, true};
+    int lava = 0, crystal = 0;
+    for (int z = -64; z < 64; ++z)
+        for (int x = -64; x < 64; ++x) {
+            const std::uint8_t c = scene::cave_cell(x, z, p);
+            EXPECT_EQ(c != 0, scene::cave_wall(x, z, p));
+            if (c < scene::first_material_cell) continue;
+            lava += c == scene::material_cell(scene::cave_lava);
+            crystal += c == scene::material_cell(scene::cave_crystal);
+            const bool open_beside = !scene::cave_wall(x + 1, z, p) || !scene::cave_wall(x - 1, z, p) ||
+                                     !scene::cave_wall(x, z + 1, p) || !scene::cave_wall(x, z - 1, p);
+            EXPECT_TRUE(open_beside) << "a vein shows: " << x << ", " << z;
+        }
+    std::printf("128 x 128 tiles: %d lava, %d crystal\n", lava, crystal);
+    EXPECT_GT(lava, 20);
+    EXPECT_GT(crystal, 20);
+    EXPECT_EQ(scene::cave_cell(3, 4, {1, 0.47f, false}), scene::cave_wall(3, 4, {1, 0.47f, false}) ? 1 : 0);
+    ASSERT_EQ(scene::cave_materials().size(), 2u);
+    EXPECT_GT(scene::cave_materials()[scene::cave_lava].emission.r, 0.0f);
+}
+
+// The resident chunks bake in the background (their veins and crystals), the frame gets the
+// baked light, a second start reads every chunk from the cache, and a wall mined re-bakes
+// only the chunks whose bake sees it.
+TEST(Baking, ChunksBakeReuseTheirCacheAndAnEditRebakesOnlyWhatItReaches) {
+    test::TempDir dir;
+    std::uint64_t chunks = 0;
+    {
+        BakedCaves game(dir.path().string());
+        const BakeStatus& s = game.status();
+        chunks = std::uint64_t(s.chunks);
+        EXPECT_GT(s.chunks, 3);
+        EXPECT_EQ(s.baked, chunks);
+        EXPECT_EQ(s.reused, 0u);
+        EXPECT_EQ(s.pending, 0);
+        EXPECT_EQ(s.published, 1u);
+        const auto& light = game.world.resource<systems::BakedGi>().light;
+        ASSERT_TRUE(light);
+        // Some chunk holds light (the veins glow, the crystals shine).
+        bool lit = false;
+        for (const auto& [k, b] : game.world.resource<BakedChunks>().chunks) lit |= !b->empty;
+        EXPECT_TRUE(lit);
+        // Mine a wall well inside chunk (0, 0)... and one on a chunk corner.
+        systems::Streaming& streaming = game.frame->streaming();
+        auto mine_near = [&](glm::ivec2 from) {
+            for (int r = 0; r < 16; ++r)
+                for (int dz = -r; dz <= r; ++dz)
+                    for (int dx = -r; dx <= r; ++dx)
+                        if (streaming.is_wall(from + glm::ivec2(dx, dz))) {
+                            streaming.set_wall(game.world, from + glm::ivec2(dx, dz), false);
+                            return from + glm::ivec2(dx, dz);
+                        }
+            return from;
+        };
+        // A chunk's bake sees its walls and margin + reach (2 + 8) tiles around it.
+        auto reaching = [&](glm::ivec2 t) {
+            std::uint64_t n = 0;
+            for (const auto& [k, b] : game.world.resource<BakedChunks>().chunks) {
+                const glm::ivec2 lo = glm::ivec2(b->id.x, b->id.z) * 32 - 10, hi = lo + 32 + 20;
+                n += t.x >= lo.x && t.y >= lo.y && t.x < hi.x && t.y < hi.y;
+            }
+            return n;
+        };
+        const glm::ivec2 inner = mine_near({16, 16});
+        const std::uint64_t expected = reaching(inner);
+        EXPECT_GE(expected, 1u);
+        game.baker->finish(game.world);
+        EXPECT_EQ(s.baked, chunks + expected) << "one edit at " << inner.x << ", " << inner.y;
+        EXPECT_EQ(s.published, 2u);
+    }
+    BakedCaves again(dir.path().string());
+    EXPECT_EQ(again.status().reused + again.status().baked, chunks);
+    EXPECT_GE(again.status().reused, chunks - 4) << "the chunks the edit reached are stale (the walls are new again)";
 }

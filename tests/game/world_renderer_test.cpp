@@ -4,6 +4,7 @@
 // controls. Skipped, and reported, without a device (failed under LANTERN_REQUIRE_GPU=1). The
 // GPU time of a typical cave view is measured by benchmarks/world_pass_bench.cpp.
 #include "lantern/game/world_renderer.hpp"
+#include "lantern/bake/probes.hpp"
 
 #include "lantern/game/gameplay.hpp"
 #include "lantern/gi/frame_inputs.hpp"
@@ -564,6 +565,62 @@ TEST_F(WorldRendererTest, GlowIgnoresLightAndNoGiDrawsEmissionOnly) {
     EXPECT_TRUE(std::all_of(empty.pixels.begin(), empty.pixels.end(), [n = 0](std::uint8_t v) mutable {
         return (n++ % 4 == 3) ? v == 255 : v == 0;
     }));
+}
+
+// ---- light probes (seed 004): a lit_probes box takes the baked light from its direction
+
+// Two crates beside each other, lit by the room's GI, and by probes that hold an orange light
+// arriving from +x: the left crate shows its +x face (turned towards the light: more orange
+// than without the probes), the right one its -x face (turned away: no more light than
+// without). probe_face_light is the vertex stage's formula.
+TEST_F(WorldRendererTest, ProbesLightAFaceFromWhereTheBakedLightComes) {
+    bake::CircularHarmonics h;
+    h.add_delta(0.0f, {0.3f, 0.12f, 0.02f}); // from +x: an orange glow (lava) to the east
+    game::ProbeRecord record;
+    for (int k = 0; k < 5; ++k) record.c[k] = glm::vec4(h.c[std::size_t(k)], 0.0f);
+    const glm::vec3 toward = game::probe_face_light(record, 0.0f), away = game::probe_face_light(record, 3.14159265f);
+    // Facing a light from one direction a face gets pi x its irradiance (order 2: 3.24 x the
+    // fluence, pi exactly); turned away none of it (order 2: 0.1 x); side on a third (the
+    // truncation's ringing; 0 exactly). Minus the fluence the ground gives it already.
+    EXPECT_NEAR(toward.r, 0.3f * (1.5708f + 0.6667f), 1e-4f);
+    EXPECT_GT(toward.r, toward.g);
+    EXPECT_GT(toward.g, toward.b);
+    EXPECT_LT(away.r, 0.0f) << "a face turned away loses the baked light the ground's fluence gave it";
+    const glm::vec3 side = game::probe_face_light(record, 1.5707963f);
+    EXPECT_LT(side.r, toward.r);
+    EXPECT_GT(side.r, away.r);
+
+    auto frame = lit_room_frame();
+    ASSERT_TRUE(frame);
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+    view.art.texture_pattern = false;
+    auto crates = [&](Material m) {
+        DrawList list = world_list(*frame, false);
+        for (float x : {9.5f, 18.5f}) {
+            BoxInstance b;
+            b.center = {x, 0.4f, 15.5f};
+            b.half = {0.4f, 0.4f, 0.4f};
+            b.material = float(int(m));
+            b.color = {0.7f, 0.7f, 0.7f};
+            b.emissive = 0.0f; // the record's index
+            list.boxes.push_back(b);
+        }
+        list.probes.push_back(record);
+        return list;
+    };
+    const auto plain = draw(view, crates(Material::prop), frame.get());
+    const auto probed = draw(view, crates(Material::lit_probes), frame.get());
+    maybe_write_png(probed, "probes");
+    // The left crate is left of the camera (x 14): its +x face shows; the right one's -x face.
+    const glm::ivec2 left = project_pixel(view.camera, {9.9f, 0.4f, 15.5f}), right = project_pixel(view.camera, {18.1f, 0.4f, 15.5f});
+    const auto l0 = pixel(plain, left.x, left.y), l1 = pixel(probed, left.x, left.y);
+    const auto r0 = pixel(plain, right.x, right.y), r1 = pixel(probed, right.x, right.y);
+    std::printf("+x face: %d %d %d -> %d %d %d; -x face: %d %d %d -> %d %d %d\n", l0[0], l0[1], l0[2], l1[0], l1[1], l1[2],
+                r0[0], r0[1], r0[2], r1[0], r1[1], r1[2]);
+    EXPECT_GT(l1[0], l0[0] + 10) << "lit orange from the side the light comes from";
+    EXPECT_GT(l1[0] - l1[2], l0[0] - l0[2] + 5) << "and orange, not white";
+    EXPECT_LE(r1[0], r0[0]) << "the face turned away gets no more light";
 }
 
 // ---- GI views (the HUD's): a texture over the world from above

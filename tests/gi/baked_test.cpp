@@ -282,3 +282,53 @@ TEST_F(Baked, MixedLightsOnVulkanEqualTheReference) {
             compare(name, in, false);
         }
 }
+
+// The mixed lights' pass is cached while they stay put: a realtime light that moves (a
+// torch's flicker) reruns the direct pass, the indirect passes and the baked pass, which adds
+// the kept mixed light again, but not the mixed pass; what the frame holds then equals a
+// frame computed afresh. And a mixed light that moves reruns the passes it is added to.
+TEST(BakedReference, AStillMixedLightIsKeptWhileRealtimeLightsChange) {
+    Scene s = gi_test::comparison_scene("rooms").scene;
+    s.point_lights[1].mode = lantern::scene::LightMode::mixed;
+    auto frame = [&](const Scene& scene) {
+        FrameInputs in = inputs_of(scene);
+        in.baked = synthetic_bake(in.walls, {-4, -4}, {40, 32}, 4, 0.01f, 300);
+        split_for_bake(in, scene);
+        return in;
+    };
+    // Frames as the frame systems run them: only the passes whose keys changed, on one store.
+    ReferenceStore kept;
+    std::array<std::uint64_t, pass_count> last{};
+    auto step = [&](const FrameInputs& in) {
+        PassPlan plan = plan_passes(in, true);
+        const auto keys = derive_keys(in, plan, input_keys_of(in));
+        PassSet run;
+        for (int p = 0; p < registered_pass_count(); ++p)
+            if (plan.run.has(Pass(p)) && keys[std::size_t(p)] != last[std::size_t(p)]) run.add(Pass(p));
+        execute_reference(in, plan, run, {}, kept);
+        last = keys;
+        return run;
+    };
+    step(frame(s));
+    Scene moved = s;
+    moved.point_lights[0].position.x += 0.5f; // the realtime light
+    const PassSet second = step(frame(moved));
+    EXPECT_TRUE(second.has(Pass::direct));
+    EXPECT_TRUE(second.has(Pass::baked));
+    EXPECT_FALSE(second.has(Pass::mixed)) << "the still mixed light is not computed again";
+    const ReferenceStore fresh = reference_frame(frame(moved));
+    for (Tex t : {Tex::direct, Tex::wall_direct_px, Tex::wall_direct_nz, Tex::indirect, Tex::wall_indirect_pz}) {
+        auto diff = gi_test::compare_textures(kept.at(t), fresh.at(t), 0.0f);
+        EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " kept against afresh", diff);
+    }
+    Scene mixed_moved = moved;
+    mixed_moved.point_lights[1].position.x += 0.5f;
+    const PassSet third = step(frame(mixed_moved));
+    EXPECT_TRUE(third.has(Pass::mixed));
+    EXPECT_TRUE(third.has(Pass::direct)) << "the pass the baked pass adds to in place reruns first";
+    const ReferenceStore fresh3 = reference_frame(frame(mixed_moved));
+    for (Tex t : {Tex::direct, Tex::wall_direct_px, Tex::indirect}) {
+        auto diff = gi_test::compare_textures(kept.at(t), fresh3.at(t), 0.0f);
+        EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " after the mixed light moved", diff);
+    }
+}

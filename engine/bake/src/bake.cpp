@@ -43,6 +43,7 @@ scene::GiSettings bake_gi(const scene::Scene& s, const BakeSettings& b) {
     gi.wall_lighting = true;
     gi.wall_faces = {};
     gi.blur = false;
+    gi.baked_intensity = 1.0f; // a run-time knob: the bake is the same whatever it is
     gi.max_lights = std::max(gi.max_lights, 1 << 20); // the bake is not a frame: no cap
     gi.max_shadow_proxies = std::max(gi.max_shadow_proxies, 1 << 20);
     return gi;

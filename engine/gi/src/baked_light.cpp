@@ -16,7 +16,7 @@ BakedLight make_baked_light(glm::ivec2 origin, int resolution, const std::array<
     out.resolution = resolution;
     out.width = layers[0].width;
     out.height = layers[0].height;
-    out.bricks = build_bricks(std::span<const Field>(layers), eps);
+    out.bricks = build_bricks(std::span<const Field>(layers), eps, baked_bricks_per_row);
     out.key = key;
     return out;
 }

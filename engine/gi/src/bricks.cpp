@@ -144,9 +144,11 @@ glm::vec3 decode_rgbm(const std::uint8_t in[4]) {
     return glm::vec3(in[0], in[1], in[2]) / 255.0f * (float(in[3]) / 255.0f) * rgbm_range;
 }
 
-BrickAtlas build_bricks(const Field& field, float eps) { return build_bricks(std::span<const Field>(&field, 1), eps); }
+BrickAtlas build_bricks(const Field& field, float eps, int bricks_per_row) {
+    return build_bricks(std::span<const Field>(&field, 1), eps, bricks_per_row);
+}
 
-BrickAtlas build_bricks(std::span<const Field> fields, float eps) {
+BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row) {
     BrickAtlas out;
     LANTERN_ASSERT(!fields.empty(), "build_bricks needs a field");
     const int width = fields[0].width, height = fields[0].height;
@@ -169,7 +171,8 @@ BrickAtlas build_bricks(std::span<const Field> fields, float eps) {
     }
     // Atlas: bricks in rows of a square's width.
     const int n = int(bricks.size());
-    out.atlas_bricks_x = std::max(1, int(std::ceil(std::sqrt(double(n)))));
+    out.atlas_bricks_x = bricks_per_row > 0 ? std::min(bricks_per_row, brick_max_atlas)
+                                            : std::max(1, int(std::ceil(std::sqrt(double(n)))));
     out.atlas_bricks_y = std::max(1, (n + out.atlas_bricks_x - 1) / out.atlas_bricks_x);
     LANTERN_ASSERT(out.atlas_bricks_x <= brick_max_atlas && out.atlas_bricks_y <= brick_max_atlas,
                    "build_bricks: more bricks than 12-bit indices address");

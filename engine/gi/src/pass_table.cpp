@@ -75,6 +75,16 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {gather_face_a, "gather_face_a", TexFormat::rgba16f, TexScale::custom, false, true, gather_face_size},
     {gather_face_b, "gather_face_b", TexFormat::rgba16f, TexScale::custom, false, true, gather_face_size},
     {gather_ground, "gather_ground", TexFormat::rgba16f, TexScale::custom, false, false, gather_grid_size},
+    {direct_mixed, "direct_mixed", TexFormat::rgba16f, TexScale::window, false, true},
+    {shadow_mixed, "shadow_mixed", TexFormat::rg8, TexScale::window, false, true},
+    {wall_direct_mixed_px, "wall_direct_mixed_px", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_direct_mixed_nx, "wall_direct_mixed_nx", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_direct_mixed_pz, "wall_direct_mixed_pz", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_direct_mixed_nz, "wall_direct_mixed_nz", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_mixed_px, "wall_upper_mixed_px", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_mixed_nx, "wall_upper_mixed_nx", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_mixed_pz, "wall_upper_mixed_pz", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_mixed_nz, "wall_upper_mixed_nz", TexFormat::rgba16f, TexScale::window, false, true},
 };
 
 constexpr bool rows_in_order() {
@@ -187,6 +197,7 @@ std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan&
     if (row.inputs & input_wall_height) h.add(in.wall_height);
     if (row.inputs & input_walls_in_window) h.add(plan.has_walls_in_window);
     if (row.inputs & input_baked) h.add(inputs.baked);
+    if (row.inputs & input_mixed_lights) h.add(inputs.mixed);
     for (int i : setting_indices(row)) h.add(i).add(settings[std::size_t(i)]);
     return h.value();
 }
@@ -372,12 +383,8 @@ InputKeys input_keys_of(const FrameInputs& in) {
     walls.add_bytes(in.walls.cells, std::size_t(in.walls.width) * std::size_t(in.walls.height));
     walls.add_span(std::span(in.materials)); // what the walls reflect and emit
     k.walls = walls.value();
-    k.lights = Hasher()
-                   .add_span(std::span(in.point_lights))
-                   .add_span(std::span(in.emissive_lights))
-                   .add_span(std::span(in.mixed_lights))
-                   .add_span(std::span(in.mixed_emissives))
-                   .value();
+    k.lights = Hasher().add_span(std::span(in.point_lights)).add_span(std::span(in.emissive_lights)).value();
+    k.mixed = Hasher().add_span(std::span(in.mixed_lights)).add_span(std::span(in.mixed_emissives)).value();
     k.proxies = Hasher().add_span(std::span(in.proxies)).value();
     k.suns = Hasher().add_span(std::span(in.directional_lights)).value();
     k.baked = in.baked ? in.baked->key : 0;

@@ -35,8 +35,10 @@ bool cave_wall(int x, int z, const CaveParams& p) {
 }
 
 std::vector<Material> cave_materials() {
-    return {{"lava", {0.35f, 0.12f, 0.05f}, {2.0f, 0.7f, 0.15f}},
-            {"crystal", {0.45f, 0.55f, 0.8f}, {0.25f, 0.55f, 1.4f}}};
+    // Emission in the transport model's units: a lava wall seen over half the horizon gives
+    // the ground about pi / 2 x 0.5 = 0.8 of fluence, a torch's light at a few tiles.
+    return {{"lava", {0.35f, 0.12f, 0.05f}, {0.5f, 0.17f, 0.04f}},
+            {"crystal", {0.45f, 0.55f, 0.8f}, {0.06f, 0.14f, 0.35f}}};
 }
 
 std::uint8_t cave_cell(int x, int z, const CaveParams& p) {

@@ -87,6 +87,8 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     rig.aspect = float(options_.internal.x) / float(options_.internal.y);
     w.set_resource<CameraRig>(rig);
     w.set_resource<DrawListResource>();
+    w.set_resource<BakedChunks>();
+    w.set_resource<BakeStatus>();
 
     WorldOptions wo;
     wo.gi = options_.gi;
@@ -104,6 +106,25 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
         config.settings = tmp.gi;
     }
     if (save) apply_save(*save, w, s->info.player);
+    if (options_.bake) {
+        // One folder per world (the caves of a seed, a map, a scene): chunk files are named
+        // by their coordinates only.
+        // Default: beside the save file (the headless demo: in its --out folder).
+        const std::filesystem::path root =
+            !options_.bake_dir.empty()           ? std::filesystem::path(options_.bake_dir)
+            : options_.mode == RunMode::headless ? std::filesystem::path(options_.out_dir) / "lantern-bake"
+                                                 : std::filesystem::path(options_.save_file).parent_path() / "lantern-bake";
+        const WorldSpec& ws = spec;
+        char name[96];
+        if (ws.kind == WorldKind::caves)
+            std::snprintf(name, sizeof(name), "caves-%u-%.3f", ws.seed, double(ws.cave_threshold));
+        else
+            std::snprintf(name, sizeof(name), "%s-%s", world_kind_name(ws.kind),
+                          std::filesystem::path(ws.path).stem().string().substr(0, 60).c_str());
+        BakerOptions bo;
+        bo.cache_dir = (root / name).string();
+        s->baker = std::make_unique<WorldBaker>(std::move(bo));
+    }
 
     systems::GiFrameOptions fo;
     Session* session = s.get();
@@ -114,12 +135,22 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
             .reads_resource<systems::Streaming>() // the demo script looks at the walls
             .writes_resource<Controls, GameClock>();
         add_gameplay_systems(schedule);
+        if (session->baker) add_bake_system(schedule, *session->baker);
     };
     s->frame = std::make_unique<systems::GiFrame>(w, jobs_, s->info.source, gi::make_vulkan_backend(*gi_renderer_),
                                                   config, std::move(fo));
     if (save) s->frame->streaming().restore_edits(save->edits);
     add_systems(s->frame->schedule(), *s);
     s->frame->warm_up();
+    if (s->baker) { // the first frame shows the baked light: bake (or read) what the start needs
+        const std::int64_t start = now_ns();
+        s->baker->finish(w);
+        const BakeStatus& b = w.resource<BakeStatus>();
+        LANTERN_LOG_INFO("baked light: %d chunks (%llu baked, %llu from %s) in %.1f s", b.chunks,
+                         static_cast<unsigned long long>(b.baked), static_cast<unsigned long long>(b.reused),
+                         b.cache_dir.c_str(), double(now_ns() - start) * 1e-9);
+        if (!b.last_warning.empty()) LANTERN_LOG_WARN("%s", b.last_warning.c_str());
+    }
     if (options_.mode == RunMode::headless || !window_) {
         systems::Streaming& streaming = s->frame->streaming();
         const IsWall is_wall = [&streaming](int x, int z) { return streaming.is_wall({x, z}); };
@@ -135,6 +166,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         ecs::World& w = ctx.world;
         DrawListResource& r = w.resource<DrawListResource>();
         r.list.boxes.clear();
+        r.list.probes.clear();
         r.context = {};
         w.view<Camera>().each([&](const Camera& c) {
             if (auto* p = std::get_if<scene::PerspectiveCamera>(&c.view)) r.context.camera = *p;
@@ -142,6 +174,8 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         const systems::Streaming& streaming = w.resource<systems::Streaming>();
         r.context.wall_height = w.resource<systems::GiConfig>().wall_height;
         r.context.time = w.resource<GameClock>().time;
+        r.context.materials = &w.resource<systems::GiConfig>().materials;
+        if (w.resource<BakeStatus>().enabled) r.context.probes = &w.resource<BakedChunks>();
         const IsWall is_wall = [&](int x, int z) { return streaming.is_wall({x, z}); };
         w.view<Player, Transform>().each([&](const Player&, const Transform& t) {
             if (auto target = cursor_target(w.resource<Controls>(), r.context.camera, {t.position.x, t.position.z},
@@ -153,7 +187,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         build_draw_list(w, streaming, r.context, r.list);
     })
         .reads<Player, Transform, Prop, Torch, PointLight, EmissiveLight, Camera>()
-        .reads_resource<Controls, GameClock, systems::GiConfig, systems::Streaming>()
+        .reads_resource<Controls, GameClock, systems::GiConfig, systems::Streaming, BakedChunks, BakeStatus>()
         .writes_resource<DrawListResource>();
     schedule.add("render", [this, &s](ecs::SystemContext&) { render_system(s); })
         .main_thread()

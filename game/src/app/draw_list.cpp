@@ -56,9 +56,31 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
             if (!wall(x - 1, z)) mask |= face_neg_x;
             if (!wall(x, z + 1)) mask |= face_pos_z;
             if (!wall(x, z - 1)) mask |= face_neg_z;
-            out.boxes.push_back(box({float(x) + 0.5f, h * 0.5f, float(z) + 0.5f}, {0.5f, h * 0.5f, 0.5f},
-                                    {0.46f, 0.42f, 0.4f}, Material::wall, 0.0f, float(mask)));
+            glm::vec3 color(0.46f, 0.42f, 0.4f);
+            float emissive = 0.0f;
+            const int cell = streaming.cell({x, z});
+            if (ctx.materials && cell >= scene::first_material_cell &&
+                std::size_t(cell - scene::first_material_cell) < ctx.materials->size()) {
+                // A mineral: its albedo, and where it glows the glow's colour, shining.
+                const scene::Material& m = (*ctx.materials)[std::size_t(cell - scene::first_material_cell)];
+                const float e = std::max({m.emission.r, m.emission.g, m.emission.b});
+                color = e > 0.0f ? m.emission / e : m.albedo;
+                emissive = e > 0.0f ? std::clamp(3.0f * e, 0.6f, 1.5f) : 0.0f;
+            }
+            out.boxes.push_back(box({float(x) + 0.5f, h * 0.5f, float(z) + 0.5f}, {0.5f, h * 0.5f, 0.5f}, color,
+                                    Material::wall, emissive, float(mask)));
         }
+
+    // Things that move or stand in the open are lit by the baked light's probes too (with
+    // baked light in use): one record per object, a lit_probes box per part.
+    auto probe_lit = [&](glm::vec2 at) -> std::pair<Material, float> {
+        if (!ctx.probes) return {Material::prop, 0.0f};
+        const bake::CircularHarmonics probes = ctx.probes->probes_at(at);
+        ProbeRecord r;
+        for (int k = 0; k < 5; ++k) r.c[k] = glm::vec4(probes.c[std::size_t(k)], 0.0f);
+        out.probes.push_back(r);
+        return {Material::lit_probes, float(out.probes.size() - 1)};
+    };
 
     // Props.
     world.view<Prop>().each([&](ecs::Entity e, const Prop& p) {
@@ -72,14 +94,18 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
             out.boxes.push_back(box(at + glm::vec3(0.14f, 0.14f, 0.05f), {0.07f, 0.14f, 0.07f}, color, Material::glow, 1.2f));
             break;
         }
-        case PropKind::tree:
-            out.boxes.push_back(box(at + glm::vec3(0, 0.45f, 0), {0.1f, 0.45f, 0.1f}, {0.36f, 0.23f, 0.12f}, Material::prop));
-            out.boxes.push_back(box(at + glm::vec3(0, 1.25f, 0), {0.42f, 0.38f, 0.42f}, {0.2f, 0.42f, 0.16f}, Material::prop));
+        case PropKind::tree: {
+            const auto [lit, record] = probe_lit(p.position);
+            out.boxes.push_back(box(at + glm::vec3(0, 0.45f, 0), {0.1f, 0.45f, 0.1f}, {0.36f, 0.23f, 0.12f}, lit, record));
+            out.boxes.push_back(box(at + glm::vec3(0, 1.25f, 0), {0.42f, 0.38f, 0.42f}, {0.2f, 0.42f, 0.16f}, lit, record));
             break;
-        case PropKind::lamp_post:
-            out.boxes.push_back(box(at + glm::vec3(0, 0.7f, 0), {0.06f, 0.7f, 0.06f}, {0.2f, 0.2f, 0.23f}, Material::prop));
+        }
+        case PropKind::lamp_post: {
+            const auto [lit, record] = probe_lit(p.position);
+            out.boxes.push_back(box(at + glm::vec3(0, 0.7f, 0), {0.06f, 0.7f, 0.06f}, {0.2f, 0.2f, 0.23f}, lit, record));
             out.boxes.push_back(box(at + glm::vec3(0, 1.5f, 0), {0.14f, 0.12f, 0.14f}, {1.0f, 0.9f, 0.7f}, Material::glow, 2.0f));
             break;
+        }
         }
     });
 
@@ -96,11 +122,12 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     // The player.
     world.view<Player, Transform>().each([&](const Player& p, const Transform& t) {
         const glm::vec3 at(t.position.x, 0.0f, t.position.z);
-        out.boxes.push_back(box(at + glm::vec3(0, 0.42f, 0), {0.26f, 0.42f, 0.2f}, {0.22f, 0.36f, 0.72f}, Material::prop));
-        out.boxes.push_back(box(at + glm::vec3(0, 1.04f, 0), {0.22f, 0.2f, 0.22f}, {0.9f, 0.72f, 0.56f}, Material::prop));
+        const auto [lit, record] = probe_lit({t.position.x, t.position.z});
+        out.boxes.push_back(box(at + glm::vec3(0, 0.42f, 0), {0.26f, 0.42f, 0.2f}, {0.22f, 0.36f, 0.72f}, lit, record));
+        out.boxes.push_back(box(at + glm::vec3(0, 1.04f, 0), {0.22f, 0.2f, 0.22f}, {0.9f, 0.72f, 0.56f}, lit, record));
         // Which way it faces: a small backpack on the other side.
         const glm::vec2 back = -p.facing * 0.2f;
-        out.boxes.push_back(box(at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.14f, 0.18f, 0.14f}, {0.45f, 0.3f, 0.15f}, Material::prop));
+        out.boxes.push_back(box(at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.14f, 0.18f, 0.14f}, {0.45f, 0.3f, 0.15f}, lit, record));
     });
 
     // The cursor: a thin glowing frame on the tile (on the wall's top for a wall).

@@ -2,6 +2,7 @@
 // the player and the cursor highlight, as boxes (world_renderer.hpp).
 #pragma once
 
+#include "lantern/game/baking.hpp"
 #include "lantern/game/game_components.hpp"
 #include "lantern/game/gameplay.hpp"
 #include "lantern/game/world_renderer.hpp"
@@ -13,6 +14,11 @@ struct DrawContext {
     scene::PerspectiveCamera camera;
     float wall_height = 2.0f;
     double time = 0.0;
+    // The walls' materials (cell value 2 + k): lava and crystal glow in their colour.
+    const std::vector<scene::Material>* materials = nullptr;
+    // The baked light probes (lights the player and props from the direction the baked light
+    // comes from); nullptr without baked light.
+    const BakedChunks* probes = nullptr;
     // The tile under the cursor and whether the player can act on it (highlighted).
     std::optional<glm::ivec2> cursor_tile;
     bool cursor_on_wall = false;

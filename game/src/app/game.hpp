@@ -15,6 +15,7 @@
 #include "lantern/core/json.hpp"
 #include "lantern/core/log.hpp"
 #include "lantern/core/machine.hpp"
+#include "lantern/game/baking.hpp"
 #include "lantern/game/demo.hpp"
 #include "lantern/game/gameplay.hpp"
 #include "lantern/game/save.hpp"
@@ -60,9 +61,13 @@ struct DrawListResource {
 struct Session {
     ecs::World world;
     GameWorld info;
+    std::unique_ptr<WorldBaker> baker; // nullptr with --no-bake
     std::unique_ptr<systems::GiFrame> frame;
     std::optional<DemoScript> demo;
-    ~Session() { frame.reset(); } // the GI frame (and its jobs) before the world it uses
+    ~Session() {
+        frame.reset(); // the GI frame (and its jobs) before the world it uses
+        baker.reset();
+    }
 };
 
 inline jobs::JobSystem::Config job_config(const GameOptions& o) {

@@ -1,5 +1,6 @@
 #include "app/hud.hpp"
 
+#include "lantern/game/baking.hpp"
 #include "lantern/gi/pass_table.hpp"
 
 #include <imgui.h>
@@ -144,6 +145,10 @@ HudActions Hud::draw(const HudInputs& in) {
         ImGui::Text("entities %u   chunks resident %u, loading %u   edited chunks kept %llu", in.entities,
                     in.streaming.resident_chunks, in.streaming.loading_chunks,
                     static_cast<unsigned long long>(in.streaming.edited_chunks_stored));
+        if (in.bake)
+            ImGui::Text("baked light: %d chunks, %d baking   %llu baked, %llu from the cache (last %.0f ms)", in.bake->chunks,
+                        in.bake->pending, static_cast<unsigned long long>(in.bake->baked),
+                        static_cast<unsigned long long>(in.bake->reused), in.bake->last_chunk_ms);
         if (in.report && in.report->window)
             ImGui::Text("GI window %dx%d texels at %d/tile", in.report->window->width, in.report->window->height,
                         in.report->window->resolution);
@@ -188,6 +193,7 @@ HudActions Hud::draw(const HudInputs& in) {
             ImGui::SameLine();
             ImGui::SliderFloat("albedo boost", &g.albedo_boost, 1.0f, 10.0f);
         }
+        ImGui::SliderFloat("baked light", &g.baked_intensity, 0.0f, 4.0f); // seed 002's intensity
         if (g.method != scene::GiMethod::heat) {
             // The bounce stepper (systems::ConvergeControl): radiosity adds a bounce a frame,
             // gather gi.gather.bounces; held, one frame's worth per click.

@@ -13,6 +13,8 @@
 
 namespace lantern::game {
 
+struct BakeStatus;
+
 struct HudInputs {
     const systems::FrameReport* report = nullptr; // this frame's
     systems::GiConfig* config = nullptr;          // edited live
@@ -24,6 +26,7 @@ struct HudInputs {
     const systems::GatheredLights* lights = nullptr;
     const systems::GatheredProxies* proxies = nullptr;
     systems::StreamingStats streaming;
+    const BakeStatus* bake = nullptr; // the baked light's chunks (nullptr: --no-bake)
     std::uint32_t entities = 0;
     std::string world;        // one line
     std::string message;      // the last action's result ("saved to ...")

@@ -1,8 +1,9 @@
-// The baked row (docs/baked.md, "At run time"): the bake's light, stored as seed 002's brick
-// atlas (FrameInputs::baked), added to the indirect textures after the method's own rows.
-// In place: it reads what the method wrote and adds to it, so the method's rows rerun when
-// it changes (derive_keys: later rows that overwrite an output in place); where no earlier
-// row wrote a texture this frame it writes it.
+// The baked row (docs/baked.md, "At run time"): after the method's own rows, the bake's
+// light, stored as seed 002's brick atlas (FrameInputs::baked), is added to the indirect
+// textures, and the mixed lights' direct light (the mixed row's textures) to the direct ones.
+// In place: it reads what the earlier rows wrote and adds to it, so they rerun when it
+// changes (derive_keys: later rows that overwrite an output in place); where no earlier row
+// wrote an indirect texture this frame it writes it.
 #include "rows/rows.hpp"
 
 #include "lantern/gi/baked_light.hpp"
@@ -22,25 +23,53 @@ constexpr Tex face_tex(int f) { return Tex(int(Tex::wall_indirect_px) + f); }
 // The faces the row adds to: those the frame computes, when walls are lit.
 std::uint32_t baked_faces(const FrameInputs& in) { return in.settings.wall_lighting ? computed_faces(in.settings) : 0u; }
 
-TexSet baked_writes(const FrameInputs& in) {
-    TexSet set;
-    set.add(Tex::indirect);
-    const std::uint32_t faces = baked_faces(in);
-    for (int f = 0; f < 4; ++f)
-        if (computes_face(faces, f)) set.add(face_tex(f));
-    return set;
-}
-
-const char* baked_not_needed(const FrameInputs& in, bool, bool) {
-    if (!in.baked) return "no baked light";
+// Whether the bake covers part of the window (the atlas is sampled).
+bool samples_bake(const FrameInputs& in) {
+    if (!in.baked) return false;
     const BakedLight& b = *in.baked;
     const GiWindow& w = in.window;
     const float x0 = float(b.origin.x), z0 = float(b.origin.y);
     const float x1 = x0 + float(b.width) / float(b.resolution), z1 = z0 + float(b.height) / float(b.resolution);
-    if (b.width <= 0 || b.height <= 0 || w.view.min_x >= x1 || w.view.min_z >= z1 || w.view.min_x + w.view.width <= x0 ||
-        w.view.min_z + w.view.height <= z0)
-        return "no baked light in the GI window";
-    return nullptr;
+    return b.width > 0 && b.height > 0 && w.view.min_x < x1 && w.view.min_z < z1 && w.view.min_x + w.view.width > x0 &&
+           w.view.min_z + w.view.height > z0;
+}
+
+bool has_mixed(const FrameInputs& in) { return !in.mixed_lights.empty() || !in.mixed_emissives.empty(); }
+
+// The direct textures the mixed lights' light goes into, and the mixed row's textures it
+// comes from: direct, the faces (wall_direct_*), the upper faces (wall_upper_*).
+constexpr Tex mixed_targets[] = {Tex::direct,         Tex::wall_direct_px, Tex::wall_direct_nx,
+                                 Tex::wall_direct_pz, Tex::wall_direct_nz, Tex::wall_upper_px,
+                                 Tex::wall_upper_nx,  Tex::wall_upper_pz,  Tex::wall_upper_nz};
+constexpr Tex mixed_sources[] = {Tex::direct_mixed,         Tex::wall_direct_mixed_px, Tex::wall_direct_mixed_nx,
+                                 Tex::wall_direct_mixed_pz, Tex::wall_direct_mixed_nz, Tex::wall_upper_mixed_px,
+                                 Tex::wall_upper_mixed_nx,  Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz};
+
+// Which of mixed_targets the frame has: direct, the computed faces, their uppers when the
+// proxies' shadows are unfolded (what the direct pass writes).
+bool mixed_target(const FrameInputs& in, int k) {
+    if (k == 0) return true;
+    const std::uint32_t faces = computed_faces(in.settings);
+    return computes_face(faces, (k - 1) % 4) && (k < 5 || unfolds_proxy_shadows(in));
+}
+
+TexSet baked_writes(const FrameInputs& in) {
+    TexSet set;
+    if (samples_bake(in)) {
+        set.add(Tex::indirect);
+        const std::uint32_t faces = baked_faces(in);
+        for (int f = 0; f < 4; ++f)
+            if (computes_face(faces, f)) set.add(face_tex(f));
+    }
+    if (has_mixed(in))
+        for (int k = 0; k < 9; ++k)
+            if (mixed_target(in, k)) set.add(mixed_targets[k]);
+    return set;
+}
+
+const char* baked_not_needed(const FrameInputs& in, bool, bool) {
+    if (samples_bake(in) || has_mixed(in)) return nullptr;
+    return in.baked ? "no baked light in the GI window" : "no baked light";
 }
 
 // Whether a planned row before the baked row writes `t` this frame (then the row adds to it).
@@ -60,12 +89,18 @@ bool faces_written_earlier(const FrameInputs& in, const PassPlan& plan) {
 }
 
 struct BakedParams {
-    std::int32_t origin_x = 0, origin_z = 0, resolution = 0, width = 0, height = 0, add_ground = 0, add_faces = 0, pad0 = 0;
+    std::int32_t origin_x = 0, origin_z = 0, resolution = 0, width = 0, height = 0, add_ground = 0, add_faces = 0;
+    float intensity = 1.0f;
 };
 
 // The atlas and indirection as images, uploaded when the baked light changes (the old ones
 // are destroyed deferred: freed once the submissions that read them completed, the seed's
 // "retired one load later").
+// The atlas and indirection as images, rewritten when the baked light changes. Each keeps a
+// capacity that only grows (doubling): the device memory steadies as bakes come and go
+// instead of following every composition, and the images are never re-created in a steady
+// world. Old images are destroyed deferred: freed once the submissions that read them
+// completed (seed 002's "retired one load later").
 struct BakedState : vk::PassState {
     gpu::Image atlas, indirection;
     gpu::Sampler linear, nearest;
@@ -73,24 +108,59 @@ struct BakedState : vk::PassState {
     bool uploaded = false;
 };
 
-gpu::Image upload_image(PassRecorder& r, std::uint32_t width, std::uint32_t height, VkFormat format,
-                        const std::vector<std::uint8_t>& bytes, const char* name) {
-    gpu::Image image = r.device().create_image({.width = width, .height = height, .format = format,
-                                                .usage = VK_IMAGE_USAGE_SAMPLED_BIT, .name = name});
+std::uint32_t grown(std::uint32_t have, std::uint32_t need) {
+    std::uint32_t c = std::max<std::uint32_t>(have, 1);
+    while (c < need) c *= 2;
+    return c;
+}
+
+// Writes `rows` rows of `width` RGBA8 texels (`bytes`) into the top-left of `image`, the rest
+// zero; grows the image first when it is smaller.
+void upload_into(PassRecorder& r, gpu::Image& image, std::uint32_t width, std::uint32_t rows, std::uint32_t capacity_rows,
+                 VkFormat format, const std::vector<std::uint8_t>& bytes, const char* name) {
+    const bool fits = image && image.width() >= width && image.height() >= rows;
+    if (!fits) {
+        const std::uint32_t w = grown(image ? image.width() : 0, width),
+                            h = grown(image ? image.height() : 0, std::max(rows, capacity_rows));
+        image = r.device().create_image({.width = w, .height = h, .format = format, .usage = VK_IMAGE_USAGE_SAMPLED_BIT, .name = name});
+    }
     gpu::BufferDesc desc;
-    desc.size = bytes.size();
+    desc.size = VkDeviceSize(image.width()) * image.height() * 4;
     desc.memory = gpu::MemoryKind::upload;
     desc.name = name;
-    gpu::Buffer staging = r.device().create_buffer(desc);
-    std::memcpy(staging.mapped(), bytes.data(), bytes.size());
-    r.cmd.transition(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    gpu::Buffer staging = r.device().create_buffer(desc); // destroyed deferred, after this list ran
+    std::memset(staging.mapped(), 0, desc.size);
+    for (std::uint32_t y = 0; y < rows; ++y)
+        std::memcpy(staging.mapped() + std::size_t(y) * image.width() * 4, bytes.data() + std::size_t(y) * width * 4, std::size_t(width) * 4);
+    // An image in use was read by earlier frames' shaders: they finish before the copy.
+    r.cmd.transition(image, fits ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     r.cmd.copy_buffer_to_image(staging, 0, image);
     r.cmd.transition(image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    return image; // the staging buffer is destroyed deferred, after this list ran
+}
+
+void record_mixed_add(PassRecorder& r) {
+    const FrameInputs& in = r.in;
+    gpu::DescriptorWrites writes;
+    for (int k = 0; k < 9; ++k) {
+        const bool has = mixed_target(in, k) && r.has(mixed_targets[k]) && r.has(mixed_sources[k]);
+        writes.uniform_texel_buffer(std::uint32_t(k), r.view(has ? mixed_sources[k] : Tex::direct_mixed));
+        writes.storage_buffer(std::uint32_t(9 + k), r.buffer(has ? mixed_targets[k] : Tex::direct));
+    }
+    r.cmd.bind(r.pipeline("gi_mixed_add.comp", {.proxies = false,
+                                                 .walls = r.plan.has_walls_in_window,
+                                                 .features = unfolds_proxy_shadows(in) ? 1u : 0u,
+                                                 .faces = computed_faces(in.settings)}));
+    r.cmd.push_descriptors(writes);
+    r.cmd.push_constants(r.params(in.window.width, in.window.height));
+    r.dispatch(in.window.width, in.window.height);
+    r.cmd.barrier_compute_to_compute();
 }
 
 void record_baked(PassRecorder& r) {
     const FrameInputs& in = r.in;
+    if (has_mixed(in) && r.plan.run.has(Pass::mixed)) record_mixed_add(r);
+    if (!samples_bake(in)) return;
     const BakedLight& b = *in.baked;
     BakedState& s = r.state<BakedState>();
     if (!s.linear) {
@@ -99,10 +169,14 @@ void record_baked(PassRecorder& r) {
     }
     if (!s.uploaded || s.key != b.key) {
         const BrickAtlas& a = b.bricks;
-        s.atlas = upload_image(r, std::uint32_t(a.atlas_width()), std::uint32_t(a.atlas_height()), VK_FORMAT_R8G8B8A8_UNORM,
-                               a.atlas, "baked atlas");
-        s.indirection = upload_image(r, std::uint32_t(a.cells_x), std::uint32_t(a.cells_y * a.layers),
-                                     VK_FORMAT_R8G8B8A8_UINT, a.indirection, "baked indirection");
+        // Room for every cell of the rectangle as a brick of its own (the most a composition
+        // of its size can hold), so a moving world keeps its images.
+        const std::uint32_t most = std::uint32_t(a.cells_x * a.cells_y * a.layers);
+        const std::uint32_t most_rows = (most + std::uint32_t(a.atlas_bricks_x) - 1) / std::uint32_t(a.atlas_bricks_x) * brick_texels;
+        upload_into(r, s.atlas, std::uint32_t(a.atlas_width()), std::uint32_t(a.atlas_height()), most_rows,
+                    VK_FORMAT_R8G8B8A8_UNORM, a.atlas, "baked atlas");
+        upload_into(r, s.indirection, std::uint32_t(a.cells_x), std::uint32_t(a.cells_y * a.layers), 0,
+                    VK_FORMAT_R8G8B8A8_UINT, a.indirection, "baked indirection");
         s.key = b.key;
         s.uploaded = true;
     }
@@ -122,7 +196,8 @@ void record_baked(PassRecorder& r) {
     auto p = r.params<BakedParams>(w.width, w.height);
     p.pass = {.origin_x = b.origin.x, .origin_z = b.origin.y, .resolution = b.resolution, .width = b.width, .height = b.height,
               .add_ground = written_earlier(in, r.plan, Tex::indirect) ? 1 : 0,
-              .add_faces = faces_written_earlier(in, r.plan) ? 1 : 0};
+              .add_faces = faces_written_earlier(in, r.plan) ? 1 : 0,
+              .intensity = in.settings.baked_intensity};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -137,8 +212,27 @@ Texture start_from(ReferenceContext& c, Tex t, bool add) {
     return Texture(std::string(texture_row(t).name), TexFormat::rgba16f, w.width, w.height);
 }
 
+// Adds the rgb of `add` to texture t of the store (its alpha kept), quantised as stored.
+void add_rgb(ReferenceStore& store, Tex t, const Texture* add) {
+    if (!add || !store.find(t)) return;
+    Texture sum = store.at(t);
+    for (int y = 0; y < sum.height; ++y)
+        for (int x = 0; x < sum.width; ++x) {
+            const float* a = sum.at(x, y);
+            const float* b = add->at(x, y);
+            const float v[4] = {a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3]};
+            sum.store(x, y, v);
+        }
+    store.put(t, std::move(sum));
+}
+
 void reference_baked_row(ReferenceContext& c) {
     const FrameInputs& in = c.in;
+    if (has_mixed(in) && c.plan.run.has(Pass::mixed))
+        for (int k = 0; k < 9; ++k)
+            if (mixed_target(in, k) && (k == 0 || c.plan.has_walls_in_window))
+                add_rgb(c.store, mixed_targets[k], c.store.find(mixed_sources[k]));
+    if (!samples_bake(in)) return;
     const BakedLight& b = *in.baked;
     const GiWindow& w = in.window;
     const std::uint32_t faces = baked_faces(in);
@@ -159,12 +253,13 @@ void reference_baked_row(ReferenceContext& c) {
                                         : glm::vec4(value, alpha);
                 t.store(x, y, &v.x);
             };
-            if (!wall || !add_ground) add_or_write(ground, wall ? glm::vec3(0.0f) : b.sample(0, p), add_ground, 0.0f);
+            const float k = in.settings.baked_intensity;
+            if (!wall || !add_ground) add_or_write(ground, wall ? glm::vec3(0.0f) : b.sample(0, p) * k, add_ground, 0.0f);
             if (faces == 0) continue;
             const glm::vec4 mask = wall ? wall_face_mask(in.walls, cell) * face_bits : glm::vec4(0.0f);
             for (int f = 0; f < 4; ++f) {
                 if (!computes_face(faces, f) || (add_faces && !(mask[f] > 0.0f))) continue;
-                const glm::vec3 v = mask[f] > 0.0f ? b.sample(1 + f, p) : glm::vec3(0.0f);
+                const glm::vec3 v = mask[f] > 0.0f ? b.sample(1 + f, p) * k : glm::vec3(0.0f);
                 add_or_write(face[std::size_t(f)], v, add_faces, wall ? 1.0f : 0.0f);
             }
         }
@@ -174,10 +269,16 @@ void reference_baked_row(ReferenceContext& c) {
         if (computes_face(faces, f)) c.store.put(face_tex(f), std::move(face[std::size_t(f)]));
 }
 
-constexpr Tex baked_reads[] = {Tex::indirect, Tex::wall_indirect_px, Tex::wall_indirect_nx, Tex::wall_indirect_pz,
-                               Tex::wall_indirect_nz};
+constexpr Tex baked_reads[] = {Tex::indirect,          Tex::wall_indirect_px,     Tex::wall_indirect_nx,
+                               Tex::wall_indirect_pz,  Tex::wall_indirect_nz,     Tex::direct,
+                               Tex::wall_direct_px,    Tex::wall_direct_nx,       Tex::wall_direct_pz,
+                               Tex::wall_direct_nz,    Tex::wall_upper_px,        Tex::wall_upper_nx,
+                               Tex::wall_upper_pz,     Tex::wall_upper_nz,        Tex::direct_mixed,
+                               Tex::wall_direct_mixed_px, Tex::wall_direct_mixed_nx, Tex::wall_direct_mixed_pz,
+                               Tex::wall_direct_mixed_nz, Tex::wall_upper_mixed_px,  Tex::wall_upper_mixed_nx,
+                               Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz};
 constexpr std::string_view baked_settings[] = {"wall_lighting", "wall_faces.px", "wall_faces.nx", "wall_faces.pz",
-                                               "wall_faces.nz"};
+                                               "wall_faces.nz", "proxy_wall_shadows", "baked_intensity"};
 
 } // namespace
 
@@ -187,7 +288,11 @@ constinit const PassRow baked{
     .reads = baked_reads,
     .writes_for = baked_writes,
     .settings = baked_settings,
-    .inputs = input_walls | input_baked,
+    // input_mixed_lights: what the mixed row wrote changes only with the mixed lights (its
+    // other inputs and settings are the direct row's too), and listing them makes this row's
+    // own key change with them, so the rows it adds to in place rerun first (derive_keys
+    // hashes a later in-place writer's own key, not its reads).
+    .inputs = input_walls | input_baked | input_walls_in_window | input_mixed_lights,
     .not_needed = baked_not_needed,
     .record = record_baked,
     .reference = reference_baked_row,

@@ -26,6 +26,11 @@ constexpr Tex point_set[] = {Tex::direct_point,         Tex::shadow_point,      
 constexpr Tex upper_set[] = {Tex::wall_upper_px, Tex::wall_upper_nx, Tex::wall_upper_pz, Tex::wall_upper_nz};
 constexpr Tex upper_point_set[] = {Tex::wall_upper_point_px, Tex::wall_upper_point_nx, Tex::wall_upper_point_pz,
                                    Tex::wall_upper_point_nz};
+// The mixed lights alone (a bake is used): written by the mixed pass, added by the baked pass.
+constexpr Tex mixed_set[] = {Tex::direct_mixed,         Tex::shadow_mixed,         Tex::wall_direct_mixed_px,
+                             Tex::wall_direct_mixed_nx, Tex::wall_direct_mixed_pz, Tex::wall_direct_mixed_nz};
+constexpr Tex upper_mixed_set[] = {Tex::wall_upper_mixed_px, Tex::wall_upper_mixed_nx, Tex::wall_upper_mixed_pz,
+                                   Tex::wall_upper_mixed_nz};
 
 // The direct pass writes the point-light set when directional lights follow (the
 // directional pass then reads it and writes the contract textures), else the contract set:
@@ -36,7 +41,8 @@ std::span<const Tex> direct_outputs(const FrameInputs& in) {
 
 // The upper-face textures that go with a set (unfolded proxy shadows).
 std::span<const Tex> upper_outputs(std::span<const Tex> ids) {
-    return ids.data() == point_set ? std::span<const Tex>(upper_point_set) : std::span<const Tex>(upper_set);
+    if (ids.data() == point_set) return upper_point_set;
+    return ids.data() == mixed_set ? std::span<const Tex>(upper_mixed_set) : std::span<const Tex>(upper_set);
 }
 
 TexSet face_set(std::span<const Tex> ids, const FrameInputs& in) {
@@ -104,7 +110,6 @@ struct DirectionalParams {
 constexpr std::uint32_t feature_upper = 1;   // unfolded proxy shadows (unfolds_proxy_shadows)
 constexpr std::uint32_t feature_sun_map = 2; // gi.sun_shadow_method shadow_map
 constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
-constexpr std::uint32_t feature_accumulate = 8; // add to the outputs (the mixed lights' pass)
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
@@ -216,16 +221,15 @@ bool upload_point_maps(PassRecorder& r, const FrameInputs& in, DirectState& s, b
 }
 
 // The point and emissive lights of `lights` (its point_lights and emissive_lights; window,
-// walls, proxies and settings are the frame's) into the texture set `out`: written, or with
-// `accumulate` added to what the frame's own lights left there (the mixed lights' pass).
-void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<const Tex> out, bool accumulate) {
+// walls, proxies and settings are the frame's) into the texture set `out`.
+void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<const Tex> out) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
     const std::uint32_t faces = computed_faces(in.settings);
     // No point or emissive lights: the outputs are zero. No wall in view: the shader skips
     // the faces, which stay zero.
     const bool no_lights = lights.point_lights.empty() && lights.emissive_lights.empty();
-    if (!accumulate && (no_lights || (!r.plan.has_walls_in_window && faces != 0))) {
+    if (no_lights || (!r.plan.has_walls_in_window && faces != 0)) {
         for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i)
             if (r.has(out[i])) r.clear(out[i]);
         for (Tex t : upper_outputs(out))
@@ -275,8 +279,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
     r.cmd.barrier_compute_to_compute();
 
-    const std::uint32_t features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (point_map ? feature_point_map : 0u) |
-                                   (accumulate ? feature_accumulate : 0u);
+    const std::uint32_t features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (point_map ? feature_point_map : 0u);
     r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
                                                           .walls = r.plan.has_walls_in_window,
                                                           .features = features,
@@ -307,7 +310,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
-    if (accumulate) return;
+    if (out.data() != direct_set && out.data() != point_set) return;
     // What a later frame may need, before it does (creating it then stalls that frame): this
     // pass with proxies and walls come or gone, and the suns' pass.
     const bool sun_map = in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map;
@@ -320,13 +323,14 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     }
 }
 
-void record_direct(PassRecorder& r) { record_direct_lights(r, r.in, direct_outputs(r.in), false); }
+void record_direct(PassRecorder& r) { record_direct_lights(r, r.in, direct_outputs(r.in)); }
 
 void reference_direct_row(ReferenceContext& c) {
     put_direct(c.store, direct_outputs(c.in), reference_direct(c.in, c.options));
 }
 
-// ---- mixed lights: their direct light after the indirect rows (a bake holds their bounce)
+// ---- mixed lights: their direct light on its own (a bake holds their bounce; the baked
+// pass adds this after the live indirect passes, so the live bounce leaves them out)
 
 // The frame with the mixed lights as its point and emissive lights.
 FrameInputs mixed_inputs(const FrameInputs& in) {
@@ -337,39 +341,16 @@ FrameInputs mixed_inputs(const FrameInputs& in) {
     return m;
 }
 
-TexSet mixed_writes(const FrameInputs& in) {
-    TexSet set = face_set(direct_set, in);
-    set.bits &= ~(std::uint64_t(1) << int(Tex::shadow)); // the realtime lights' shadow map stays
-    return set;
-}
+TexSet mixed_writes(const FrameInputs& in) { return face_set(mixed_set, in); }
 
-const char* mixed_not_needed(const FrameInputs& in, bool, bool) {
-    return in.mixed_lights.empty() && in.mixed_emissives.empty() ? "no mixed lights" : nullptr;
-}
+// Planned whenever a bake is used, with or without mixed lights in reach (then its textures
+// are cleared once and kept): its textures stay allocated while mixed lights come and go.
+const char* mixed_not_needed(const FrameInputs& in, bool, bool) { return in.baked ? nullptr : "no baked light in use"; }
 
-void record_mixed(PassRecorder& r) { record_direct_lights(r, mixed_inputs(r.in), direct_set, true); }
-
-// Adds the rgb of `add` to texture t of the store (its alpha kept), quantised as stored.
-void add_rgb(ReferenceStore& store, Tex t, const Texture& add) {
-    if (add.width == 0 || !store.find(t)) return;
-    Texture sum = store.at(t);
-    for (int y = 0; y < sum.height; ++y)
-        for (int x = 0; x < sum.width; ++x) {
-            const float* a = sum.at(x, y);
-            const float* b = add.at(x, y);
-            const float v[4] = {a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3]};
-            sum.store(x, y, v);
-        }
-    store.put(t, std::move(sum));
-}
+void record_mixed(PassRecorder& r) { record_direct_lights(r, mixed_inputs(r.in), mixed_set); }
 
 void reference_mixed_row(ReferenceContext& c) {
-    const DirectTextures d = reference_direct(mixed_inputs(c.in), c.options);
-    add_rgb(c.store, Tex::direct, d.direct);
-    for (std::size_t f = 0; f < 4; ++f) {
-        add_rgb(c.store, direct_set[2 + f], d.wall_direct[f]);
-        add_rgb(c.store, upper_set[f], d.wall_upper[f]);
-    }
+    put_direct(c.store, mixed_set, reference_direct(mixed_inputs(c.in), c.options));
 }
 
 // ---- directional lights
@@ -461,9 +442,6 @@ constexpr Tex ao_writes[] = {Tex::ao};
 constexpr std::string_view ao_settings[] = {"ao.enabled", "ao.radius", "ao.power", "ao.strength", "ao.dither"};
 // shadow_method is listed although the maps are exact: a change of method reruns the pass,
 // so that switching it shows what it costs.
-constexpr Tex mixed_reads[] = {Tex::direct,        Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz,
-                               Tex::wall_direct_nz, Tex::wall_upper_px,  Tex::wall_upper_nx,  Tex::wall_upper_pz,
-                               Tex::wall_upper_nz};
 constexpr std::string_view direct_settings[] = {"light_softness", "wall_face_exponent", "wall_lighting",
                                                 "wall_faces.px",  "wall_faces.nx",      "wall_faces.pz",
                                                 "wall_faces.nz",  "proxy_wall_shadows", "shadow_method"};
@@ -508,10 +486,9 @@ constinit const PassRow direct{
 constinit const PassRow mixed{
     .pass = Pass::mixed,
     .name = "mixed",
-    .reads = mixed_reads,
     .writes_for = mixed_writes,
     .settings = direct_settings,
-    .inputs = input_walls | input_lights | input_proxies | input_wall_height | input_walls_in_window,
+    .inputs = input_walls | input_mixed_lights | input_proxies | input_wall_height | input_walls_in_window,
     .not_needed = mixed_not_needed,
     .record = record_mixed,
     .reference = reference_mixed_row,

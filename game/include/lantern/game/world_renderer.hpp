@@ -55,6 +55,9 @@ enum class Material : int {
     wall = 1,   // lit; brick pattern on faces, slabs on the top
     prop = 2,   // lit; plain hashed variation
     glow = 3,   // unlit: color * emissive only (flames, crystals' cores, the cursor)
+    // lit as prop, and by the baked light from the direction it comes from: `emissive` is
+    // the index of its record in DrawList::probes (the player, trees, lamp posts)
+    lit_probes = 4,
 };
 
 // One box of the world (48 bytes: three vec4s, which game_world.vert.glsl reads as three
@@ -72,8 +75,25 @@ static_assert(sizeof(BoxInstance) == 48, "game_world.vert.glsl reads 48-byte ins
 
 inline constexpr int face_pos_x = 1, face_neg_x = 2, face_pos_z = 4, face_neg_z = 8, face_top = 16, face_all = 31;
 
+// The baked light around a lit_probes box: circular harmonics (bake/probes.hpp) a0, a1, b1,
+// a2, b2 in rgb. A side face whose normal has angle phi adds
+// max(pi E(phi), 0) - a0 to the light the GI textures give it (their baked part is a0, the
+// ground's fluence), so a face turned towards the baked light gets more of it and one turned
+// away less: E(phi) = a0 / pi + (a1 cos phi + b1 sin phi) / 2 + 2 (a2 cos 2phi + b2 sin 2phi) / (3 pi).
+// Tops add nothing (the baked light is in the ground plane). 96 bytes: two BoxInstances.
+struct ProbeRecord {
+    glm::vec4 c[5]{};
+    glm::vec4 unused{0.0f};
+};
+static_assert(sizeof(ProbeRecord) == 2 * sizeof(BoxInstance), "probe records ride in the box buffer");
+
+// The light the probes add to a side face of a lit_probes box whose outward normal has angle
+// phi = atan2(n.z, n.x) (the vertex stage's formula, for tests and the CPU).
+glm::vec3 probe_face_light(const ProbeRecord& r, float phi);
+
 struct DrawList {
     std::vector<BoxInstance> boxes;
+    std::vector<ProbeRecord> probes; // lit_probes boxes' records
 };
 
 // Building blocks for a DrawList.

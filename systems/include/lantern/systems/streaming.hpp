@@ -60,7 +60,9 @@ class Streaming {
     // edit when it arrives). Main thread, outside iterations over WallChunk.
     void set_wall(ecs::World& world, glm::ivec2 tile, bool wall);
     // The world's wall at `tile`: the mirror where resident, else edits or the source.
-    bool is_wall(glm::ivec2 tile) const;
+    bool is_wall(glm::ivec2 tile) const { return cell(tile) != 0; }
+    // Its cell value (0 air, 1 rock, 2 + k material k; a placed wall is 1), from the same places.
+    std::uint8_t cell(glm::ivec2 tile) const;
 
     // The resident walls as the GI passes read them (valid until the next update/edit).
     gi::WallView view() const;

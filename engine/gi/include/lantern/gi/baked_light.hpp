@@ -22,6 +22,9 @@ namespace lantern::gi {
 
 inline constexpr int baked_layers = 5;    // ground, +X, -X, +Z, -Z
 inline constexpr float baked_eps = 0.01f; // the bricks' colour range at run time (docs/baked.md)
+// Atlas rows of this many bricks (384 texels): the GPU image keeps its width and grows only
+// in height as bakes come and go (renderer memory does not follow every composition).
+inline constexpr int baked_bricks_per_row = 64;
 
 struct BakedLight {
     glm::ivec2 origin{0}; // world tile of grid texel (0, 0)

@@ -66,9 +66,10 @@ struct BrickAtlas {
 };
 
 // Builds the atlas of `field` (one layer) with colour range `eps` (light units, per channel).
-BrickAtlas build_bricks(const Field& field, float eps);
+// Bricks go in rows of `bricks_per_row` (0: as square an atlas as fits them).
+BrickAtlas build_bricks(const Field& field, float eps, int bricks_per_row = 0);
 // The same for several fields of one size in one atlas (layer k = fields[k]).
-BrickAtlas build_bricks(std::span<const Field> fields, float eps);
+BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row = 0);
 
 // The field of `layer` as the atlas gives it back at grid position (x, y) (texel i's centre
 // at i + 0.5): indirection (nearest), then bilinear between the brick's probes on the stored

@@ -92,6 +92,18 @@ enum class Tex : std::uint8_t {
     gather_face_a, // indirect irradiance per wall-face texel, face f at rows f x height.. (internal)
     gather_face_b, // its ping-pong partner (face bounces alternate between the two)
     gather_ground, // the ground's indirect fluence on the gather grid (gi.gather.scale)
+    // The mixed lights' direct light (a bake is used: docs/baked.md), the direct pass's
+    // outputs for them alone, kept while they stay put; the baked pass adds them (internal).
+    direct_mixed,
+    shadow_mixed,
+    wall_direct_mixed_px,
+    wall_direct_mixed_nx,
+    wall_direct_mixed_pz,
+    wall_direct_mixed_nz,
+    wall_upper_mixed_px,
+    wall_upper_mixed_nx,
+    wall_upper_mixed_pz,
+    wall_upper_mixed_nz,
     builtin_count
 };
 // Texture ids: the built-ins above, then textures added at run time (add_texture) up to
@@ -158,6 +170,7 @@ enum InputBits : std::uint32_t {
     input_wall_height = 1u << 4,     // the scene's wall height
     input_walls_in_window = 1u << 5, // whether any wall lies in the window (plan.has_walls_in_window)
     input_baked = 1u << 6,           // the baked light (FrameInputs::baked, its key)
+    input_mixed_lights = 1u << 7,    // the mixed lights (FrameInputs::mixed_lights, mixed_emissives)
 };
 
 // The hashes of the frame inputs (the frame systems keep them as versions; input_keys_of
@@ -169,6 +182,7 @@ struct InputKeys {
     std::uint64_t proxies = 0;
     std::uint64_t suns = 0;
     std::uint64_t baked = 0; // FrameInputs::baked->key, 0 without
+    std::uint64_t mixed = 0; // the mixed lights
 };
 InputKeys input_keys_of(const FrameInputs& in);
 

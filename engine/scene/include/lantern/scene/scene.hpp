@@ -128,6 +128,9 @@ struct GiSettings {
     // Seed 004's meta pass: every wall albedo a (materials' and the default's) becomes
     // clamp(a^(1 / albedo_boost), 0, 1) in the physical bounce (gather, transport, bake).
     float albedo_boost = 1.0f;
+    // Seed 002's runtime intensity: the baked light (docs/baked.md) the frame adds, scaled
+    // (the light probes too). 1 is the bake as solved.
+    float baked_intensity = 1.0f;
 
     friend bool operator==(const GiSettings&, const GiSettings&) = default;
 };
