@@ -4,11 +4,13 @@
 #include "lantern/core/json.hpp"
 #include "lantern/core/json_writer.hpp"
 #include "lantern/core/text.hpp"
+#include "lantern/game/baking.hpp"
 #include "lantern/scene/json_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <initializer_list>
 #include <sstream>
 
@@ -253,6 +255,11 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
     std::sort(s.edits.begin(), s.edits.end(), [](const auto& a, const auto& b) {
         return a.coord.y != b.coord.y ? a.coord.y < b.coord.y : a.coord.x < b.coord.x;
     });
+    if (world.has_resource<BakedChunks>())
+        for (const auto& [k, b] : world.resource<BakedChunks>().chunks) s.baked.push_back({{b->id.x, b->id.z}, b->key});
+    std::sort(s.baked.begin(), s.baked.end(), [](const auto& a, const auto& b) {
+        return a.chunk.y != b.chunk.y ? a.chunk.y < b.chunk.y : a.chunk.x < b.chunk.x;
+    });
     return s;
 }
 
@@ -286,7 +293,19 @@ std::string format_save(const SaveState& s) {
         }
         w.end().end();
     }
-    w.end().end();
+    w.end();
+    // The baked light's cache keys (16 hex digits each).
+    if (!s.baked.empty()) {
+        w.key("baked").begin_array();
+        for (const auto& b : s.baked) {
+            char key[17];
+            std::snprintf(key, sizeof(key), "%016llx", static_cast<unsigned long long>(b.key));
+            w.begin_object(json::Layout::one_line).key("chunk").begin_array(json::Layout::one_line);
+            w.value(b.chunk.x).value(b.chunk.y).end().field("key", key).end();
+        }
+        w.end();
+    }
+    w.end();
     return w.take();
 }
 
@@ -295,7 +314,7 @@ Result<SaveState> parse_save(std::string_view text, const std::string& file_name
     if (!doc) return doc.error();
     Reader r("the save");
     SaveState s;
-    Fields top(r, *doc, "", {"lantern_save", "world", "player", "day", "entities", "edits"});
+    Fields top(r, *doc, "", {"lantern_save", "world", "player", "day", "entities", "edits", "baked"});
     int version = 0;
     top.required("lantern_save", version, IntRange{1, 1 << 20});
     if (r.ok() && version != save_format_version)
@@ -329,6 +348,24 @@ Result<SaveState> parse_save(std::string_view text, const std::string& file_name
                   for (const auto& earlier : s.edits)
                       if (r.ok() && earlier.coord == c.coord) r.fail(v.position(), path, "chunk listed twice");
               });
+    read_list(r, top, "baked", s.baked, [&](const json::Value& v, const std::string& path, SaveState::BakedKey& b) {
+        constexpr int limit = 1 << 24;
+        Fields f(r, v, path, {"chunk", "key"});
+        f.required("chunk", b.chunk, IntRange{-limit, limit});
+        std::string key;
+        f.required("key", key);
+        if (!r.ok()) return;
+        const bool hex = key.size() == 16 && std::all_of(key.begin(), key.end(), [](char c) {
+                             return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+                         });
+        if (!hex) {
+            f.fail("key", "expected 16 lowercase hexadecimal digits");
+            return;
+        }
+        b.key = std::strtoull(key.c_str(), nullptr, 16);
+        for (const auto& earlier : s.baked)
+            if (r.ok() && earlier.chunk == b.chunk) r.fail(v.position(), path, "chunk listed twice");
+    });
     if (!r.ok()) return scene::reading::issue_error(file_name, r.issue());
     return s;
 }

@@ -275,6 +275,8 @@ TEST(Saves, MalformedSavesAreRejectedWithPositions) {
         {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"edits\": [{\"chunk\": [0, 0], \"rows\": [\"#\"]}]}",
          "edits[0].rows: expected an array of 32 strings"},
         {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2],", "t.json:1:"},
+        {"{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"baked\": [{\"chunk\": [0, 0], \"key\": \"12G4\"}]}",
+         "baked[0].key: expected 16 lowercase hexadecimal digits"},
     };
     for (const Case& c : cases) {
         auto r = parse_save(c.text, "t.json");
@@ -474,6 +476,12 @@ TEST(Baking, ChunksBakeReuseTheirCacheAndAnEditRebakesOnlyWhatItReaches) {
         bool lit = false;
         for (const auto& [k, b] : game.world.resource<BakedChunks>().chunks) lit |= !b->empty;
         EXPECT_TRUE(lit);
+        // A save carries the baked chunks' cache keys, and reads them back.
+        const SaveState saved = capture_save(game.world, game.frame->streaming(), WorldSpec{});
+        ASSERT_EQ(saved.baked.size(), chunks);
+        auto read = parse_save(format_save(saved), "s.json");
+        ASSERT_TRUE(read.ok()) << read.error().message;
+        EXPECT_EQ(read->baked, saved.baked);
         // Mine a wall well inside chunk (0, 0)... and one on a chunk corner.
         systems::Streaming& streaming = game.frame->streaming();
         auto mine_near = [&](glm::ivec2 from) {

@@ -37,6 +37,14 @@ struct SaveState {
     DayCycle day;
     std::vector<SavedEntity> entities;
     std::vector<systems::Streaming::EditedChunk> edits; // sorted by chunk
+    // The baked light's cache keys of the chunks baked when saved (docs/baked.md, "In the
+    // game"), sorted by chunk: which cache files the save's light comes from.
+    struct BakedKey {
+        glm::ivec2 chunk{0};
+        std::uint64_t key = 0;
+        friend bool operator==(const BakedKey&, const BakedKey&) = default;
+    };
+    std::vector<BakedKey> baked;
 };
 
 // What to save from a running game.
