@@ -132,6 +132,13 @@ vec3 gi_view_color(vec3 pos) {
         if (v.r <= 0.0) return vec3(0.0);
         return vec3(0.5 + 0.5 * v.g, 0.5 + 0.5 * v.b, 0.5);
     }
+    if (GI_VIEW == 5) { // the baked light's bricks by level (alpha: level + 1), shaded by the light
+        const vec3 levels[4] = vec3[4](vec3(0.9, 0.2, 0.15), vec3(0.95, 0.85, 0.2), vec3(0.25, 0.8, 0.3), vec3(0.2, 0.45, 0.95));
+        int level = int(v.a + 0.5) - 1;
+        if (level < 0 || level > 3) return vec3(0.02);
+        float shade = 0.55 + 0.45 * clamp(max(v.r, max(v.g, v.b)), 0.0, 1.0);
+        return levels[level] * shade;
+    }
     // GI_VIEW 4: the RGBA8 view of a 32-bit word, x | y << 16 of the nearest wall texel.
     uint word = packUnorm4x8(v);
     if (word == 0xFFFFFFFFu) return vec3(0.0); // no wall in reach

@@ -26,6 +26,7 @@ layout(std430, binding = 5) buffer FacePX { uvec2 texels[]; } io_face_px;
 layout(std430, binding = 6) buffer FaceNX { uvec2 texels[]; } io_face_nx;
 layout(std430, binding = 7) buffer FacePZ { uvec2 texels[]; } io_face_pz;
 layout(std430, binding = 8) buffer FaceNZ { uvec2 texels[]; } io_face_nz;
+layout(std430, binding = 9) writeonly buffer View { uvec2 texels[]; } o_view; // the HUD's: rgb baked, a level + 1
 
 #include "lantern/gi_shadow.glsl"
 
@@ -33,14 +34,16 @@ const int LAYERS = 5;
 const float RGBM_RANGE = 8.0;
 
 // The baked light of `layer` at world point p: gi::sample_bricks, with the hardware's
-// bilinear filter.
-vec3 baked_sample(int layer, vec2 p) {
+// bilinear filter; `level` the brick's level + 1 (0: none).
+vec3 baked_sample(int layer, vec2 p, out float level) {
+    level = 0.0;
     vec2 g = (p - vec2(pc.pass.origin_x, pc.pass.origin_z)) * float(pc.pass.resolution);
     if (!(g.x >= 0.0 && g.y >= 0.0 && g.x < float(pc.pass.width) && g.y < float(pc.pass.height))) return vec3(0.0);
     ivec2 cells = (ivec2(pc.pass.width, pc.pass.height) + 3) / 4; // layer k's rows: k x cells.y .. (the image may be larger)
     ivec2 cell = clamp(ivec2(floor(g / 4.0)), ivec2(0), cells - 1);
     uvec4 ind = texelFetch(u_indirection, ivec2(cell.x, cell.y + layer * cells.y), 0);
     if (ind.a == 0u) return vec3(0.0);
+    level = float(ind.a);
     float s = float(1 << (int(ind.a) - 1)), side = 4.0 * s;
     ivec2 brick = ivec2(int(ind.r) | (int(ind.b & 15u) << 8), int(ind.g) | (int(ind.b >> 4u) << 8));
     vec2 o = floor(g / side) * side;
@@ -72,13 +75,21 @@ void main() {
             vec2 p = texel_center(x, y);
             ivec2 cell = ivec2(floor(p));
             bool wall = is_wall(cell);
-            vec3 ground = wall ? vec3(0.0) : baked_sample(0, p);
+            float level = 0.0;
+            vec3 ground = wall ? vec3(0.0) : baked_sample(0, p, level);
             if (!wall || !add_ground) io_indirect.texels[index] = add_or_write(io_indirect.texels[index], ground, add_ground, 0.0);
-            if (FACES == 0u) continue;
-            vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
+            vec4 shown = vec4(ground, level);
+            vec4 mask = wall && FACES != 0u ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
             vec3 v[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
             for (int f = 0; f < 4; ++f)
-                if (mask[f] > 0.0) v[f] = baked_sample(1 + f, p);
+                if (mask[f] > 0.0) {
+                    float face_level;
+                    v[f] = baked_sample(1 + f, p, face_level);
+                    shown.rgb += v[f];
+                    if (shown.a == 0.0) shown.a = face_level;
+                }
+            o_view.texels[index] = pack_rgba16f(shown);
+            if (FACES == 0u) continue;
             float alpha = wall ? 1.0 : 0.0;
             // Adding touches only the exposed faces; writing writes every texel.
             if (computes_face(FACES, 0) && (!add_faces || mask[0] > 0.0))

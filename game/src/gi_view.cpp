@@ -8,7 +8,7 @@ namespace lantern::game {
 namespace {
 
 constexpr std::array<const char*, std::size_t(GiDebugView::count)> view_names = {
-    "lit", "direct", "indirect", "light_image", "radiosity", "distance", "direction", "jump_flood"};
+    "lit", "direct", "indirect", "light_image", "radiosity", "distance", "direction", "jump_flood", "baked", "bricks"};
 
 } // namespace
 

@@ -110,7 +110,15 @@ std::vector<Palette> make_palettes() {
 }
 
 // The shader's GI_VIEW modes (lantern/game_world.glsl).
-enum ViewMode : int { view_off = 0, view_light = 1, view_distance = 2, view_direction = 3, view_nearest = 4, view_modes = 5 };
+enum ViewMode : int {
+    view_off = 0,
+    view_light = 1,
+    view_distance = 2,
+    view_direction = 3,
+    view_nearest = 4,
+    view_bricks = 5,
+    view_modes = 6
+};
 
 // What a GI view draws: its texture, the shader's mode for it, and the texture's texels per
 // world unit (window textures: the resolution; the radiosity grid's: resolution / scale).
@@ -130,6 +138,8 @@ std::optional<ViewSource> view_source(GiDebugView v, const gi::FrameInputs& in) 
     case GiDebugView::distance: return ViewSource{gi::Tex::distance_field, view_distance, grid_tpu};
     case GiDebugView::direction: return ViewSource{gi::Tex::distance_field, view_direction, grid_tpu};
     case GiDebugView::jump_flood: return ViewSource{gi::jump_flood_result(in), view_nearest, grid_tpu};
+    case GiDebugView::baked: return ViewSource{gi::Tex::baked_view, view_light, window_tpu};
+    case GiDebugView::bricks: return ViewSource{gi::Tex::baked_view, view_bricks, window_tpu};
     default: return std::nullopt;
     }
 }

@@ -462,7 +462,7 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--set", "gi.resolution=99"}, "gi.resolution"},
         {{"--palette", "neon"}, "unknown palette 'neon'"},
         {{"--gi-view", "heatmap"}, "--gi-view: must be one of lit, direct, indirect, light_image, radiosity, distance, "
-                                   "direction, jump_flood, got 'heatmap'"},
+                                   "direction, jump_flood, baked, bricks, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},
         // Paths that are not regular files: refused before they are read or block.
         {{"--map", dir.path().string()}, "is a folder, not a regular file"},

@@ -79,6 +79,7 @@ TEST(EveryExecutable, HelpVersionAndBadOptions) {
         {LANTERN_BENCH_EXE, "lantern-bench"},
         {std::string(LANTERN_BENCH_EXE) + " accuracy", "lantern-bench accuracy"},
         {std::string(LANTERN_BENCH_EXE) + " seed-table", "lantern-bench seed-table"},
+        {std::string(LANTERN_BENCH_EXE) + " baked", "lantern-bench baked"},
         {LANTERN_DEMO_EXE, "lantern-demo"},
         {LANTERN_GAME_EXE, "lantern"},
         {LANTERN_BAKE_EXE, "lantern-bake"},

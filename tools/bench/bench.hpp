@@ -39,4 +39,12 @@ struct RadiosityNoiseOptions {
 };
 int radiosity_noise(const RadiosityNoiseOptions& options);
 
+struct BakedOptions {
+    int chunks = 3;      // the world is chunks x chunks streaming chunks of the caves
+    int lights = 32;     // point lights on open tiles
+    int repeats = 5;     // timed frames per configuration (after one warm-up); median
+    int resolution = 2, margin = 8, rays = 64, face_rays = 32; // the bake's settings (the game's)
+};
+int baked(const BakedOptions& options);
+
 } // namespace lantern::bench

@@ -3,6 +3,7 @@
 //
 //   lantern-bench seed-table [--repeats N] [--no-reference] [--row I] [--markdown FILE]
 //   lantern-bench radiosity-noise [--frames N] [--resolution R] [--lights N]
+//   lantern-bench baked [--chunks N] [--lights N] [--repeats N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
 //   lantern-bench accuracy [--quick] [--repeats N] [--out DIR] [--scenes A,B] [--maps DIR]
 //                          [--albedo A] [--target E] [--cache DIR | --no-cache] [--backend B]
 //                          [--images]
@@ -29,6 +30,8 @@ constexpr const char* commands =
     "  radiosity-noise  the radiosity method's noise over frames: temporal noise, error against a\n"
     "              converged image and the denoiser's banding, for each noise shift, ray count,\n"
     "              accumulation and blur\n"
+    "  baked       the bake (seconds per chunk on 1 and 2 threads), its memory (dense against seed 002's\n"
+    "              bricks, with their error) and the frame with the lights realtime, mixed and baked\n"
     "'lantern-bench COMMAND --help' lists a command's options.\n";
 
 int seed_table_main(int argc, char** argv) {
@@ -114,6 +117,23 @@ int radiosity_noise_main(int argc, char** argv) {
     return lantern::bench::radiosity_noise(o);
 }
 
+int baked_main(int argc, char** argv) {
+    lantern::bench::BakedOptions o;
+    Parser p("lantern-bench baked", "[options]",
+             "What the bake costs and saves (docs/baked.md): the caves with their lava and crystal veins and\n"
+             "point lights, baked on 1 and 2 threads; the baked light's memory dense and in bricks; the frame\n"
+             "with the lights realtime, mixed and baked (GPU timestamps, median).");
+    p.integer("--chunks", "N", "the world is N x N chunks of 32 x 32 tiles (default 3)", o.chunks, 1, 64);
+    p.integer("--lights", "N", "point lights (default 32)", o.lights, 0, 4096);
+    p.integer("--repeats", "N", "timed frames per configuration (default 5)", o.repeats, 1, 1000);
+    p.integer("--resolution", "R", "baked texels per tile (default 2: the game's)", o.resolution, 1, 16);
+    p.integer("--margin", "M", "the bake's margin in tiles (default 8: the game's)", o.margin, 0, 64);
+    p.integer("--rays", "N", "ground rays (default 64: the game's)", o.rays, 1, 1024);
+    p.integer("--face-rays", "N", "face rays (default 32: the game's)", o.face_rays, 1, 1024);
+    if (auto exit = p.parse(argc, argv, 2)) return *exit;
+    return lantern::bench::baked(o);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -125,6 +145,7 @@ int main(int argc, char** argv) {
     if (command == "seed-table") return seed_table_main(argc, argv);
     if (command == "accuracy") return accuracy_main(argc, argv);
     if (command == "radiosity-noise") return radiosity_noise_main(argc, argv);
+    if (command == "baked") return baked_main(argc, argv);
     if (command.empty() || command.starts_with("-")) {
         if (auto exit = top.parse(argc, argv)) return *exit;
         std::fprintf(stderr, "%s\n", top.message("no command given").c_str());

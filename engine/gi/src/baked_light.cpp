@@ -9,6 +9,12 @@ glm::vec3 BakedLight::sample(int layer, glm::vec2 p) const {
     return sample_bricks(bricks, g.x, g.y, layer);
 }
 
+int BakedLight::level(int layer, glm::vec2 p) const {
+    const glm::vec2 g = grid(p);
+    if (!(g.x >= 0.0f && g.y >= 0.0f && g.x < float(width) && g.y < float(height))) return -1;
+    return brick_level(bricks, g.x, g.y, layer);
+}
+
 BakedLight make_baked_light(glm::ivec2 origin, int resolution, const std::array<Field, baked_layers>& layers, float eps,
                             std::uint64_t key) {
     BakedLight out;

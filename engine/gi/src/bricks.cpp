@@ -200,6 +200,13 @@ BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per
     return out;
 }
 
+int brick_level(const BrickAtlas& a, float x, float y, int layer) {
+    const int cx = clampi(int(std::floor(x / float(brick_probes))), 0, a.cells_x - 1);
+    const int cy = clampi(int(std::floor(y / float(brick_probes))), 0, a.cells_y - 1);
+    const std::size_t row = std::size_t(layer) * std::size_t(a.cells_y) + std::size_t(cy);
+    return int(a.indirection[(row * std::size_t(a.cells_x) + std::size_t(cx)) * 4 + 3]) - 1;
+}
+
 glm::vec3 sample_bricks(const BrickAtlas& a, float x, float y, int layer) {
     const int cx = clampi(int(std::floor(x / float(brick_probes))), 0, a.cells_x - 1);
     const int cy = clampi(int(std::floor(y / float(brick_probes))), 0, a.cells_y - 1);

@@ -85,6 +85,7 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {wall_upper_mixed_nx, "wall_upper_mixed_nx", TexFormat::rgba16f, TexScale::window, false, true},
     {wall_upper_mixed_pz, "wall_upper_mixed_pz", TexFormat::rgba16f, TexScale::window, false, true},
     {wall_upper_mixed_nz, "wall_upper_mixed_nz", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_view, "baked_view", TexFormat::rgba16f},
 };
 
 constexpr bool rows_in_order() {

@@ -56,7 +56,7 @@ bool mixed_target(const FrameInputs& in, int k) {
 TexSet baked_writes(const FrameInputs& in) {
     TexSet set;
     if (samples_bake(in)) {
-        set.add(Tex::indirect);
+        set.add(Tex::indirect).add(Tex::baked_view);
         const std::uint32_t faces = baked_faces(in);
         for (int f = 0; f < 4; ++f)
             if (computes_face(faces, f)) set.add(face_tex(f));
@@ -191,6 +191,7 @@ void record_baked(PassRecorder& r) {
     // A face not computed is bound to the ground's buffer and never written.
     for (int f = 0; f < 4; ++f)
         writes.storage_buffer(std::uint32_t(5 + f), r.buffer(computes_face(faces, f) ? face_tex(f) : Tex::indirect));
+    writes.storage_buffer(9, r.buffer(Tex::baked_view));
     r.cmd.bind(r.pipeline<BakedParams>("gi_baked.comp", {.proxies = false, .faces = faces}));
     r.cmd.push_descriptors(writes);
     auto p = r.params<BakedParams>(w.width, w.height);
@@ -238,6 +239,7 @@ void reference_baked_row(ReferenceContext& c) {
     const std::uint32_t faces = baked_faces(in);
     const bool add_ground = written_earlier(in, c.plan, Tex::indirect), add_faces = faces_written_earlier(in, c.plan);
     Texture ground = start_from(c, Tex::indirect, add_ground);
+    Texture view("baked_view", TexFormat::rgba16f, w.width, w.height);
     std::array<Texture, 4> face;
     for (int f = 0; f < 4; ++f)
         if (computes_face(faces, f)) face[std::size_t(f)] = start_from(c, face_tex(f), add_faces);
@@ -254,17 +256,24 @@ void reference_baked_row(ReferenceContext& c) {
                 t.store(x, y, &v.x);
             };
             const float k = in.settings.baked_intensity;
-            if (!wall || !add_ground) add_or_write(ground, wall ? glm::vec3(0.0f) : b.sample(0, p) * k, add_ground, 0.0f);
-            if (faces == 0) continue;
-            const glm::vec4 mask = wall ? wall_face_mask(in.walls, cell) * face_bits : glm::vec4(0.0f);
+            const glm::vec3 g = wall ? glm::vec3(0.0f) : b.sample(0, p) * k;
+            glm::vec4 shown(g, wall ? 0.0f : float(b.level(0, p) + 1));
+            if (!wall || !add_ground) add_or_write(ground, g, add_ground, 0.0f);
+            const glm::vec4 mask = wall && faces != 0 ? wall_face_mask(in.walls, cell) * face_bits : glm::vec4(0.0f);
             for (int f = 0; f < 4; ++f) {
                 if (!computes_face(faces, f) || (add_faces && !(mask[f] > 0.0f))) continue;
                 const glm::vec3 v = mask[f] > 0.0f ? b.sample(1 + f, p) * k : glm::vec3(0.0f);
                 add_or_write(face[std::size_t(f)], v, add_faces, wall ? 1.0f : 0.0f);
+                if (mask[f] > 0.0f) {
+                    shown += glm::vec4(v, 0.0f);
+                    if (shown.a == 0.0f) shown.a = float(b.level(1 + f, p) + 1);
+                }
             }
+            view.store(x, y, &shown.x);
         }
     });
     c.store.put(Tex::indirect, std::move(ground));
+    c.store.put(Tex::baked_view, std::move(view));
     for (int f = 0; f < 4; ++f)
         if (computes_face(faces, f)) c.store.put(face_tex(f), std::move(face[std::size_t(f)]));
 }

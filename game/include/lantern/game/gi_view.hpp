@@ -20,6 +20,8 @@ enum class GiDebugView : std::uint8_t {
     distance,    // radiosity: the distance field (grid texels; bands every 4, walls black)
     direction,   // radiosity: the direction map (unit vector to the nearest wall as red/green)
     jump_flood,  // radiosity: the jump flood's nearest wall texel per texel (Voronoi cells)
+    baked,       // the baked light alone (docs/baked.md), tone-mapped
+    bricks,      // the baked light's bricks by level (seed 002's debug view): 0 red, 1 yellow, 2 green, 3 blue
     count
 };
 // "lit", "direct", ..., "jump_flood" (the --gi-view values and the HUD's list).

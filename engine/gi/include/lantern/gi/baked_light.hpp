@@ -39,6 +39,8 @@ struct BakedLight {
     }
     // The baked light of `layer` at world point p (bilinear in the bricks), zero outside.
     glm::vec3 sample(int layer, glm::vec2 p) const;
+    // The level (0..3) of the brick that gives it, -1 where none does (outside, empty).
+    int level(int layer, glm::vec2 p) const;
 };
 
 // The atlas of dense fields (each width x height texels, layer order as above) at `eps`.

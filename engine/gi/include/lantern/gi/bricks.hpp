@@ -76,6 +76,8 @@ BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per
 // RGBM values, then decoded, as the GPU's sampler does (in float; a GPU filters with fewer
 // fraction bits). Zero in an empty cell.
 glm::vec3 sample_bricks(const BrickAtlas& atlas, float x, float y, int layer = 0);
+// The level of the brick that covers (x, y) in `layer` (0..3), -1 where none does.
+int brick_level(const BrickAtlas& atlas, float x, float y, int layer = 0);
 
 // RGBM encoding of one colour and back (seed 002: range 8).
 void encode_rgbm(glm::vec3 c, std::uint8_t out[4]);

@@ -104,6 +104,10 @@ enum class Tex : std::uint8_t {
     wall_upper_mixed_nx,
     wall_upper_mixed_pz,
     wall_upper_mixed_nz,
+    // What the baked pass added, for the HUD's views (docs/baked.md): rgb the baked light
+    // alone (open ground: the ground's; a wall texel: its exposed faces'), a the level + 1 of
+    // the brick it came from (0: none).
+    baked_view,
     builtin_count
 };
 // Texture ids: the built-ins above, then textures added at run time (add_texture) up to

@@ -1,0 +1,212 @@
+// lantern-bench baked: what the bake costs and saves (docs/baked.md, "Measured").
+//
+// A world of the procedural caves with their lava and crystal veins (chunks x chunks
+// streaming chunks) and `lights` point lights on open tiles:
+//   1. the bake: every chunk with the game's bake settings on 1 and on 2 threads (seconds,
+//      per chunk), into a fresh folder each time;
+//   2. memory: the baked ground light as a dense RGBM8 grid, as RGB halves, and as seed 002's
+//      bricks at several eps, with the error each adds (relative RMS against the dense
+//      floats);
+//   3. the frame on the device, all passes planned, medians of `repeats` frames: the lights
+//      realtime (and the veins' glow live, with the gather method), then mixed (direct light
+//      live, bounce baked), then baked, for each method.
+#include "bench.hpp"
+
+#include "lantern/bake/bake.hpp"
+#include "lantern/core/clock.hpp"
+#include "lantern/core/machine.hpp"
+#include "lantern/gi/frame_runner.hpp"
+#include "lantern/gi/pass_table.hpp"
+#include "lantern/gi/vulkan/renderer.hpp"
+#include "lantern/gpu/device.hpp"
+#include "lantern/jobs/job_system.hpp"
+#include "lantern/scene/procedural.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lantern::bench {
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+scene::Scene caves_world(int chunks, int lights, scene::LightMode mode) {
+    scene::Scene s;
+    const scene::CaveParams params{1, 0.47f, true};
+    s.walls = scene::generate_caves({0, 0}, {chunks * bake::chunk_tiles, chunks * bake::chunk_tiles}, params);
+    s.materials = scene::cave_materials();
+    // Lights on open tiles, spread by a fixed stride over the world.
+    std::uint32_t h = 12345u;
+    for (int placed = 0, tries = 0; placed < lights && tries < lights * 200; ++tries) {
+        h = h * 1664525u + 1013904223u;
+        const int x = int((h >> 8) % std::uint32_t(s.walls.width)), z = int((h >> 20) % std::uint32_t(s.walls.height));
+        if (s.walls.is_wall_tile(x, z)) continue;
+        const glm::vec3 colors[] = {{1.0f, 0.7f, 0.4f}, {0.5f, 0.7f, 1.0f}, {1.0f, 0.9f, 0.8f}};
+        s.point_lights.push_back({{float(x) + 0.5f, float(z) + 0.5f}, 1.0f, colors[placed % 3], 1.5f, 8.0f, mode});
+        ++placed;
+    }
+    const float mid = float(chunks * bake::chunk_tiles) * 0.5f;
+    s.view = scene::OrthoView{{mid, mid}, {30.0f, 16.875f}};
+    s.gi.resolution = 4;
+    return s;
+}
+
+struct FrameNumbers {
+    double total = 0.0;
+    std::map<gi::Pass, double> passes;
+};
+
+Result<FrameNumbers> time_frames(gi::vk::Renderer& renderer, const gi::FrameInputs& in, int repeats) {
+    const gi::PassPlan plan = gi::plan_passes(in, false);
+    std::vector<double> totals;
+    std::map<gi::Pass, std::vector<double>> samples;
+    for (int rep = 0; rep <= repeats; ++rep) { // rep 0 warms up (pipelines, uploads)
+        auto frame = gi::run_vulkan_frame(renderer, in, plan, false);
+        if (!frame) return frame.error();
+        if (rep == 0) continue;
+        totals.push_back(frame->total_ms);
+        for (const gi::PassReport& p : frame->passes)
+            if (p.ran) samples[p.pass].push_back(p.gpu_ms);
+    }
+    FrameNumbers n;
+    n.total = median(totals);
+    for (auto& [pass, v] : samples) n.passes[pass] = median(v);
+    return n;
+}
+
+} // namespace
+
+int baked(const BakedOptions& o) {
+    namespace fs = std::filesystem;
+    std::printf("lantern-bench baked: %d x %d chunks of the caves (seed 1, lava and crystal veins), %d point lights\n",
+                o.chunks, o.chunks, o.lights);
+    std::printf("Machine: %s\n", describe_machine().c_str());
+    bake::BakeSettings settings;
+    settings.resolution = o.resolution;
+    settings.margin = o.margin;
+    settings.rays = o.rays;
+    settings.face_rays = o.face_rays;
+    const scene::Scene baked_world = caves_world(o.chunks, o.lights, scene::LightMode::baked);
+    const fs::path dir = fs::temp_directory_path() / ("lantern-bench-baked-" + std::to_string(now_ns()));
+
+    // 1. The bake, on 1 and 2 threads.
+    std::printf("\n## Bake (resolution %d, margin %d, %d ground and %d face rays)\n\n", settings.resolution, settings.margin,
+                settings.rays, settings.face_rays);
+    std::printf("| threads | chunks | seconds | per chunk |\n|---|---|---|---|\n");
+    for (int threads : {1, 2}) {
+        jobs::JobSystem::Config config;
+        config.worker_threads = threads - 1;
+        jobs::JobSystem jobs(config);
+        bake::BakeOptions options;
+        options.jobs = &jobs;
+        options.force = true;
+        const fs::path out = dir / ("t" + std::to_string(threads));
+        auto report = bake::bake_world(baked_world, out.string(), settings, options);
+        if (!report) {
+            std::fprintf(stderr, "lantern-bench baked: %s\n", report.error().message.c_str());
+            return report.error().exit_code;
+        }
+        std::printf("| %d | %d | %.2f | %.3f |\n", threads, report->chunks, report->seconds,
+                    report->seconds / std::max(1, report->chunks));
+    }
+
+    // 2. Memory: dense against bricks.
+    std::vector<bake::ChunkBake> chunks;
+    for (bake::ChunkId c : bake::scene_chunks(baked_world)) {
+        auto b = bake::load_chunk((dir / "t1").string(), c, bake::chunk_key(baked_world, c, settings));
+        if (b) chunks.push_back(std::move(*b));
+    }
+    std::vector<const bake::ChunkBake*> pointers;
+    for (const auto& b : chunks) pointers.push_back(&b);
+    const int side = o.chunks * bake::chunk_tiles * settings.resolution;
+    const std::size_t texels = std::size_t(side) * std::size_t(side);
+    std::printf("\n## Memory of the baked light (ground and four face layers, %d x %d texels each)\n\n", side, side);
+    std::printf("dense RGBM8, five layers: %.3f MB; dense RGB halves: %.3f MB\n\n", double(texels * 5 * 4) / 1e6,
+                double(texels * 5 * 6) / 1e6);
+    std::printf("| eps | bricks (level 0/1/2/3) | atlas + indirection | of dense RGBM8 | rel. RMS error (ground) |\n|---|---|---|---|---|\n");
+    const gi::WallView walls = gi::WallView::of(baked_world.walls);
+    for (float eps : {0.0f, 0.01f, 0.05f, 0.2f}) {
+        auto light = bake::runtime_light(pointers, walls, eps);
+        double err2 = 0.0, ref2 = 0.0;
+        for (const auto& b : chunks) {
+            if (b.empty) continue;
+            const int s = b.side();
+            for (int y = 0; y < s; ++y)
+                for (int x = 0; x < s; ++x) {
+                    const glm::vec2 p = glm::vec2(float(b.id.x * bake::chunk_tiles), float(b.id.z * bake::chunk_tiles)) +
+                                        (glm::vec2(float(x), float(y)) + 0.5f) / float(settings.resolution);
+                    if (baked_world.walls.is_wall_tile(int(std::floor(p.x)), int(std::floor(p.y)))) continue;
+                    const std::size_t i = (std::size_t(y) * std::size_t(s) + std::size_t(x)) * 3;
+                    const glm::vec3 want(b.ground[i], b.ground[i + 1], b.ground[i + 2]);
+                    const glm::vec3 d = light->sample(0, p) - want;
+                    err2 += double(glm::dot(d, d));
+                    ref2 += double(glm::dot(want, want));
+                }
+        }
+        const gi::BrickAtlas& a = light->bricks;
+        std::printf("| %g | %d (%d/%d/%d/%d) | %.3f MB | %.1f %% | %.2f %% |\n", double(eps), a.bricks(), a.bricks_per_level[0],
+                    a.bricks_per_level[1], a.bricks_per_level[2], a.bricks_per_level[3], double(a.bytes()) / 1e6,
+                    100.0 * double(a.bytes()) / double(texels * 5 * 4), 100.0 * std::sqrt(err2 / std::max(ref2, 1e-30)));
+    }
+
+    // 3. The frame.
+    auto device = gpu::Device::create();
+    if (!device) {
+        std::fprintf(stderr, "lantern-bench baked: %s\n", device.error().message.c_str());
+        fs::remove_all(dir);
+        return 1;
+    }
+    auto renderer = gi::vk::Renderer::create(**device);
+    if (!renderer) {
+        std::fprintf(stderr, "lantern-bench baked: %s\n", renderer.error().message.c_str());
+        fs::remove_all(dir);
+        return 1;
+    }
+    auto light = bake::runtime_light(pointers, walls);
+    std::printf("\n## The frame on %s (GPU ms, median of %d; every pass planned runs)\n\n", (*device)->name().c_str(), o.repeats);
+    std::printf("| method | lights | total | direct | mixed | baked | the method's own passes |\n|---|---|---|---|---|---|---|\n");
+    for (scene::GiMethod method : {scene::GiMethod::heat, scene::GiMethod::gather}) {
+        for (scene::LightMode mode : {scene::LightMode::realtime, scene::LightMode::mixed, scene::LightMode::baked}) {
+            scene::Scene s = caves_world(o.chunks, o.lights, mode);
+            s.gi.method = method;
+            std::string why;
+            auto window = gi::compute_window(s.view, s.gi, &why);
+            if (!window) continue;
+            gi::FrameInputs in;
+            if (mode == scene::LightMode::realtime) {
+                in = gi::gather_frame_inputs(s, *window);
+            } else {
+                in = gi::gather_frame_inputs(bake::live_scene(s), *window);
+                in.baked = light;
+                gi::split_for_bake(in, bake::live_scene(s));
+            }
+            auto n = time_frames(**renderer, in, o.repeats);
+            if (!n) {
+                std::fprintf(stderr, "lantern-bench baked: %s\n", n.error().message.c_str());
+                return n.error().exit_code;
+            }
+            auto at = [&](gi::Pass p) { return n->passes.count(p) ? n->passes.at(p) : 0.0; };
+            const double own = n->total - at(gi::Pass::direct) - at(gi::Pass::mixed) - at(gi::Pass::baked) -
+                               at(gi::Pass::conduction) - at(gi::Pass::ao);
+            const char* mode_name = mode == scene::LightMode::realtime ? "realtime" : mode == scene::LightMode::mixed ? "mixed" : "baked";
+            std::printf("| %s | %zu %s | %.2f | %.2f | %.2f | %.2f | %.2f |\n", method == scene::GiMethod::heat ? "heat" : "gather",
+                        s.point_lights.size(), mode_name, n->total, at(gi::Pass::direct), at(gi::Pass::mixed),
+                        at(gi::Pass::baked), own);
+        }
+    }
+    fs::remove_all(dir);
+    return 0;
+}
+
+} // namespace lantern::bench
