@@ -73,6 +73,35 @@ void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes
     f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
+// The scene with its one light realtime and the live gather at the bake's settings, viewing
+// chunk (1, 0) with the bake's margin: what the bake of that chunk solves.
+scene::Scene as_live_gather(scene::Scene s, const BakeSettings& b) {
+    s.point_lights[0].mode = LightMode::realtime;
+    s.gi.method = scene::GiMethod::gather;
+    s.gi.resolution = b.resolution;
+    s.gi.padding = 1.0f;
+    s.gi.blur = false;
+    s.gi.gather.scale = scene::HeatScale::full;
+    s.gi.gather.margin = b.margin;
+    s.gi.gather.rays = b.rays;
+    s.gi.gather.face_rays = b.face_rays;
+    s.view = scene::OrthoView{{48.0f, 16.0f}, {32.0f, 32.0f}}; // chunk (1, 0)
+    return s;
+}
+
+// `frames` frames of a still scene on the reference, with the history the frame systems keep.
+gi::ReferenceStore run_frames(const gi::FrameInputs& in, int frames) {
+    gi::Convergence convergence;
+    gi::ReferenceStore store;
+    for (int f = 0; f < frames; ++f) {
+        gi::PassPlan plan = gi::plan_passes(in, false);
+        gi::derive_keys(in, plan, gi::input_keys_of(in), &convergence);
+        gi::execute_reference(in, plan, plan.run, {}, store);
+        convergence.advance(plan.run);
+    }
+    return store;
+}
+
 glm::vec3 texel(const std::vector<float>& v, int side, int x, int y) {
     const std::size_t i = (std::size_t(y) * std::size_t(side) + std::size_t(x)) * 3;
     return {v[i], v[i + 1], v[i + 2]};
@@ -150,27 +179,10 @@ TEST(Bake, BakedBounceEqualsTheLiveGather) {
     const BakeSettings b = quick();
     const bake::ChunkBake baked = bake::bake_chunk(s, {1, 0}, b);
     ASSERT_FALSE(baked.empty);
-    scene::Scene live = s;
-    live.point_lights[0].mode = LightMode::realtime;
-    live.gi.method = scene::GiMethod::gather;
-    live.gi.resolution = b.resolution;
-    live.gi.padding = 1.0f;
-    live.gi.blur = false;
-    live.gi.gather.scale = scene::HeatScale::full;
-    live.gi.gather.margin = b.margin;
-    live.gi.gather.rays = b.rays;
-    live.gi.gather.face_rays = b.face_rays;
-    live.view = scene::OrthoView{{48.0f, 16.0f}, {32.0f, 32.0f}};
+    const scene::Scene live = as_live_gather(s, b);
     const gi::GiWindow w = *gi::compute_window(live.view, live.gi);
     const gi::FrameInputs in = gi::gather_frame_inputs(live, w);
-    gi::Convergence convergence;
-    gi::ReferenceStore store;
-    for (int f = 0; f < live.gi.gather.frames; ++f) {
-        gi::PassPlan plan = gi::plan_passes(in, false);
-        gi::derive_keys(in, plan, gi::input_keys_of(in), &convergence);
-        gi::execute_reference(in, plan, plan.run, {}, store);
-        convergence.advance(plan.run);
-    }
+    const gi::ReferenceStore store = run_frames(in, live.gi.gather.frames);
     const gi::Texture& indirect = store.at(gi::Tex::indirect);
     const int side = baked.side(), offset = b.margin * b.resolution;
     int lit = 0;
@@ -484,36 +496,15 @@ TEST(BakeAtRunTime, ABakedLightLooksAsItDoesLive) {
     auto light = bake::load_world_light(s, dir.path().string(), b);
     ASSERT_TRUE(light.ok()) << light.error().message;
     ASSERT_TRUE(*light);
-    scene::Scene live = s;
-    live.point_lights[0].mode = LightMode::realtime;
-    live.gi.method = scene::GiMethod::gather;
-    live.gi.resolution = b.resolution;
-    live.gi.padding = 1.0f;
-    live.gi.blur = false;
-    live.gi.gather.scale = scene::HeatScale::full;
-    live.gi.gather.margin = b.margin;
-    live.gi.gather.rays = b.rays;
-    live.gi.gather.face_rays = b.face_rays;
-    live.view = scene::OrthoView{{48.0f, 16.0f}, {32.0f, 32.0f}}; // chunk (1, 0)
-    auto run = [](const gi::FrameInputs& in, int frames) {
-        gi::Convergence convergence;
-        gi::ReferenceStore store;
-        for (int f = 0; f < frames; ++f) {
-            gi::PassPlan plan = gi::plan_passes(in, false);
-            gi::derive_keys(in, plan, gi::input_keys_of(in), &convergence);
-            gi::execute_reference(in, plan, plan.run, {}, store);
-            convergence.advance(plan.run);
-        }
-        return store;
-    };
+    const scene::Scene live = as_live_gather(s, b);
     const gi::GiWindow w = *gi::compute_window(live.view, live.gi);
-    const gi::ReferenceStore a = run(gi::gather_frame_inputs(live, w), live.gi.gather.frames);
+    const gi::ReferenceStore a = run_frames(gi::gather_frame_inputs(live, w), live.gi.gather.frames);
     scene::Scene baked_scene = bake::live_scene(s);
     baked_scene.gi = live.gi;
     EXPECT_TRUE(baked_scene.point_lights.empty()) << "the baked light leaves the live passes";
     gi::FrameInputs in = gi::gather_frame_inputs(baked_scene, w);
     in.baked = *light;
-    const gi::ReferenceStore bs = run(in, 1);
+    const gi::ReferenceStore bs = run_frames(in, 1);
     auto rgb = [](const gi::Texture* t, int x, int y) {
         if (!t) return glm::vec3(0.0f);
         const float* v = t->at(x, y);
