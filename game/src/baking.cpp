@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <climits>
 #include <filesystem>
 
@@ -123,10 +124,18 @@ void WorldBaker::run() {
             result->bakes = std::move(job->bakes);
         }
         result->ms = double(now_ns() - start) * 1e-6;
-        std::lock_guard lock(mutex_);
+        const bool baked_one = job->kind == Job::Kind::chunk && !result->reused;
+        const double result_ms = result->ms;
+        std::unique_lock lock(mutex_);
         results_.push_back(std::move(result));
         --running_;
         idle_.notify_all();
+        // Paced while the game plays: after a bake, rest `pace` times as long (the two cores
+        // are the frame's and lavapipe's; a burst of bakes as the player walks into new
+        // chunks would slow every frame it overlaps). Not at start-up (finish()).
+        if (baked_one && options_.pace > 0.0 && !hurry_)
+            wake_.wait_for(lock, std::chrono::duration<double, std::milli>(result_ms * options_.pace),
+                           [this] { return stop_ || hurry_; });
     }
 }
 
@@ -320,6 +329,11 @@ void WorldBaker::update(ecs::World& world) {
 }
 
 void WorldBaker::finish(ecs::World& world) {
+    {
+        std::lock_guard lock(mutex_);
+        hurry_ = true; // no pacing: the caller waits
+    }
+    wake_.notify_all();
     update(world);
     for (;;) {
         {
@@ -328,7 +342,10 @@ void WorldBaker::finish(ecs::World& world) {
         }
         update(world);
         std::lock_guard lock(mutex_);
-        if (jobs_.empty() && running_ == 0 && results_.empty() && !compose_wanted_) return;
+        if (jobs_.empty() && running_ == 0 && results_.empty() && !compose_wanted_) {
+            hurry_ = false;
+            return;
+        }
     }
 }
 

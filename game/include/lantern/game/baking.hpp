@@ -33,6 +33,9 @@ struct BakerOptions {
     std::string cache_dir; // chunk cache files; empty: kept in memory only
     bake::BakeSettings settings{.resolution = 2, .margin = 8, .rays = 64, .face_rays = 32};
     int reach = 12; // tiles beyond the margin whose walls and lights a chunk's bake sees (the lights' radius)
+    // While the game plays, the baker rests `pace` times as long as each bake took (0: never),
+    // so a burst of new chunks spreads over frames instead of slowing the ones it overlaps.
+    double pace = 3.0;
 };
 
 // The baked chunks the frame uses (a world resource the bake system writes).
@@ -85,6 +88,7 @@ class WorldBaker {
     std::vector<std::unique_ptr<Result>> results_;
     int running_ = 0;
     bool stop_ = false;
+    bool hurry_ = false; // finish() waits: no pacing
     std::thread thread_;
     // Main thread only.
     std::unordered_map<std::uint64_t, std::uint64_t> requested_; // chunk -> inputs hash last queued
