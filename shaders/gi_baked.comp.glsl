@@ -1,9 +1,9 @@
-// Baked light (docs/baked.md, "At run time"): each window texel reads the bake's brick atlas
-// (seed 002: the indirection texel of its cell, nearest, then one bilinear read of the RGBM
-// atlas inside the brick) and adds it to the indirect light: open ground to `indirect`
-// (layer 0), the texels of a wall tile whose face f is exposed to `wall_indirect_f`
-// (layer 1 + f). Where no earlier row wrote a texture this frame it is written instead
-// (ADD_GROUND, ADD_FACES), as wall_indirect would have. C++ reference: engine/gi/src/rows/baked.cpp.
+// The baked light read from the bake's brick atlas (docs/baked.md, "At run time"): each
+// window texel reads seed 002's atlas (the indirection texel of its cell, nearest, then one
+// bilinear read of the RGBM atlas inside the brick): open ground into baked_ground (layer 0),
+// the texels of a wall tile whose face f is exposed into baked_face_f (layer 1 + f, alpha 1
+// at wall texels, as wall_indirect writes), and the HUD's view. The baked pass adds them to
+// the frame's textures (gi_add.comp). C++ reference: engine/gi/src/rows/baked.cpp.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -11,8 +11,8 @@ struct BakedParams {
     int origin_x, origin_z; // world tile of the baked grid's texel (0, 0)
     int resolution;         // baked grid texels per tile
     int width, height;      // baked grid texels
-    int add_ground, add_faces; // 1: add to what an earlier row wrote; 0: write
-    float intensity;           // gi.baked_intensity
+    int pad0, pad1;
+    float intensity;        // gi.baked_intensity
 };
 #define GI_PASS_PARAMS BakedParams
 #include "lantern/gi_common.glsl"
@@ -21,11 +21,11 @@ layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[1]; } u_proxies; // unused
 layout(binding = 2) uniform sampler2D u_atlas;         // RGBA8 RGBM, linear filtering
 layout(binding = 3) uniform usampler2D u_indirection;  // RGBA8_UINT, read with texelFetch
-layout(std430, binding = 4) buffer Indirect { uvec2 texels[]; } io_indirect;
-layout(std430, binding = 5) buffer FacePX { uvec2 texels[]; } io_face_px;
-layout(std430, binding = 6) buffer FaceNX { uvec2 texels[]; } io_face_nx;
-layout(std430, binding = 7) buffer FacePZ { uvec2 texels[]; } io_face_pz;
-layout(std430, binding = 8) buffer FaceNZ { uvec2 texels[]; } io_face_nz;
+layout(std430, binding = 4) writeonly buffer Ground { uvec2 texels[]; } o_ground;
+layout(std430, binding = 5) writeonly buffer FacePX { uvec2 texels[]; } o_face_px;
+layout(std430, binding = 6) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
+layout(std430, binding = 7) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
+layout(std430, binding = 8) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
 layout(std430, binding = 9) writeonly buffer View { uvec2 texels[]; } o_view; // the HUD's: rgb baked, a level + 1
 
 #include "lantern/gi_shadow.glsl"
@@ -53,18 +53,9 @@ vec3 baked_sample(int layer, vec2 p, out float level) {
     return v.rgb * v.a * RGBM_RANGE * pc.pass.intensity;
 }
 
-uvec2 add_or_write(uvec2 old, vec3 value, bool add, float alpha) {
-    if (add) {
-        vec4 o = unpack_rgba16f(old);
-        return pack_rgba16f(vec4(o.rgb + value, o.a));
-    }
-    return pack_rgba16f(vec4(value, alpha));
-}
-
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
-    bool add_ground = pc.pass.add_ground != 0, add_faces = pc.pass.add_faces != 0;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);
         if (y >= pc.size.y) return;
@@ -77,7 +68,7 @@ void main() {
             bool wall = is_wall(cell);
             float level = 0.0;
             vec3 ground = wall ? vec3(0.0) : baked_sample(0, p, level);
-            if (!wall || !add_ground) io_indirect.texels[index] = add_or_write(io_indirect.texels[index], ground, add_ground, 0.0);
+            o_ground.texels[index] = pack_rgba16f(vec4(ground, 0.0));
             vec4 shown = vec4(ground, level);
             vec4 mask = wall && FACES != 0u ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
             vec3 v[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
@@ -89,17 +80,11 @@ void main() {
                     if (shown.a == 0.0) shown.a = face_level;
                 }
             o_view.texels[index] = pack_rgba16f(shown);
-            if (FACES == 0u) continue;
-            float alpha = wall ? 1.0 : 0.0;
-            // Adding touches only the exposed faces; writing writes every texel.
-            if (computes_face(FACES, 0) && (!add_faces || mask[0] > 0.0))
-                io_face_px.texels[index] = add_or_write(io_face_px.texels[index], v[0], add_faces, alpha);
-            if (computes_face(FACES, 1) && (!add_faces || mask[1] > 0.0))
-                io_face_nx.texels[index] = add_or_write(io_face_nx.texels[index], v[1], add_faces, alpha);
-            if (computes_face(FACES, 2) && (!add_faces || mask[2] > 0.0))
-                io_face_pz.texels[index] = add_or_write(io_face_pz.texels[index], v[2], add_faces, alpha);
-            if (computes_face(FACES, 3) && (!add_faces || mask[3] > 0.0))
-                io_face_nz.texels[index] = add_or_write(io_face_nz.texels[index], v[3], add_faces, alpha);
+            float alpha = wall ? 1.0 : 0.0; // as wall_indirect writes it
+            if (computes_face(FACES, 0)) o_face_px.texels[index] = pack_rgba16f(vec4(v[0], alpha));
+            if (computes_face(FACES, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(v[1], alpha));
+            if (computes_face(FACES, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(v[2], alpha));
+            if (computes_face(FACES, 3)) o_face_nz.texels[index] = pack_rgba16f(vec4(v[3], alpha));
         }
     }
 }

@@ -86,6 +86,11 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {wall_upper_mixed_pz, "wall_upper_mixed_pz", TexFormat::rgba16f, TexScale::window, false, true},
     {wall_upper_mixed_nz, "wall_upper_mixed_nz", TexFormat::rgba16f, TexScale::window, false, true},
     {baked_view, "baked_view", TexFormat::rgba16f},
+    {baked_ground, "baked_ground", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_face_px, "baked_face_px", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_face_nx, "baked_face_nx", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_face_pz, "baked_face_pz", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_face_nz, "baked_face_nz", TexFormat::rgba16f, TexScale::window, false, true},
 };
 
 constexpr bool rows_in_order() {
@@ -98,20 +103,20 @@ static_assert(rows_in_order(), "builtin_textures must list the textures in the o
 // Seed 000's heat diffusion: the pipeline order.
 constexpr const PassRow* heat_rows[] = {
     &rows::conduction, &rows::ao,   &rows::direct,        &rows::directional, &rows::emission,
-    &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::mixed, &rows::baked, &rows::lit,
+    &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 // Seed 003's radiosity: the same direct light and emission, then the distance field and the
 // raymarch in place of heat; the blur is the seed's denoiser.
 constexpr const PassRow* radiosity_rows[] = {
     &rows::conduction,     &rows::ao,        &rows::direct, &rows::directional,   &rows::emission,
-    &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::mixed, &rows::baked, &rows::lit,
+    &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 
 // The gather method (physical): Lantern's direct light, then the wall faces' bounces and the
 // ground gather in place of emission and heat; the blur smooths the gather's ray pattern.
 // (It writes wall_indirect_* itself: no wall_indirect row.)
 constexpr const PassRow* gather_rows[] = {
-    &rows::conduction, &rows::ao, &rows::direct, &rows::directional, &rows::gather, &rows::blur, &rows::mixed, &rows::baked, &rows::lit,
+    &rows::conduction, &rows::ao, &rows::direct, &rows::directional, &rows::gather, &rows::blur, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 
 // The registry: the built-in textures, rows and methods, then what add_texture/add_row

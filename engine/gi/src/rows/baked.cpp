@@ -1,16 +1,25 @@
-// The baked row (docs/baked.md, "At run time"): after the method's own rows, the bake's
-// light, stored as seed 002's brick atlas (FrameInputs::baked), is added to the indirect
-// textures, and the mixed lights' direct light (the mixed row's textures) to the direct ones.
-// In place: it reads what the earlier rows wrote and adds to it, so they rerun when it
-// changes (derive_keys: later rows that overwrite an output in place); where no earlier row
-// wrote an indirect texture this frame it writes it.
+// The bake's rows (docs/baked.md, "At run time"), after the method's own rows:
+//
+//   baked_sample  reads the bake's light, stored as seed 002's brick atlas
+//                 (FrameInputs::baked), into the window's textures: the ground's light
+//                 (baked_ground), each exposed face's (baked_face_*) and the HUD's view.
+//                 Cached: it reruns only when the bake, the window or the walls change.
+//   baked         adds them to the frame's indirect textures, and the mixed lights' direct
+//                 light (the mixed row's textures) to the direct ones: a plain add each frame
+//                 the method rewrites those. In place: it reads what the earlier rows wrote
+//                 and adds to it, so they rerun when it changes (derive_keys: later rows that
+//                 overwrite an output in place); where no earlier row wrote an indirect
+//                 texture this frame it writes it.
 #include "rows/rows.hpp"
 
 #include "lantern/gi/baked_light.hpp"
 #include "lantern/gi/reference.hpp"
 #include "reference_util.hpp"
 
+#include <array>
 #include <cstring>
+#include <utility>
+#include <vector>
 
 namespace lantern::gi::rows {
 namespace {
@@ -19,8 +28,9 @@ using vk::PassRecorder;
 using ref_util::for_each_row;
 
 constexpr Tex face_tex(int f) { return Tex(int(Tex::wall_indirect_px) + f); }
+constexpr Tex baked_face_tex(int f) { return Tex(int(Tex::baked_face_px) + f); }
 
-// The faces the row adds to: those the frame computes, when walls are lit.
+// The faces the bake adds to: those the frame computes, when walls are lit.
 std::uint32_t baked_faces(const FrameInputs& in) { return in.settings.wall_lighting ? computed_faces(in.settings) : 0u; }
 
 // Whether the bake covers part of the window (the atlas is sampled).
@@ -53,25 +63,6 @@ bool mixed_target(const FrameInputs& in, int k) {
     return computes_face(faces, (k - 1) % 4) && (k < 5 || unfolds_proxy_shadows(in));
 }
 
-TexSet baked_writes(const FrameInputs& in) {
-    TexSet set;
-    if (samples_bake(in)) {
-        set.add(Tex::indirect).add(Tex::baked_view);
-        const std::uint32_t faces = baked_faces(in);
-        for (int f = 0; f < 4; ++f)
-            if (computes_face(faces, f)) set.add(face_tex(f));
-    }
-    if (has_mixed(in))
-        for (int k = 0; k < 9; ++k)
-            if (mixed_target(in, k)) set.add(mixed_targets[k]);
-    return set;
-}
-
-const char* baked_not_needed(const FrameInputs& in, bool, bool) {
-    if (samples_bake(in) || has_mixed(in)) return nullptr;
-    return in.baked ? "no baked light in the GI window" : "no baked light";
-}
-
 // Whether a planned row before the baked row writes `t` this frame (then the row adds to it).
 bool written_earlier(const FrameInputs& in, const PassPlan& plan, Tex t) {
     for (const PassRow* row : method(in.settings.method).rows) {
@@ -81,27 +72,56 @@ bool written_earlier(const FrameInputs& in, const PassPlan& plan, Tex t) {
     return false;
 }
 
-bool faces_written_earlier(const FrameInputs& in, const PassPlan& plan) {
-    const std::uint32_t faces = baked_faces(in);
-    for (int f = 0; f < 4; ++f)
-        if (computes_face(faces, f)) return written_earlier(in, plan, face_tex(f));
-    return false;
+// One texture added to another (rgb; the target's alpha kept), or copied over it (`write`).
+struct AddPair {
+    Tex source, target;
+    bool write = false;
+};
+
+// What the baked row does this frame, in two groups (one dispatch each): the baked light,
+// and the mixed lights' direct light (with `all`, both as if present: the variants a later
+// frame may need).
+std::array<std::vector<AddPair>, 2> add_pairs(const FrameInputs& in, const PassPlan& plan, bool all = false) {
+    std::array<std::vector<AddPair>, 2> out;
+    if (all || samples_bake(in)) {
+        out[0].push_back({Tex::baked_ground, Tex::indirect, !written_earlier(in, plan, Tex::indirect)});
+        const std::uint32_t faces = baked_faces(in);
+        for (int f = 0; f < 4; ++f)
+            if (computes_face(faces, f)) out[0].push_back({baked_face_tex(f), face_tex(f), !written_earlier(in, plan, face_tex(f))});
+    }
+    if (all || (has_mixed(in) && plan.run.has(Pass::mixed)))
+        for (int k = 0; k < 9; ++k)
+            if (mixed_target(in, k)) out[1].push_back({mixed_sources[k], mixed_targets[k], false});
+    return out;
 }
 
-struct BakedParams {
-    std::int32_t origin_x = 0, origin_z = 0, resolution = 0, width = 0, height = 0, add_ground = 0, add_faces = 0;
+// ---- baked_sample
+
+TexSet sample_writes(const FrameInputs& in) {
+    TexSet set;
+    set.add(Tex::baked_ground).add(Tex::baked_view);
+    const std::uint32_t faces = baked_faces(in);
+    for (int f = 0; f < 4; ++f)
+        if (computes_face(faces, f)) set.add(baked_face_tex(f));
+    return set;
+}
+
+const char* sample_not_needed(const FrameInputs& in, bool, bool) {
+    if (samples_bake(in)) return nullptr;
+    return in.baked ? "no baked light in the GI window" : "no baked light";
+}
+
+struct SampleParams {
+    std::int32_t origin_x = 0, origin_z = 0, resolution = 0, width = 0, height = 0, pad0 = 0, pad1 = 0;
     float intensity = 1.0f;
 };
 
-// The atlas and indirection as images, uploaded when the baked light changes (the old ones
-// are destroyed deferred: freed once the submissions that read them completed, the seed's
-// "retired one load later").
 // The atlas and indirection as images, rewritten when the baked light changes. Each keeps a
 // capacity that only grows (doubling): the device memory steadies as bakes come and go
 // instead of following every composition, and the images are never re-created in a steady
 // world. Old images are destroyed deferred: freed once the submissions that read them
 // completed (seed 002's "retired one load later").
-struct BakedState : vk::PassState {
+struct SampleState : vk::PassState {
     gpu::Image atlas, indirection;
     gpu::Sampler linear, nearest;
     std::uint64_t key = 0;
@@ -115,7 +135,7 @@ std::uint32_t grown(std::uint32_t have, std::uint32_t need) {
 }
 
 // Writes `rows` rows of `width` RGBA8 texels (`bytes`) into the top-left of `image`, the rest
-// zero; grows the image first when it is smaller.
+// zero; grows the image first (to at least `capacity_rows`) when it is smaller.
 void upload_into(PassRecorder& r, gpu::Image& image, std::uint32_t width, std::uint32_t rows, std::uint32_t capacity_rows,
                  VkFormat format, const std::vector<std::uint8_t>& bytes, const char* name) {
     const bool fits = image && image.width() >= width && image.height() >= rows;
@@ -139,30 +159,10 @@ void upload_into(PassRecorder& r, gpu::Image& image, std::uint32_t width, std::u
     r.cmd.transition(image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
-void record_mixed_add(PassRecorder& r) {
+void record_sample(PassRecorder& r) {
     const FrameInputs& in = r.in;
-    gpu::DescriptorWrites writes;
-    for (int k = 0; k < 9; ++k) {
-        const bool has = mixed_target(in, k) && r.has(mixed_targets[k]) && r.has(mixed_sources[k]);
-        writes.uniform_texel_buffer(std::uint32_t(k), r.view(has ? mixed_sources[k] : Tex::direct_mixed));
-        writes.storage_buffer(std::uint32_t(9 + k), r.buffer(has ? mixed_targets[k] : Tex::direct));
-    }
-    r.cmd.bind(r.pipeline("gi_mixed_add.comp", {.proxies = false,
-                                                 .walls = r.plan.has_walls_in_window,
-                                                 .features = unfolds_proxy_shadows(in) ? 1u : 0u,
-                                                 .faces = computed_faces(in.settings)}));
-    r.cmd.push_descriptors(writes);
-    r.cmd.push_constants(r.params(in.window.width, in.window.height));
-    r.dispatch(in.window.width, in.window.height);
-    r.cmd.barrier_compute_to_compute();
-}
-
-void record_baked(PassRecorder& r) {
-    const FrameInputs& in = r.in;
-    if (has_mixed(in) && r.plan.run.has(Pass::mixed)) record_mixed_add(r);
-    if (!samples_bake(in)) return;
     const BakedLight& b = *in.baked;
-    BakedState& s = r.state<BakedState>();
+    SampleState& s = r.state<SampleState>();
     if (!s.linear) {
         s.linear = r.device().create_sampler({.filter = VK_FILTER_LINEAR, .name = "baked atlas"});
         s.nearest = r.device().create_sampler({.name = "baked indirection"});
@@ -187,83 +187,46 @@ void record_baked(PassRecorder& r) {
         .uniform_buffer(1, r.proxies())
         .combined_image_sampler(2, s.atlas, s.linear)
         .combined_image_sampler(3, s.indirection, s.nearest)
-        .storage_buffer(4, r.buffer(Tex::indirect));
+        .storage_buffer(4, r.buffer(Tex::baked_ground));
     // A face not computed is bound to the ground's buffer and never written.
     for (int f = 0; f < 4; ++f)
-        writes.storage_buffer(std::uint32_t(5 + f), r.buffer(computes_face(faces, f) ? face_tex(f) : Tex::indirect));
+        writes.storage_buffer(std::uint32_t(5 + f), r.buffer(computes_face(faces, f) ? baked_face_tex(f) : Tex::baked_ground));
     writes.storage_buffer(9, r.buffer(Tex::baked_view));
-    r.cmd.bind(r.pipeline<BakedParams>("gi_baked.comp", {.proxies = false, .faces = faces}));
+    r.cmd.bind(r.pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .faces = faces}));
     r.cmd.push_descriptors(writes);
-    auto p = r.params<BakedParams>(w.width, w.height);
+    auto p = r.params<SampleParams>(w.width, w.height);
     p.pass = {.origin_x = b.origin.x, .origin_z = b.origin.y, .resolution = b.resolution, .width = b.width, .height = b.height,
-              .add_ground = written_earlier(in, r.plan, Tex::indirect) ? 1 : 0,
-              .add_faces = faces_written_earlier(in, r.plan) ? 1 : 0,
               .intensity = in.settings.baked_intensity};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
 }
 
-// The texture `t` as an earlier row left it to add to, or a new one to write.
-Texture start_from(ReferenceContext& c, Tex t, bool add) {
-    const GiWindow& w = c.in.window;
-    if (add) {
-        if (const Texture* found = c.store.find(t)) return *found;
-    }
-    return Texture(std::string(texture_row(t).name), TexFormat::rgba16f, w.width, w.height);
-}
-
-// Adds the rgb of `add` to texture t of the store (its alpha kept), quantised as stored.
-void add_rgb(ReferenceStore& store, Tex t, const Texture* add) {
-    if (!add || !store.find(t)) return;
-    Texture sum = store.at(t);
-    for (int y = 0; y < sum.height; ++y)
-        for (int x = 0; x < sum.width; ++x) {
-            const float* a = sum.at(x, y);
-            const float* b = add->at(x, y);
-            const float v[4] = {a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3]};
-            sum.store(x, y, v);
-        }
-    store.put(t, std::move(sum));
-}
-
-void reference_baked_row(ReferenceContext& c) {
+void reference_sample_row(ReferenceContext& c) {
     const FrameInputs& in = c.in;
-    if (has_mixed(in) && c.plan.run.has(Pass::mixed))
-        for (int k = 0; k < 9; ++k)
-            if (mixed_target(in, k) && (k == 0 || c.plan.has_walls_in_window))
-                add_rgb(c.store, mixed_targets[k], c.store.find(mixed_sources[k]));
-    if (!samples_bake(in)) return;
     const BakedLight& b = *in.baked;
     const GiWindow& w = in.window;
     const std::uint32_t faces = baked_faces(in);
-    const bool add_ground = written_earlier(in, c.plan, Tex::indirect), add_faces = faces_written_earlier(in, c.plan);
-    Texture ground = start_from(c, Tex::indirect, add_ground);
-    Texture view("baked_view", TexFormat::rgba16f, w.width, w.height);
+    Texture ground("baked_ground", TexFormat::rgba16f, w.width, w.height), view("baked_view", TexFormat::rgba16f, w.width, w.height);
     std::array<Texture, 4> face;
     for (int f = 0; f < 4; ++f)
-        if (computes_face(faces, f)) face[std::size_t(f)] = start_from(c, face_tex(f), add_faces);
+        if (computes_face(faces, f)) face[std::size_t(f)] = Texture(tex_name(baked_face_tex(f)), TexFormat::rgba16f, w.width, w.height);
     const glm::vec4 face_bits = face_bits_mask(faces);
+    const float k = in.settings.baked_intensity;
     for_each_row(w.height, c.options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
             const glm::vec2 p = w.texel_center(x, y);
             const glm::ivec2 cell(int(std::floor(p.x)), int(std::floor(p.y)));
             const bool wall = in.walls.is_wall(cell.x, cell.y);
-            auto add_or_write = [&](Texture& t, glm::vec3 value, bool add, float alpha) {
-                const float* old = t.at(x, y);
-                const glm::vec4 v = add ? glm::vec4(old[0] + value.r, old[1] + value.g, old[2] + value.b, old[3])
-                                        : glm::vec4(value, alpha);
-                t.store(x, y, &v.x);
-            };
-            const float k = in.settings.baked_intensity;
-            const glm::vec3 g = wall ? glm::vec3(0.0f) : b.sample(0, p) * k;
-            glm::vec4 shown(g, wall ? 0.0f : float(b.level(0, p) + 1));
-            if (!wall || !add_ground) add_or_write(ground, g, add_ground, 0.0f);
+            const glm::vec4 g(wall ? glm::vec3(0.0f) : b.sample(0, p) * k, 0.0f);
+            glm::vec4 shown(glm::vec3(g), wall ? 0.0f : float(b.level(0, p) + 1));
+            ground.store(x, y, &g.x);
             const glm::vec4 mask = wall && faces != 0 ? wall_face_mask(in.walls, cell) * face_bits : glm::vec4(0.0f);
             for (int f = 0; f < 4; ++f) {
-                if (!computes_face(faces, f) || (add_faces && !(mask[f] > 0.0f))) continue;
+                if (!computes_face(faces, f)) continue;
                 const glm::vec3 v = mask[f] > 0.0f ? b.sample(1 + f, p) * k : glm::vec3(0.0f);
-                add_or_write(face[std::size_t(f)], v, add_faces, wall ? 1.0f : 0.0f);
+                const glm::vec4 texel(v, wall ? 1.0f : 0.0f); // as wall_indirect writes it
+                face[std::size_t(f)].store(x, y, &texel.x);
                 if (mask[f] > 0.0f) {
                     shown += glm::vec4(v, 0.0f);
                     if (shown.a == 0.0f) shown.a = float(b.level(1 + f, p) + 1);
@@ -272,12 +235,88 @@ void reference_baked_row(ReferenceContext& c) {
             view.store(x, y, &shown.x);
         }
     });
-    c.store.put(Tex::indirect, std::move(ground));
+    c.store.put(Tex::baked_ground, std::move(ground));
     c.store.put(Tex::baked_view, std::move(view));
     for (int f = 0; f < 4; ++f)
-        if (computes_face(faces, f)) c.store.put(face_tex(f), std::move(face[std::size_t(f)]));
+        if (computes_face(faces, f)) c.store.put(baked_face_tex(f), std::move(face[std::size_t(f)]));
 }
 
+// ---- baked: the adds
+
+TexSet baked_writes(const FrameInputs& in) {
+    TexSet set;
+    if (samples_bake(in)) {
+        set.add(Tex::indirect);
+        const std::uint32_t faces = baked_faces(in);
+        for (int f = 0; f < 4; ++f)
+            if (computes_face(faces, f)) set.add(face_tex(f));
+    }
+    if (has_mixed(in))
+        for (int k = 0; k < 9; ++k)
+            if (mixed_target(in, k)) set.add(mixed_targets[k]);
+    return set;
+}
+
+const char* baked_not_needed(const FrameInputs& in, bool, bool) {
+    if (samples_bake(in) || has_mixed(in)) return nullptr;
+    return in.baked ? "no baked light in the GI window" : "no baked light";
+}
+
+constexpr int pairs_per_dispatch = 9; // gi_add.comp's
+
+// gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies.
+std::uint32_t add_features(const std::vector<AddPair>& pairs) {
+    std::uint32_t features = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k) features |= (1u << k) | (pairs[k].write ? 1u << (16 + k) : 0u);
+    return features;
+}
+
+void record_baked(PassRecorder& r) {
+    for (const std::vector<AddPair>& pairs : add_pairs(r.in, r.plan)) {
+        if (pairs.empty()) continue;
+        gpu::DescriptorWrites writes;
+        for (int k = 0; k < pairs_per_dispatch; ++k) {
+            // Unused slots are bound to the first pair's textures and never touched.
+            const AddPair& p = std::size_t(k) < pairs.size() ? pairs[std::size_t(k)] : pairs[0];
+            writes.uniform_texel_buffer(std::uint32_t(k), r.view(p.source));
+            writes.storage_buffer(std::uint32_t(pairs_per_dispatch + k), r.buffer(p.target));
+        }
+        r.cmd.bind(r.pipeline("gi_add.comp", {.proxies = false, .features = add_features(pairs)}));
+        r.cmd.push_descriptors(writes);
+        r.cmd.push_constants(r.params(r.in.window.width, r.in.window.height));
+        r.dispatch(r.in.window.width, r.in.window.height);
+        r.cmd.barrier_compute_to_compute();
+    }
+    // The other group's variant, before a frame needs it (creating it then stalls that
+    // frame: a mixed light coming into view, or the bake covering the window).
+    for (const std::vector<AddPair>& pairs : add_pairs(r.in, r.plan, true))
+        if (!pairs.empty()) r.prefetch_pipeline("gi_add.comp", {.proxies = false, .features = add_features(pairs)});
+}
+
+void reference_baked_row(ReferenceContext& c) {
+    for (const std::vector<AddPair>& group : add_pairs(c.in, c.plan))
+    for (const AddPair& p : group) {
+        const Texture* add = c.store.find(p.source);
+        if (!add) continue;
+        if (p.write || !c.store.find(p.target)) {
+            Texture copy = *add;
+            c.store.put(p.target, std::move(copy));
+            continue;
+        }
+        Texture sum = c.store.at(p.target);
+        for (int y = 0; y < sum.height; ++y)
+            for (int x = 0; x < sum.width; ++x) {
+                const float* a = sum.at(x, y);
+                const float* b = add->at(x, y);
+                const float v[4] = {a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3]};
+                sum.store(x, y, v);
+            }
+        c.store.put(p.target, std::move(sum));
+    }
+}
+
+constexpr std::string_view sample_settings[] = {"wall_lighting", "wall_faces.px", "wall_faces.nx", "wall_faces.pz",
+                                                "wall_faces.nz", "baked_intensity"};
 constexpr Tex baked_reads[] = {Tex::indirect,          Tex::wall_indirect_px,     Tex::wall_indirect_nx,
                                Tex::wall_indirect_pz,  Tex::wall_indirect_nz,     Tex::direct,
                                Tex::wall_direct_px,    Tex::wall_direct_nx,       Tex::wall_direct_pz,
@@ -285,11 +324,24 @@ constexpr Tex baked_reads[] = {Tex::indirect,          Tex::wall_indirect_px,   
                                Tex::wall_upper_pz,     Tex::wall_upper_nz,        Tex::direct_mixed,
                                Tex::wall_direct_mixed_px, Tex::wall_direct_mixed_nx, Tex::wall_direct_mixed_pz,
                                Tex::wall_direct_mixed_nz, Tex::wall_upper_mixed_px,  Tex::wall_upper_mixed_nx,
-                               Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz};
+                               Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz,  Tex::baked_ground,
+                               Tex::baked_face_px,        Tex::baked_face_nx,        Tex::baked_face_pz,
+                               Tex::baked_face_nz};
 constexpr std::string_view baked_settings[] = {"wall_lighting", "wall_faces.px", "wall_faces.nx", "wall_faces.pz",
                                                "wall_faces.nz", "proxy_wall_shadows", "baked_intensity"};
 
 } // namespace
+
+constinit const PassRow baked_sample{
+    .pass = Pass::baked_sample,
+    .name = "baked_sample",
+    .writes_for = sample_writes,
+    .settings = sample_settings,
+    .inputs = input_walls | input_baked,
+    .not_needed = sample_not_needed,
+    .record = record_sample,
+    .reference = reference_sample_row,
+};
 
 constinit const PassRow baked{
     .pass = Pass::baked,
@@ -297,10 +349,10 @@ constinit const PassRow baked{
     .reads = baked_reads,
     .writes_for = baked_writes,
     .settings = baked_settings,
-    // input_mixed_lights: what the mixed row wrote changes only with the mixed lights (its
-    // other inputs and settings are the direct row's too), and listing them makes this row's
-    // own key change with them, so the rows it adds to in place rerun first (derive_keys
-    // hashes a later in-place writer's own key, not its reads).
+    // What the sampling and mixed rows wrote changes only with these (their other inputs and
+    // settings are listed here too, or are the direct row's), and listing them makes this
+    // row's own key change with them, so the rows it adds to in place rerun first
+    // (derive_keys hashes a later in-place writer's own key, not its reads).
     .inputs = input_walls | input_baked | input_walls_in_window | input_mixed_lights,
     .not_needed = baked_not_needed,
     .record = record_baked,

@@ -26,6 +26,7 @@ extern const PassRow distance_field;
 extern const PassRow radiosity;
 extern const PassRow gather;
 extern const PassRow mixed;
+extern const PassRow baked_sample;
 extern const PassRow baked;
 
 // Records the upsample of a grid texture (heat, radiosity) into Tex::indirect (gi_upsample).

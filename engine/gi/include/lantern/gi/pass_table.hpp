@@ -108,6 +108,13 @@ enum class Tex : std::uint8_t {
     // alone (open ground: the ground's; a wall texel: its exposed faces'), a the level + 1 of
     // the brick it came from (0: none).
     baked_view,
+    // The baked light the baked pass adds, read from the atlas by the sampling pass and kept
+    // while the bake and the window stand still (internal): the ground's, each face's.
+    baked_ground,
+    baked_face_px,
+    baked_face_nx,
+    baked_face_pz,
+    baked_face_nz,
     builtin_count
 };
 // Texture ids: the built-ins above, then textures added at run time (add_texture) up to

@@ -24,7 +24,8 @@ enum class Pass : std::uint8_t {
     radiosity,      // radiosity: light image, raymarch, accumulation, upsample (seed 003)
     gather,         // gather: face bounces, wall fill, ground gather, upsample (physical)
     mixed,          // mixed lights' direct light, after the indirect passes (their bounce is baked)
-    baked,          // the bake's light (FrameInputs::baked) added to the indirect textures
+    baked_sample,   // the bake's atlas read into the window (cached while the bake and window stand)
+    baked,          // the bake's light (FrameInputs::baked) added to the indirect textures, mixed lights' to direct
     builtin_count
 };
 // Pass ids: the built-in rows above, then rows registered at run time (add_row in

@@ -1,0 +1,59 @@
+// Up to nine textures added to nine others, texel by texel: rgb added with the target's
+// alpha kept, or (a pair's write bit) the source copied over the target. The baked pass's
+// adds (docs/baked.md, "At run time"): the baked light into the indirect textures, the
+// mixed lights' direct light into the direct ones. FEATURES bit k: pair k is used; bit
+// 16 + k: pair k copies. C++ reference: engine/gi/src/rows/baked.cpp.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "lantern/gi_common.glsl"
+
+layout(binding = 0) uniform samplerBuffer u_source0;
+layout(binding = 1) uniform samplerBuffer u_source1;
+layout(binding = 2) uniform samplerBuffer u_source2;
+layout(binding = 3) uniform samplerBuffer u_source3;
+layout(binding = 4) uniform samplerBuffer u_source4;
+layout(binding = 5) uniform samplerBuffer u_source5;
+layout(binding = 6) uniform samplerBuffer u_source6;
+layout(binding = 7) uniform samplerBuffer u_source7;
+layout(binding = 8) uniform samplerBuffer u_source8;
+layout(std430, binding = 9) buffer Target0 { uvec2 texels[]; } io_target0;
+layout(std430, binding = 10) buffer Target1 { uvec2 texels[]; } io_target1;
+layout(std430, binding = 11) buffer Target2 { uvec2 texels[]; } io_target2;
+layout(std430, binding = 12) buffer Target3 { uvec2 texels[]; } io_target3;
+layout(std430, binding = 13) buffer Target4 { uvec2 texels[]; } io_target4;
+layout(std430, binding = 14) buffer Target5 { uvec2 texels[]; } io_target5;
+layout(std430, binding = 15) buffer Target6 { uvec2 texels[]; } io_target6;
+layout(std430, binding = 16) buffer Target7 { uvec2 texels[]; } io_target7;
+layout(std430, binding = 17) buffer Target8 { uvec2 texels[]; } io_target8;
+
+bool used(int k) { return ((FEATURES >> uint(k)) & 1u) != 0u; }
+bool copies(int k) { return ((FEATURES >> uint(16 + k)) & 1u) != 0u; }
+
+uvec2 combine(int k, uvec2 old, vec4 add) {
+    if (copies(k)) return pack_rgba16f(add);
+    vec4 o = unpack_rgba16f(old);
+    return pack_rgba16f(vec4(o.rgb + add.rgb, o.a));
+}
+
+void main() {
+    ivec2 o = block_origin();
+    if (o.x >= pc.size.x) return;
+    for (uint r = 0; r < BLOCK_H; ++r) {
+        int y = o.y + int(r);
+        if (y >= pc.size.y) return;
+        for (int k = 0; k < 4; ++k) {
+            int x = o.x + k;
+            if (x >= pc.size.x) continue;
+            int i = texel_index(x, y);
+            if (used(0)) io_target0.texels[i] = combine(0, io_target0.texels[i], texelFetch(u_source0, i));
+            if (used(1)) io_target1.texels[i] = combine(1, io_target1.texels[i], texelFetch(u_source1, i));
+            if (used(2)) io_target2.texels[i] = combine(2, io_target2.texels[i], texelFetch(u_source2, i));
+            if (used(3)) io_target3.texels[i] = combine(3, io_target3.texels[i], texelFetch(u_source3, i));
+            if (used(4)) io_target4.texels[i] = combine(4, io_target4.texels[i], texelFetch(u_source4, i));
+            if (used(5)) io_target5.texels[i] = combine(5, io_target5.texels[i], texelFetch(u_source5, i));
+            if (used(6)) io_target6.texels[i] = combine(6, io_target6.texels[i], texelFetch(u_source6, i));
+            if (used(7)) io_target7.texels[i] = combine(7, io_target7.texels[i], texelFetch(u_source7, i));
+            if (used(8)) io_target8.texels[i] = combine(8, io_target8.texels[i], texelFetch(u_source8, i));
+        }
+    }
+}
