@@ -8,17 +8,26 @@ if(NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
 endif()
 
 find_package(Threads REQUIRED)
+include(GNUInstallDirs)
 
-# One interface target carries every flag, so options are configured through targets only.
+# What every Lantern library asks of its users (PUBLIC): C++20, and whether LANTERN_ASSERT is
+# compiled in (the public headers' inline code must agree with the libraries). Installed.
+add_library(lantern_public_options INTERFACE)
+add_library(lantern::public_options ALIAS lantern_public_options)
+target_compile_features(lantern_public_options INTERFACE cxx_std_20)
+if(LANTERN_ASSERTS)
+    target_compile_definitions(lantern_public_options INTERFACE LANTERN_ENABLE_ASSERTS=1)
+endif()
+
+# How Lantern itself is built (PRIVATE to its libraries, so never a user's: warnings,
+# -Werror, sanitizers). One interface target carries every flag, so options are configured
+# through targets only. Executables and tests in the tree link it directly.
 add_library(lantern_build_options INTERFACE)
 add_library(lantern::build_options ALIAS lantern_build_options)
-target_compile_features(lantern_build_options INTERFACE cxx_std_20)
+target_link_libraries(lantern_build_options INTERFACE lantern_public_options)
 target_compile_options(lantern_build_options INTERFACE
     $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wshadow>
     $<$<BOOL:${LANTERN_WERROR}>:-Werror>)
-if(LANTERN_ASSERTS)
-    target_compile_definitions(lantern_build_options INTERFACE LANTERN_ENABLE_ASSERTS=1)
-endif()
 
 if(LANTERN_SANITIZE STREQUAL "address")
     # float-cast-overflow: a float converted to an int that cannot hold it (not in
@@ -47,24 +56,36 @@ endif()
 # lantern_module(<name> [SOURCES ...] [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
 # Creates the static library lantern_<name> with the alias engine::<name>; its include/
 # folder is PUBLIC. Header-only modules pass no SOURCES and become INTERFACE libraries.
+# Installed (cmake --install) with its headers, exported as Lantern::<name> (docs/extending.md).
 function(lantern_module name)
     cmake_parse_arguments(ARG "" "NAMESPACE" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
     if(NOT ARG_NAMESPACE)
         set(ARG_NAMESPACE engine)
     endif()
     set(target lantern_${name})
+    set(include_dirs $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
     if(ARG_SOURCES)
         add_library(${target} STATIC ${ARG_SOURCES})
-        target_include_directories(${target} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
-        target_link_libraries(${target} PUBLIC lantern::build_options ${ARG_PUBLIC_DEPS}
-                                        PRIVATE ${ARG_PRIVATE_DEPS})
+        target_include_directories(${target} PUBLIC ${include_dirs})
+        target_link_libraries(${target} PUBLIC lantern::public_options ${ARG_PUBLIC_DEPS}
+                                        PRIVATE lantern::build_options ${ARG_PRIVATE_DEPS})
     else()
         add_library(${target} INTERFACE)
-        target_include_directories(${target} INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/include)
-        target_link_libraries(${target} INTERFACE lantern::build_options ${ARG_PUBLIC_DEPS})
+        target_include_directories(${target} INTERFACE ${include_dirs})
+        target_link_libraries(${target} INTERFACE lantern::public_options ${ARG_PUBLIC_DEPS})
     endif()
     add_library(${ARG_NAMESPACE}::${name} ALIAS ${target})
+    lantern_install_library(${target} ${name})
+    install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endfunction()
+
+# Installs library <target> as Lantern::<export_name> (the export set LanternTargets).
+function(lantern_install_library target export_name)
+    set_target_properties(${target} PROPERTIES EXPORT_NAME ${export_name})
+    install(TARGETS ${target} EXPORT LanternTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+endfunction()
+lantern_install_library(lantern_public_options public_options)
+lantern_install_library(lantern_build_options build_options)
 
 # lantern_executable(<name> SOURCES ... [DEPS ...])
 function(lantern_executable name)
