@@ -38,7 +38,7 @@ from pathlib import Path
 # Programs the project's shell scripts run (scripts/*.sh, .ci/run), beyond those CMake found.
 SCRIPT_TOOLS = ["bash", "cmake", "ctest", "ninja", "python3", "git", "apt-get", "dpkg-query",
                 "Xvfb", "xdotool", "xwd", "glslangValidator", "timeout", "nproc", "awk", "sed",
-                "clang", "clang++"]
+                "clang", "clang++", "dot"]
 
 SYSTEM_PATH = "/usr/sbin:/usr/bin:/sbin:/bin"
 DPKG_STATUS = Path(os.environ.get("LANTERN_DPKG_STATUS", "/var/lib/dpkg/status"))

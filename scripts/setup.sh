@@ -13,6 +13,7 @@ PACKAGES=(
     libxrandr-dev libxrender-dev
     xvfb xauth
     xdotool x11-apps
+    graphviz
 )
 
 missing=()

@@ -320,7 +320,11 @@ void add_gameplay_systems(ecs::Schedule& schedule) {
         const double t = ctx.world.resource<GameClock>().time;
         ctx.world.view<Torch, PointLight>().patch_each<PointLight>(
             [&](const Torch& torch, PointLight& light) { light.intensity = torch.base_intensity * flicker(t, torch.phase); });
-    }).reads_resource<GameClock>().reads<Torch>().writes<PointLight>();
+    })
+        .reads_resource<GameClock>()
+        .reads<Torch>()
+        .writes<PointLight>()
+        .after("player_move"); // both write PointLight (torches here, the player's light there)
     schedule.add("day_cycle", [](ecs::SystemContext& ctx) {
         ecs::World& w = ctx.world;
         DayCycle& day = w.resource<DayCycle>();

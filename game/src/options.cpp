@@ -107,6 +107,10 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
            "after each windowed frame, write the frame number, player position,\n"
            "mouse, buttons and saves as one JSON line (for scripts and tests)",
            o.status_file);
+    p.text("--schedule", "FILE.dot",
+           "write the frame's system schedule as Graphviz DOT at start-up\n"
+           "(systems, declared access, the edges they imply, ambiguities)",
+           o.schedule_dot);
     p.section("presentation");
     p.custom("--size", "WxH", "window size (default 1280x720)", size_option(o.window_size, 64, 16384));
     p.custom("--internal", "WxH", "pixel-art resolution (default 480x270)", size_option(o.internal, 32, 4096));
@@ -160,6 +164,8 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
         if (auto ok = check_output_folder(o.out_dir); !ok) return refuse("--out " + ok.error().message);
     if (!o.status_file.empty())
         if (auto ok = check_output_file(o.status_file); !ok) return refuse("--status-file " + ok.error().message);
+    if (!o.schedule_dot.empty())
+        if (auto ok = check_output_file(o.schedule_dot); !ok) return refuse("--schedule " + ok.error().message);
     return std::nullopt;
 }
 

@@ -348,7 +348,8 @@ void GiFrame::add_systems() {
         .reads_resource<FramePasses, GiView, GiConfig>()
         .reads<Camera>()
         .writes<GICache>()
-        .writes_resource<Streaming>();
+        .writes_resource<Streaming>() // clears the dirty chunks it uploaded
+        .after("streaming");          // which streaming marked this frame
 }
 
 void GiFrame::warm_up() {

@@ -160,3 +160,103 @@ TEST(Schedule, DeclaredAccessPassesAndOutsideSystemsNothingIsChecked) {
     EXPECT_EQ(w.get<Position>(e).x, -1.0f); // and this access, outside any system, is not checked
 }
 #endif
+
+TEST(ScheduleInspection, EdgesCarryTheirReasonsAndTheReductionDropsImpliedOnes) {
+    lantern::jobs::JobSystem jobs(workers(1));
+    Schedule s(jobs);
+    add_systems(s);
+    const lantern::ecs::ScheduleInfo info = s.describe();
+    ASSERT_EQ(info.systems.size(), 5u);
+    EXPECT_EQ(info.systems[0].name, "apply_gravity");
+    ASSERT_EQ(info.systems[0].reads.size(), 1u);
+    EXPECT_EQ(info.systems[0].reads[0].type, "Gravity"); // namespaces stripped
+    EXPECT_TRUE(info.systems[0].reads[0].resource);
+    EXPECT_EQ(info.systems[0].writes[0].type, "Velocity");
+    EXPECT_FALSE(info.systems[0].writes[0].resource);
+    // Every edge of the job graph is described, with the type that orders it.
+    std::size_t graph_edges = 0;
+    for (std::uint32_t i = 0; i < s.size(); ++i) graph_edges += s.graph().successors(i).size();
+    ASSERT_EQ(info.edges.size(), graph_edges);
+    auto edge = [&](const char* a, const char* b) -> const lantern::ecs::ScheduleInfo::Edge* {
+        for (const auto& e : info.edges)
+            if (e.before == s.index_of(a) && e.after == s.index_of(b)) return &e;
+        return nullptr;
+    };
+    const auto* gi = edge("apply_gravity", "integrate");
+    ASSERT_NE(gi, nullptr);
+    ASSERT_EQ(gi->conflicts.size(), 1u);
+    EXPECT_EQ(gi->conflicts[0].type, "Velocity");
+    EXPECT_FALSE(gi->declared);
+    EXPECT_FALSE(gi->redundant);
+    EXPECT_EQ(edge("apply_gravity", "rename"), nullptr);
+    // No two systems write the same type: nothing is ambiguous.
+    EXPECT_TRUE(info.ambiguities.empty());
+    EXPECT_NE(lantern::ecs::ambiguity_report(info).find("no ambiguities"), std::string::npos);
+}
+
+TEST(ScheduleInspection, TwoWritersWithoutAfterAreAmbiguousUntilOneNamesTheOther) {
+    lantern::jobs::JobSystem jobs(workers(1));
+    for (bool ordered : {false, true}) {
+        Schedule s(jobs);
+        s.add("a", [](SystemContext&) {}).writes<Position>().writes_resource<Stats>();
+        s.add("b", [](SystemContext&) {}).reads<Position>().writes<Velocity>();
+        auto c = s.add("c", [](SystemContext&) {});
+        c.writes<Position>().reads<Velocity>();
+        if (ordered) c.after("b"); // a -> b (Position) -> c: after() chains through b only if declared
+        s.add("d", [](SystemContext&) {}).writes_resource<Stats>().after("a");
+        const lantern::ecs::ScheduleInfo info = s.describe();
+        // a->c is implied by a->b->c in the graph: drawn without it.
+        bool found = false;
+        for (const auto& e : info.edges)
+            if (e.before == 0 && e.after == 2) {
+                found = true;
+                EXPECT_TRUE(e.redundant);
+                EXPECT_EQ(e.conflicts.size(), 1u);
+            }
+        EXPECT_TRUE(found);
+        // a and d both write Stats, but d declares after(a): not ambiguous. a and c both
+        // write Position; c's after(b) does not order it after a (b's own order is implied).
+        ASSERT_EQ(info.ambiguities.size(), 1u) << ordered;
+        EXPECT_EQ(info.ambiguities[0].first, 0u);
+        EXPECT_EQ(info.ambiguities[0].second, 2u);
+        ASSERT_EQ(info.ambiguities[0].types.size(), 1u);
+        EXPECT_EQ(info.ambiguities[0].types[0].type, "Position");
+        const std::string report = lantern::ecs::ambiguity_report(info);
+        EXPECT_NE(report.find("a / c: both write Position"), std::string::npos) << report;
+    }
+    // Declaring the order removes the entry.
+    Schedule s(jobs);
+    s.add("a", [](SystemContext&) {}).writes<Position>();
+    s.add("b", [](SystemContext&) {}).writes<Position>().after("a");
+    EXPECT_TRUE(s.describe().ambiguities.empty());
+}
+
+TEST(ScheduleInspection, DotDrawsEverySystemTheReducedEdgesAndTheAmbiguities) {
+    lantern::jobs::JobSystem jobs(workers(1));
+    Schedule s(jobs);
+    add_systems(s);
+    s.add("main \"quoted\"", [](SystemContext&) {}).main_thread().writes<Name>().after("rename");
+    s.add("late_writer", [](SystemContext&) {}).writes<Velocity>();
+    const lantern::ecs::ScheduleInfo info = s.describe();
+    const std::string dot = lantern::ecs::schedule_dot(info, "test schedule");
+    EXPECT_EQ(dot.rfind("digraph schedule {", 0), 0u);
+    EXPECT_EQ(dot.back(), '\n');
+    for (std::size_t i = 0; i < info.systems.size(); ++i)
+        EXPECT_NE(dot.find("  s" + std::to_string(i) + " [label="), std::string::npos) << i;
+    EXPECT_NE(dot.find("main \\\"quoted\\\""), std::string::npos); // escaped
+    EXPECT_NE(dot.find("peripheries=2"), std::string::npos);       // the main-thread system
+    EXPECT_NE(dot.find("style=bold"), std::string::npos);          // its after()
+    std::size_t drawn = 0, pos = 0;
+    while ((pos = dot.find(" -> s", pos)) != std::string::npos) ++drawn, ++pos;
+    std::size_t reduced = 0;
+    for (const auto& e : info.edges) reduced += e.redundant && !e.declared ? 0 : 1;
+    EXPECT_EQ(drawn, reduced + info.ambiguities.size());
+    // apply_gravity and late_writer both write Velocity, ordered only by add order.
+    ASSERT_EQ(info.ambiguities.size(), 1u);
+    EXPECT_NE(dot.find("both write Velocity"), std::string::npos);
+    // Balanced braces and quotes: one graph, no quote left open.
+    std::size_t quotes = 0;
+    for (std::size_t i = 0; i < dot.size(); ++i)
+        if (dot[i] == '"' && (i == 0 || dot[i - 1] != '\\')) ++quotes;
+    EXPECT_EQ(quotes % 2, 0u);
+}

@@ -3,7 +3,8 @@
 //    places a torch, walks, mines; real captures (xwd) show the torch brightening its
 //    surroundings, the world moving as the player walks, the mined wall gone and light
 //    flowing through the gap; F5 saves what was done; Escape quits;
-//  - headless: the scripted demo writes its screenshots and a well-formed report;
+//  - headless: the scripted demo writes its screenshots, a well-formed report and its
+//    schedule (Graphviz DOT, the picture in docs/frame.md);
 //  - bad input: one clear message, exit status 2, nothing written.
 #include "common/test_support.hpp"
 #include "lantern/core/file.hpp"
@@ -352,8 +353,10 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
 TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
     test::TempDir dir;
     const std::string out = dir.file("demo");
-    const int status = run_game({"--headless", "--frames", "90", "--screenshots", "2", "--out", out, "--bench"},
-                                dir.file("log.txt"));
+    const std::string dot_path = dir.file("schedule.dot");
+    const int status = run_game(
+        {"--headless", "--frames", "90", "--screenshots", "2", "--out", out, "--bench", "--schedule", dot_path},
+        dir.file("log.txt"));
     const std::string log = test::read_file(dir.file("log.txt"));
     if (status == 1 && log.find("no usable Vulkan device") != std::string::npos) LANTERN_SKIP_NO_GPU(log);
     ASSERT_EQ(status, 0) << log;
@@ -381,6 +384,30 @@ TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
                           "heat", "world raster"})
         EXPECT_TRUE(names.count(n)) << "missing from the report: " << n;
     EXPECT_NE(log.find("frame ms while walking"), std::string::npos) << log;
+    // The frame's schedule as Graphviz DOT (--schedule): every system drawn, the ambiguity
+    // report in the log is the one docs/frame.md explains, Graphviz (Debian's, installed by
+    // scripts/setup.sh) renders the file, and it is the picture in the docs (regenerate with
+    // scripts/update-schedule-picture.sh when systems change).
+    const std::string dot = test::read_file(dot_path);
+    ASSERT_EQ(dot.rfind("digraph schedule {", 0), 0u) << dot;
+    for (const char* n : {"input", "player_move", "interact", "torch_flicker", "day_cycle", "bake", "camera_view",
+                          "streaming", "light_gather", "proxy_gather", "cache_keys", "wall_distance", "gpu_submit",
+                          "draw_list", "render"})
+        EXPECT_NE(dot.find("label=\"" + std::string(n) + "\\n"), std::string::npos) << "not drawn: " << n;
+    // The two ambiguities docs/frame.md explains, and no other.
+    EXPECT_NE(log.find("schedule: 15 systems"), std::string::npos) << log;
+    EXPECT_NE(log.find("2 ambiguities"), std::string::npos) << log;
+    EXPECT_NE(log.find("interact / streaming: both write Streaming, WallChunk"), std::string::npos) << log;
+    EXPECT_NE(log.find("interact / gpu_submit: both write Streaming"), std::string::npos) << log;
+    auto svg = lantern::test::run_tool({"dot", "-Tsvg", dot_path});
+    ASSERT_TRUE(svg) << svg.error().message;
+    EXPECT_NE(svg->find("<svg"), std::string::npos);
+    EXPECT_NE(svg->find("gpu_submit"), std::string::npos);
+    const std::filesystem::path docs = std::filesystem::path(LANTERN_SOURCE_DIR) / "docs/frame/schedule.dot";
+    ASSERT_TRUE(std::filesystem::exists(docs)) << docs;
+    EXPECT_EQ(dot, test::read_file(docs.string()))
+        << "the game's schedule changed: bash scripts/update-schedule-picture.sh, and explain new ambiguities in "
+           "docs/frame.md";
 }
 
 // The demo with seed 003's method and one of its HUD views (the distance field over the world).
@@ -464,6 +491,7 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--gi-view", "heatmap"}, "--gi-view: must be one of lit, direct, indirect, light_image, radiosity, distance, "
                                    "direction, jump_flood, baked, bricks, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},
+        {{"--schedule", dir.path().string()}, "--schedule " + dir.path().string() + ": is a folder"},
         // Paths that are not regular files: refused before they are read or block.
         {{"--map", dir.path().string()}, "is a folder, not a regular file"},
         {{"--map", dir.file("pipe")}, "is a FIFO, not a regular file"},

@@ -141,6 +141,21 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
                                                   config, std::move(fo));
     if (save) s->frame->streaming().restore_edits(save->edits);
     add_systems(s->frame->schedule(), *s);
+    s->schedule = s->frame->schedule().describe();
+    LANTERN_LOG_INFO("schedule: %zu systems, %zu edges, %zu ambiguities%s", s->schedule.systems.size(),
+                     s->schedule.edges.size(), s->schedule.ambiguities.size(),
+                     options_.schedule_dot.empty() ? " (--schedule FILE.dot draws it)" : "");
+    if (!s->schedule.ambiguities.empty()) { // docs/frame.md explains each of the game's
+        std::istringstream report(ecs::ambiguity_report(s->schedule));
+        for (std::string line; std::getline(report, line);) LANTERN_LOG_INFO("schedule: %s", line.c_str());
+    }
+    if (!options_.schedule_dot.empty()) {
+        const std::string dot = ecs::schedule_dot(s->schedule, "Lantern game frame: " + s->info.description);
+        if (auto ok = write_file_atomic(options_.schedule_dot, dot); !ok)
+            return Error{"lantern: --schedule " + ok.error().message, 1};
+        LANTERN_LOG_INFO("schedule written to %s (dot -Tsvg %s > schedule.svg)", options_.schedule_dot.c_str(),
+                         options_.schedule_dot.c_str());
+    }
     s->frame->warm_up();
     if (s->baker) { // the first frame shows the baked light: bake (or read) what the start needs
         const std::int64_t start = now_ns();
@@ -193,7 +208,8 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         .main_thread()
         .reads_resource<DrawListResource, systems::FramePasses, systems::GiView, systems::GatheredLights,
                         systems::GatheredProxies, GameClock>()
-        .writes_resource<systems::GiConfig, DayCycle>(); // the HUD edits them live
+        .writes_resource<systems::GiConfig, DayCycle>() // the HUD edits them live
+        .after("day_cycle"); // both write DayCycle: the HUD's time of day takes effect next frame
 }
 
 

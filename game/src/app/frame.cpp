@@ -141,6 +141,7 @@ void Game::render_system(Session& s) {
         in.proxies = &w.resource<systems::GatheredProxies>();
         in.streaming = s.frame->streaming().stats();
         if (s.baker) in.bake = &s.world.resource<BakeStatus>();
+        in.schedule = &s.schedule;
         in.entities = w.alive_count();
         in.world = s.info.description;
         in.message = message_;

@@ -64,6 +64,7 @@ struct Session {
     std::unique_ptr<WorldBaker> baker; // nullptr with --no-bake
     std::unique_ptr<systems::GiFrame> frame;
     std::optional<DemoScript> demo;
+    ecs::ScheduleInfo schedule; // the frame's schedule, described once (the HUD's Schedule panel)
     ~Session() {
         frame.reset(); // the GI frame (and its jobs) before the world it uses
         baker.reset();

@@ -254,6 +254,41 @@ HudActions Hud::draw(const HudInputs& in) {
         if (*in.gi_view != GiDebugView::lit && in.gi_view_drawn != *in.gi_view)
             ImGui::TextColored(ImVec4(1, 0.7f, 0.4f, 1), "not in this frame (gi.method = radiosity has it)");
     }
+    if (in.schedule && ImGui::CollapsingHeader("Schedule (systems, access, order)")) {
+        // The frame's job graph as declared: what each system waits for and why (the types
+        // that order it, or after()), and the pairs only the add order orders.
+        const ecs::ScheduleInfo& sched = *in.schedule;
+        if (ImGui::BeginTable("schedule", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+            for (const char* c : {"system", "waits for", "writes"}) ImGui::TableSetupColumn(c);
+            ImGui::TableHeadersRow();
+            for (std::uint32_t i = 0; i < sched.systems.size(); ++i) {
+                const ecs::ScheduleInfo::System& sys = sched.systems[i];
+                std::string waits, writes;
+                for (const ecs::ScheduleInfo::Edge& e : sched.edges) {
+                    if (e.after != i || e.redundant) continue;
+                    if (!waits.empty()) waits += "\n";
+                    waits += sched.systems[e.before].name + " (";
+                    waits += e.declared ? "after" : e.conflicts.empty() ? "" : e.conflicts.front().type.c_str();
+                    if (!e.declared && e.conflicts.size() > 1) waits += ", ...";
+                    waits += ")";
+                }
+                for (const ecs::ScheduleInfo::Access& a : sys.writes) writes += (writes.empty() ? "" : ", ") + a.type;
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::Text("%s%s", sys.name.c_str(), sys.main_thread ? " (main)" : "");
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(waits.empty() ? "-" : waits.c_str());
+                ImGui::TableNextColumn();
+                ImGui::TextWrapped("%s", writes.c_str());
+            }
+            ImGui::EndTable();
+        }
+        if (sched.ambiguities.empty()) ImGui::TextUnformatted("no ambiguities");
+        for (const ecs::ScheduleInfo::Ambiguity& a : sched.ambiguities)
+            ImGui::TextColored(ImVec4(1, 0.7f, 0.4f, 1), "%s / %s both write %s (add order only)",
+                               sched.systems[a.first].name.c_str(), sched.systems[a.second].name.c_str(),
+                               a.types.front().type.c_str());
+    }
     if (in.art && ImGui::CollapsingHeader("Art")) {
         ImGui::SliderInt("posterize", &in.art->posterize, 0, 32);
         ImGui::Checkbox("dither", &in.art->dither);

@@ -27,6 +27,7 @@ struct HudInputs {
     const systems::GatheredProxies* proxies = nullptr;
     systems::StreamingStats streaming;
     const BakeStatus* bake = nullptr; // the baked light's chunks (nullptr: --no-bake)
+    const ecs::ScheduleInfo* schedule = nullptr; // the frame's schedule (its panel)
     std::uint32_t entities = 0;
     std::string world;        // one line
     std::string message;      // the last action's result ("saved to ...")

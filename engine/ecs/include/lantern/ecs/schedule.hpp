@@ -14,6 +14,10 @@
 // Declared access is enforced: with asserts on, a system that touches (through the World)
 // a component or resource type it did not declare stops with its name (world.hpp,
 // SystemAccess).
+//
+// Inspection: describe() tells what the schedule is (systems, declared access, every edge
+// and why it exists, and the ambiguities); schedule_dot() draws it for Graphviz and
+// ambiguity_report() lists the ambiguities in words.
 #pragma once
 
 #include "lantern/ecs/command_buffer.hpp"
@@ -24,6 +28,8 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace lantern::ecs {
@@ -44,22 +50,22 @@ class SystemBuilder {
   public:
     template <typename... T>
     SystemBuilder& reads() {
-        (add(reads_of(), AccessKey{AccessKey::component, component_id<T>()}), ...);
+        (add(false, AccessKey{AccessKey::component, component_id<T>()}, detail::type_name<T>()), ...);
         return *this;
     }
     template <typename... T>
     SystemBuilder& writes() {
-        (add(writes_of(), AccessKey{AccessKey::component, component_id<T>()}), ...);
+        (add(true, AccessKey{AccessKey::component, component_id<T>()}, detail::type_name<T>()), ...);
         return *this;
     }
     template <typename... T>
     SystemBuilder& reads_resource() {
-        (add(reads_of(), AccessKey{AccessKey::resource, resource_id<T>()}), ...);
+        (add(false, AccessKey{AccessKey::resource, resource_id<T>()}, detail::type_name<T>()), ...);
         return *this;
     }
     template <typename... T>
     SystemBuilder& writes_resource() {
-        (add(writes_of(), AccessKey{AccessKey::resource, resource_id<T>()}), ...);
+        (add(true, AccessKey{AccessKey::resource, resource_id<T>()}, detail::type_name<T>()), ...);
         return *this;
     }
     // Runs on the main thread (window, GPU submission).
@@ -71,12 +77,51 @@ class SystemBuilder {
   private:
     friend class Schedule;
     SystemBuilder(Schedule& s, std::uint32_t index) : schedule_(s), index_(index) {}
-    std::vector<AccessKey>& reads_of();
-    std::vector<AccessKey>& writes_of();
-    static void add(std::vector<AccessKey>& v, AccessKey k);
+    void add(bool write, AccessKey k, const char* type_name);
     Schedule& schedule_;
     std::uint32_t index_;
 };
+
+// The schedule as people read it (Schedule::describe()).
+struct ScheduleInfo {
+    struct Access {
+        std::string type; // the C++ type without its namespaces ("GiConfig")
+        bool resource = false;
+        friend bool operator==(const Access&, const Access&) = default;
+    };
+    struct System {
+        std::string name;
+        std::vector<Access> reads, writes;
+        bool main_thread = false;
+        jobs::Priority priority = jobs::Priority::normal;
+    };
+    // One edge of the job graph: `after` waits for `before` (indices into systems).
+    struct Edge {
+        std::uint32_t before = 0, after = 0;
+        bool declared = false;         // an after() names `before`
+        std::vector<Access> conflicts; // the types one writes and the other reads or writes
+        bool redundant = false;        // also implied by a longer path (drawn without it)
+    };
+    // Two systems that write the same type and whose order no after() declares: their
+    // order is only the order they were added in, so re-ordering the add() calls (or
+    // moving one into another module) silently changes which write lands last.
+    struct Ambiguity {
+        std::uint32_t first = 0, second = 0; // first was added first (and runs first)
+        std::vector<Access> types;
+    };
+    std::vector<System> systems;
+    std::vector<Edge> edges;
+    std::vector<Ambiguity> ambiguities;
+};
+
+// Graphviz DOT of the schedule: one node per system with its declared access (main-thread
+// systems double-framed), the edges of the graph's transitive reduction labelled with the
+// types that order them (after() edges bold, drawn even where a longer path implies them),
+// ambiguities as red dashed lines.
+std::string schedule_dot(const ScheduleInfo& info, std::string_view title);
+// One line per ambiguity ("a / b: both write T, U; ordered only by add order"), or a line
+// saying there are none.
+std::string ambiguity_report(const ScheduleInfo& info);
 
 class Schedule {
   public:
@@ -94,6 +139,7 @@ class Schedule {
     // True when system b must wait for system a (directly or through others).
     bool ordered(std::uint32_t a, std::uint32_t b);
     std::uint32_t index_of(const char* name) const;
+    ScheduleInfo describe();
 
   private:
     friend class SystemBuilder;
@@ -113,6 +159,7 @@ class Schedule {
 
     jobs::JobSystem& jobs_;
     std::vector<System> systems_;
+    std::vector<std::pair<AccessKey, const char*>> type_names_; // for describe()
     jobs::JobGraph graph_;
     bool dirty_ = true;
     World* world_ = nullptr;
