@@ -41,6 +41,33 @@ const char* light_mode_name(scene::LightMode m) {
     }
 }
 
+// A parsed JSON value written back (an extension's data): numbers written as integers
+// where the text had an integer, so a value reads back as it was.
+void write_value(json::Writer& w, const json::Value& v) {
+    switch (v.type()) {
+    case json::Type::null: w.null(); break;
+    case json::Type::boolean: w.value(v.as_bool()); break;
+    case json::Type::number:
+        if (v.is_integer_literal() && std::abs(v.as_number()) < 9.0e15) w.value(static_cast<long long>(v.as_number()));
+        else w.value(v.as_number());
+        break;
+    case json::Type::string: w.value(v.as_string()); break;
+    case json::Type::array:
+        w.begin_array(json::Layout::one_line);
+        for (const json::Value& e : v.as_array()) write_value(w, e);
+        w.end();
+        break;
+    case json::Type::object:
+        w.begin_object(json::Layout::one_line);
+        for (const json::Member& m : v.as_object()) {
+            w.key(m.key);
+            write_value(w, m.value);
+        }
+        w.end();
+        break;
+    }
+}
+
 // One entity, on one line: {"point_light": {...}, "torch": {...}}.
 void write_entity(json::Writer& w, const SavedEntity& e) {
     w.begin_object(json::Layout::one_line);
@@ -225,7 +252,8 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
     std::sort(entities.begin(), entities.end());
     entities.erase(std::unique(entities.begin(), entities.end()), entities.end());
     for (ecs::Entity e : entities) {
-        if (world.try_get<Player>(e)) continue; // the player's own light is the player's
+        if (world.try_get<Player>(e)) continue;         // the player's own light is the player's
+        if (world.try_get<ExtensionOwned>(e)) continue; // its extension saves it
         SavedEntity out;
         if (auto* c = world.try_get<PointLight>(e)) out.point_light = *c;
         if (auto* c = world.try_get<EmissiveLight>(e)) out.emissive_light = *c;
@@ -305,6 +333,14 @@ std::string format_save(const SaveState& s) {
         }
         w.end();
     }
+    if (!s.extensions.empty()) {
+        w.key("extensions").begin_object();
+        for (const auto& [name, value] : s.extensions) {
+            w.key(name);
+            write_value(w, value);
+        }
+        w.end();
+    }
     w.end();
     return w.take();
 }
@@ -314,7 +350,8 @@ Result<SaveState> parse_save(std::string_view text, const std::string& file_name
     if (!doc) return doc.error();
     Reader r("the save");
     SaveState s;
-    Fields top(r, *doc, "", {"lantern_save", "world", "player", "day", "entities", "edits", "baked"});
+    Fields top(r, *doc, "", {"lantern_save", "world", "player", "day", "entities", "edits", "baked", "extensions"});
+    s.file = file_name;
     int version = 0;
     top.required("lantern_save", version, IntRange{1, 1 << 20});
     if (r.ok() && version != save_format_version)
@@ -366,6 +403,9 @@ Result<SaveState> parse_save(std::string_view text, const std::string& file_name
         for (const auto& earlier : s.baked)
             if (r.ok() && earlier.chunk == b.chunk) r.fail(v.position(), path, "chunk listed twice");
     });
+    // Extensions' data: an object of values, each read by its extension when loaded.
+    if (const json::Value* ext = top.find("extensions"); ext && r.expect(*ext, "extensions", json::Type::object))
+        for (const json::Member& m : ext->as_object()) s.extensions.emplace_back(m.key, m.value);
     if (!r.ok()) return scene::reading::issue_error(file_name, r.issue());
     return s;
 }

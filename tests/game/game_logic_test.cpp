@@ -293,6 +293,115 @@ TEST(Saves, MalformedSavesAreRejectedWithPositions) {
         << r.error().message;
 }
 
+// Game extensions' data (extension.hpp): written by their save hooks under "extensions",
+// read back exactly, handed to their load hooks with positions for their messages; entities
+// they own stay out of the game's own list; data for an unknown extension is set aside.
+TEST(Saves, ExtensionDataRoundTripsAndItsProblemsHavePositions) {
+    struct Glow {
+        float level = 0.0f;
+    };
+    struct Counter {
+        int value = 0;
+    };
+    GameExtension ext;
+    ext.name = "glow";
+    ext.setup = [](ecs::World& w) { w.set_resource<Counter>(); };
+    ext.save = [](ecs::World& w, json::Writer& out) {
+        out.begin_object().field("counter", w.resource<Counter>().value).key("levels").begin_array();
+        w.view<Glow>().each([&](const Glow& g) { out.value(g.level); });
+        out.end().end();
+    };
+    ext.load = [](ecs::World& w, const json::Value& v, scene::reading::Reader& r, const std::string& path) {
+        int counter = 0;
+        std::vector<float> levels;
+        scene::reading::Fields f(r, v, path, {"counter", "levels"});
+        f.required("counter", counter, scene::reading::IntRange{0, 100});
+        if (const json::Value* l = f.find_required("levels"); l && r.expect(*l, path + ".levels", json::Type::array))
+            for (std::size_t i = 0; i < l->as_array().size(); ++i) {
+                float level = 0.0f;
+                r.read(l->as_array()[i], scene::reading::index_path(path + ".levels", i), level,
+                       scene::reading::between(0.0, 1.0));
+                levels.push_back(level);
+            }
+        if (!r.ok()) return;
+        w.resource<Counter>().value = counter;
+        for (float level : levels) {
+            const ecs::Entity e = w.create();
+            w.emplace<Glow>(e, Glow{level});
+            w.emplace<EmissiveLight>(e);
+            w.emplace<ExtensionOwned>(e);
+        }
+    };
+    const std::vector<GameExtension> exts{ext};
+    ASSERT_TRUE(check_extensions(exts));
+
+    jobs::JobSystem jobs(no_workers());
+    ecs::World world;
+    world.set_resource<DayCycle>();
+    auto w = create_world({WorldKind::caves, "", 11}, world, {});
+    ASSERT_TRUE(w);
+    ext.setup(world);
+    world.resource<Counter>().value = 7;
+    systems::Streaming streaming(w->source);
+    const std::size_t game_entities = capture_save(world, streaming, w->spec).entities.size();
+    for (float level : {0.25f, 0.5f}) {
+        const ecs::Entity e = world.create();
+        world.emplace<Glow>(e, Glow{level});
+        world.emplace<EmissiveLight>(e);
+        world.emplace<ExtensionOwned>(e);
+    }
+    SaveState saved = capture_save(world, streaming, w->spec);
+    EXPECT_EQ(saved.entities.size(), game_entities) << "an extension's entity in the game's list";
+    saved.extensions = capture_extensions(exts, world);
+    ASSERT_EQ(saved.extensions.size(), 1u);
+    const std::string text = format_save(saved);
+    EXPECT_NE(text.find("\"extensions\": {\n    \"glow\": {\"counter\": 7, \"levels\": [0.25, 0.5]}"), std::string::npos) << text;
+    auto loaded = parse_save(text, "s.json");
+    ASSERT_TRUE(loaded) << loaded.error().message;
+    EXPECT_EQ(format_save(*loaded), text);
+    ecs::World fresh;
+    ext.setup(fresh);
+    ASSERT_TRUE(load_extensions(exts, loaded->extensions, fresh, "s.json"));
+    EXPECT_EQ(fresh.resource<Counter>().value, 7);
+    std::vector<float> levels;
+    fresh.view<Glow>().each([&](const Glow& g) { levels.push_back(g.level); });
+    std::sort(levels.begin(), levels.end());
+    EXPECT_EQ(levels, (std::vector<float>{0.25f, 0.5f}));
+
+    // A problem inside the extension's data: the save's file, line, column and path.
+    const std::string head = "{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2],\n";
+    auto bad = parse_save(head + " \"extensions\": {\"glow\": {\"counter\": 3, \"levels\": [0.5, 2]}}}", "t.json");
+    ASSERT_TRUE(bad) << bad.error().message; // the game reads only its own part
+    ecs::World scratch;
+    ext.setup(scratch);
+    auto refused = load_extensions(exts, bad->extensions, scratch, "t.json");
+    ASSERT_FALSE(refused);
+    EXPECT_EQ(refused.error().message.rfind("t.json:2:56: extensions.glow.levels[1]: must be in [0, 1], got 2", 0), 0u)
+        << refused.error().message;
+    EXPECT_EQ(refused.error().exit_code, 2);
+    EXPECT_EQ(scratch.resource<Counter>().value, 0); // nothing applied
+    // Not an object: the game's own reader refuses it.
+    auto not_object = parse_save(head + " \"extensions\": [1]}", "t.json");
+    ASSERT_FALSE(not_object);
+    EXPECT_NE(not_object.error().message.find("t.json:2:16: extensions: expected an object"), std::string::npos)
+        << not_object.error().message;
+    // Data for an extension this game lacks: set aside and named.
+    auto other = parse_save(head + " \"extensions\": {\"fireflies\": {\"flies\": []}}}", "t.json");
+    ASSERT_TRUE(other);
+    std::vector<std::string> ignored;
+    ASSERT_TRUE(load_extensions(exts, other->extensions, scratch, "t.json", &ignored));
+    EXPECT_EQ(ignored, (std::vector<std::string>{"fireflies"}));
+
+    // Malformed extension lists are a programmer's error, refused before the game starts.
+    GameExtension unnamed = ext;
+    unnamed.name = "Glow!";
+    EXPECT_FALSE(check_extensions({unnamed}));
+    EXPECT_FALSE(check_extensions({ext, ext}));
+    GameExtension half = ext;
+    half.load = nullptr;
+    EXPECT_FALSE(check_extensions({half}));
+}
+
 // A save whose world file is gone (or is not a file) names the save and the key, on one
 // line, before the game makes the world.
 TEST(Saves, AMissingWorldFileNamesTheSaveAndTheKey) {

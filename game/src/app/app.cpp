@@ -105,7 +105,16 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
             if (auto ok = scene::apply_override(tmp, o); !ok) return Error{"lantern: " + ok.error().message, 2};
         config.settings = tmp.gi;
     }
-    if (save) apply_save(*save, w, s->info.player);
+    for (const GameExtension& e : extensions_)
+        if (e.setup) e.setup(w);
+    if (save) {
+        apply_save(*save, w, s->info.player);
+        std::vector<std::string> ignored;
+        if (auto ok = load_extensions(extensions_, save->extensions, w, save->file, &ignored); !ok) return ok.error();
+        for (const std::string& name : ignored)
+            LANTERN_LOG_WARN("%s: data for the game extension '%s', which this game does not have: ignored",
+                             save->file.c_str(), printable(name, 64).c_str());
+    }
     if (options_.bake) {
         // One folder per world (the caves of a seed, a map, a scene): chunk files are named
         // by their coordinates only.
@@ -135,6 +144,8 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
             .reads_resource<systems::Streaming>() // the demo script looks at the walls
             .writes_resource<Controls, GameClock>();
         add_gameplay_systems(schedule);
+        for (const GameExtension& e : extensions_)
+            if (e.add_systems) e.add_systems(schedule);
         if (session->baker) add_bake_system(schedule, *session->baker);
     };
     s->frame = std::make_unique<systems::GiFrame>(w, jobs_, s->info.source, gi::make_vulkan_backend(*gi_renderer_),
@@ -253,8 +264,12 @@ int Game::run() {
 
 namespace lantern::game {
 
-int run_game(const GameOptions& options) {
-    app::Game game(options);
+int run_game(const GameOptions& options, std::vector<GameExtension> extensions) {
+    if (auto ok = check_extensions(extensions); !ok) {
+        std::fprintf(stderr, "lantern: %s\n", ok.error().message.c_str());
+        return ok.error().exit_code;
+    }
+    app::Game game(options, std::move(extensions));
     return game.run();
 }
 

@@ -15,6 +15,7 @@
 #include "lantern/core/json.hpp"
 #include "lantern/core/log.hpp"
 #include "lantern/core/machine.hpp"
+#include "lantern/core/text.hpp"
 #include "lantern/game/baking.hpp"
 #include "lantern/game/demo.hpp"
 #include "lantern/game/gameplay.hpp"
@@ -81,7 +82,8 @@ inline jobs::JobSystem::Config job_config(const GameOptions& o) {
 
 class Game {
   public:
-    explicit Game(const GameOptions& options) : options_(options), jobs_(job_config(options)) {
+    Game(const GameOptions& options, std::vector<GameExtension> extensions)
+        : options_(options), extensions_(std::move(extensions)), jobs_(job_config(options)) {
         art_.posterize = options.posterize;
         art_.dither = options.dither;
         gi_view_ = options.gi_view;
@@ -117,7 +119,12 @@ class Game {
                                        const std::vector<std::string>& screenshots,
                                        const std::vector<MemorySample>& memory, double seconds);
 
+    // Checks a save's extension data before the running world is dropped for it (the load
+    // hooks on a scratch world holding what their setup made).
+    Result<void> check_extension_data(const SaveState& state) const;
+
     GameOptions options_;
+    std::vector<GameExtension> extensions_;
     jobs::JobSystem jobs_;
     std::optional<platform::Window> window_;
     std::unique_ptr<gpu::Device> device_;

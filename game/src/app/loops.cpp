@@ -1,4 +1,4 @@
-// The window loop, the headless demo and its report (timings.json, profile.txt, trace).
+// The window loop, the headless demo and its report (timings.json, profile.txt, trace, the final save).
 #include "app/game.hpp"
 
 #include "lantern/core/json_writer.hpp"
@@ -28,9 +28,14 @@ int Game::run_window() {
         }
         if (!options_.status_file.empty()) write_status(*session_);
         if (pending_load_) {
-            device_->wait_idle();
             const SaveState state = std::move(*pending_load_);
             pending_load_.reset();
+            if (auto ok = check_extension_data(state); !ok) { // refused: the game goes on
+                message_ = ok.error().message;
+                LANTERN_LOG_ERROR("%s", message_.c_str());
+                continue;
+            }
+            device_->wait_idle();
             session_.reset();
             auto s = make_session(state.world, &state);
             if (!s) {
@@ -177,6 +182,10 @@ Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, co
     if (auto ok = write_file_atomic(options_.out_dir + "/timings.json", w.take()); !ok) return ok;
     if (auto ok = write_file_atomic(options_.out_dir + "/profile.txt", profile::text_report()); !ok) return ok;
     if (auto ok = profile::write_chrome_trace(options_.out_dir + "/trace.json", 300); !ok) return ok;
+    // The world as the demo left it, as a save (continue it with --load; extensions' data too).
+    SaveState state = capture_save(session_->world, session_->frame->streaming(), session_->info.spec);
+    state.extensions = capture_extensions(extensions_, session_->world);
+    if (auto ok = write_save(options_.out_dir + "/save.json", state); !ok) return ok;
 
     std::printf("lantern headless demo: %zu frames in %.1f s on %s (%s)\n", frame_ms.size(), seconds,
                 device_->name().c_str(), describe_machine().c_str());
@@ -199,7 +208,7 @@ Result<void> Game::write_headless_report(const std::vector<double>& frame_ms, co
             std::printf("%-28s %5s %8.2f %8.2f %8.2f %8.2f\n", s.name, s.kind == profile::LaneKind::gpu ? "gpu" : "cpu",
                         s.p50_ms, s.p95_ms, s.p99_ms, s.max_ms);
     }
-    std::printf("wrote %s/{timings.json, profile.txt, trace.json} and %zu screenshots\n", options_.out_dir.c_str(),
+    std::printf("wrote %s/{timings.json, profile.txt, trace.json, save.json} and %zu screenshots\n", options_.out_dir.c_str(),
                 screenshots.size());
     return {};
 }

@@ -7,7 +7,8 @@
 namespace lantern::game::app {
 
 void Game::save(Session& s) {
-    const SaveState state = capture_save(s.world, s.frame->streaming(), s.info.spec);
+    SaveState state = capture_save(s.world, s.frame->streaming(), s.info.spec);
+    state.extensions = capture_extensions(extensions_, s.world);
     if (auto ok = write_save(options_.save_file, state); !ok) {
         message_ = "save failed: " + ok.error().message;
         LANTERN_LOG_ERROR("%s", message_.c_str());
@@ -17,6 +18,13 @@ void Game::save(Session& s) {
     message_ = "saved to " + options_.save_file + " (" + std::to_string(state.entities.size()) + " lights and props, " +
                std::to_string(state.edits.size()) + " edited chunks)";
     LANTERN_LOG_INFO("%s", message_.c_str());
+}
+
+Result<void> Game::check_extension_data(const SaveState& state) const {
+    ecs::World scratch;
+    for (const GameExtension& e : extensions_)
+        if (e.setup) e.setup(scratch);
+    return load_extensions(extensions_, state.extensions, scratch, state.file);
 }
 
 // One JSON line, replaced atomically after each windowed frame: what a script driving the game

@@ -8,6 +8,7 @@
 
 #include "lantern/core/result.hpp"
 #include "lantern/ecs/world.hpp"
+#include "lantern/game/extension.hpp"
 #include "lantern/game/game_components.hpp"
 #include "lantern/game/world_setup.hpp"
 #include "lantern/systems/streaming.hpp"
@@ -45,9 +46,13 @@ struct SaveState {
         friend bool operator==(const BakedKey&, const BakedKey&) = default;
     };
     std::vector<BakedKey> baked;
+    // Game extensions' data (extension.hpp), by extension name, in the save's order.
+    ExtensionData extensions;
+    std::string file; // the file it was read from (messages about extension data)
 };
 
-// What to save from a running game.
+// What to save from a running game (entities with ExtensionOwned left out: their extension
+// saves them; the caller adds capture_extensions()).
 SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, const WorldSpec& spec);
 
 // The save as text, and back. Floats are written with 9 significant digits, so a state
