@@ -104,9 +104,14 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
     p.integer("--screenshots", "N", "screenshots over the run (default 6, 0 for none)", o.screenshots, 0, 1000);
     p.flag("--bench", "print per-system and per-pass percentiles (headless benchmark)", o.bench);
     p.text("--status-file", "PATH",
-           "after each windowed frame, write the frame number, player position,\n"
-           "mouse, buttons and saves as one JSON line (for scripts and tests)",
+           "after each frame, write the frame number, player position, mouse,\n"
+           "buttons, saves, lights and --watch reloads as one JSON line (for\n"
+           "scripts and tests)",
            o.status_file);
+    p.flag("--watch",
+           "reload the --scene file when it changes (a malformed edit is\n"
+           "reported and the last good scene keeps running)",
+           o.watch);
     p.text("--schedule", "FILE.dot",
            "write the frame's system schedule as Graphviz DOT at start-up\n"
            "(systems, declared access, the edges they imply, ambiguities)",
@@ -164,6 +169,7 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
         if (auto ok = check_output_folder(o.out_dir); !ok) return refuse("--out " + ok.error().message);
     if (!o.status_file.empty())
         if (auto ok = check_output_file(o.status_file); !ok) return refuse("--status-file " + ok.error().message);
+    if (o.watch && o.world.kind != WorldKind::scene) return refuse("--watch needs a --scene FILE to watch");
     if (!o.schedule_dot.empty())
         if (auto ok = check_output_file(o.schedule_dot); !ok) return refuse("--schedule " + ok.error().message);
     return std::nullopt;

@@ -185,7 +185,7 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
         break;
     }
     case WorldKind::scene: {
-        auto scene = scene::load_scene(spec.path);
+        auto scene = options.scene ? Result<scene::Scene>(*options.scene) : scene::load_scene(spec.path);
         if (!scene) return scene.error();
         const systems::SceneWorld sw = systems::populate_world(*scene, world);
         out.source = sw.source;

@@ -47,4 +47,28 @@ std::string read_file(const std::filesystem::path& path) {
     return ss.str();
 }
 
+std::string corrupting_edit(const std::string& good, std::uint64_t& random,
+                            const std::function<bool(const std::string&)>& malformed) {
+    static constexpr char junk[] = "{}[],:\"@#\x01\\-e9.x";
+    const auto next = [&random]() { // splitmix64
+        std::uint64_t z = (random += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    };
+    for (;;) {
+        std::string bad = good;
+        const std::size_t at = bad.empty() ? 0 : std::size_t(next() % bad.size());
+        const char c = junk[next() % (sizeof(junk) - 1)];
+        switch (next() % 3) {
+        case 0: bad.resize(at); break;
+        case 1:
+            if (!bad.empty()) bad[at] = c;
+            break;
+        default: bad.insert(bad.begin() + std::ptrdiff_t(at), c); break;
+        }
+        if (malformed(bad)) return bad;
+    }
+}
+
 } // namespace lantern::test

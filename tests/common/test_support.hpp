@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace lantern::test {
@@ -28,6 +30,13 @@ std::filesystem::path source_dir();
 std::filesystem::path shared_dir();
 
 std::string read_file(const std::filesystem::path& path);
+
+// A random corrupting edit of `good` (hot-reload tests): a truncation, a byte overwritten or a
+// byte inserted, from characters that break JSON and scene files ({}[],:"@#, a control
+// byte, ...), drawn again until `malformed` says the edit really is (so a test never counts
+// on an edit that happens to stay valid).
+std::string corrupting_edit(const std::string& good, std::uint64_t& random,
+                            const std::function<bool(const std::string&)>& malformed);
 
 // True when LANTERN_REQUIRE_GPU=1 (the README's test command sets it, since set-up always
 // installs lavapipe and Xvfb): a test that finds no Vulkan device or no X server then fails

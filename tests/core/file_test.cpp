@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <sys/stat.h>
@@ -142,4 +143,33 @@ TEST(File, StagedFolderAppearsWholeOrNotAtAll) {
     EXPECT_TRUE(lantern::StagedFolder::create(dir.file("new/parents/dump")).ok());
     EXPECT_FALSE(lantern::StagedFolder::create(target + "/keep.txt").ok());
     EXPECT_FALSE(lantern::StagedFolder::create(target + "/keep.txt/dump").ok());
+}
+
+// FileStamp (hot reload): the same while a file is untouched; changed by an atomic replace,
+// even with the same size and contents, and by an edit in place; absent for a missing path.
+TEST(File, StampChangesWithEveryKindOfEdit) {
+    lantern::test::TempDir dir;
+    const std::string path = dir.file("scene.json");
+    EXPECT_FALSE(lantern::file_stamp(path));
+    ASSERT_TRUE(lantern::write_file_atomic(path, std::string("{\"a\": 1}")));
+    const auto first = lantern::file_stamp(path);
+    ASSERT_TRUE(first);
+    EXPECT_EQ(lantern::file_stamp(path), first);
+    EXPECT_EQ(first->size, 8u);
+    ASSERT_TRUE(lantern::write_file_atomic(path, std::string("{\"a\": 1}"))); // same bytes, a new file
+    const auto replaced = lantern::file_stamp(path);
+    ASSERT_TRUE(replaced);
+    EXPECT_NE(replaced, first);
+    {
+        std::FILE* f = std::fopen(path.c_str(), "ab"); // in place: longer
+        ASSERT_NE(f, nullptr);
+        std::fputs(" ", f);
+        std::fclose(f);
+    }
+    const auto appended = lantern::file_stamp(path);
+    ASSERT_TRUE(appended);
+    EXPECT_NE(appended, replaced);
+    EXPECT_EQ(appended->inode, replaced->inode);
+    std::filesystem::remove(path);
+    EXPECT_FALSE(lantern::file_stamp(path));
 }

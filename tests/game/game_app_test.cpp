@@ -11,6 +11,7 @@
 #include "lantern/core/json.hpp"
 #include "lantern/game/gameplay.hpp"
 #include "lantern/game/save.hpp"
+#include "lantern/scene/loader.hpp"
 #include "xvfb_support.hpp"
 
 #include <gtest/gtest.h>
@@ -350,6 +351,88 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
     EXPECT_TRUE(gap) << "the mined wall is not in the save";
 }
 
+// The status file's reload counters and light count (--watch; after the fields above).
+struct WatchStatus {
+    unsigned long long frame = 0;
+    int lights = -1, reloads = -1, reload_errors = -1;
+};
+
+std::optional<WatchStatus> read_watch_status(const std::string& path) {
+    const std::string text = test::read_file(path);
+    WatchStatus st;
+    const std::size_t at = text.find("\"lights\": ");
+    if (std::sscanf(text.c_str(), "{\"frame\": %llu", &st.frame) != 1 || at == std::string::npos ||
+        std::sscanf(text.c_str() + at, "\"lights\": %d, \"reloads\": %d, \"reload_errors\": %d", &st.lights,
+                    &st.reloads, &st.reload_errors) != 3)
+        return std::nullopt;
+    return st;
+}
+
+// Hot reload (--watch), as a designer iterates: the running game (a window under Xvfb, no
+// input, so nothing but the file changes the world) picks up an edit of its scene file, then
+// survives 100 random corrupting edits in a row, each reported and counted, still rendering
+// the last good scene, and picks up the next good edit. Every step waits on the status
+// file's counters, never on time.
+TEST(GameWindow, WatchedSceneReloadsAndSurvivesCorruptingEdits) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string watched = dir.file("watched.json"), status = dir.file("status.json");
+    const std::string original(two_rooms);
+    ASSERT_TRUE(write_file_atomic(watched, original));
+    GameProcess game({"--window", "--scene", watched, "--watch", "--size", "480x270", "--no-hud", "--no-player-light",
+                      "--no-bake", "--status-file", status},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto until = [&](const char* what, const std::function<bool(const WatchStatus&)>& done) {
+        const auto end = std::chrono::steady_clock::now() + 180s;
+        while (std::chrono::steady_clock::now() < end) {
+            if (auto st = read_watch_status(status); st && done(*st)) return st;
+            if (game.wait_exit(10ms)) break;
+        }
+        ADD_FAILURE() << "the game never reached: " << what << "; log:\n" << game.log();
+        return std::optional<WatchStatus>();
+    };
+    const auto first = until("its first frame", [](const WatchStatus& st) { return st.frame >= 1; });
+    ASSERT_TRUE(first);
+    ASSERT_EQ(first->lights, 1); // two_rooms' one light
+
+    // A good edit: a second light.
+    std::string good = original;
+    const std::string light = R"({"position": [15.5, 4.5], "color": [1.0, 0.85, 0.6], "intensity": 3.0, "radius": 10})";
+    good.replace(good.find(light), light.size(), light + R"(, {"position": [4.5, 3.5], "color": [0.4, 0.6, 1.0], "intensity": 2.0, "radius": 8})");
+    ASSERT_TRUE(scene::parse_scene(good, "good.json", dir.path().string()));
+    ASSERT_TRUE(write_file_atomic(watched, good));
+    ASSERT_TRUE(until("the first reload", [](const WatchStatus& st) { return st.reloads == 1 && st.lights == 2; }));
+
+    // 100 corrupting edits in a row: truncations, bytes overwritten or inserted, each one
+    // checked to be malformed with Lantern's own reader before it is written.
+    std::uint64_t random = 20261126;
+    int corrupted = 0;
+    for (int k = 1; k <= 100; ++k) {
+        const std::string bad = test::corrupting_edit(good, random, [&](const std::string& text) {
+            return !scene::parse_scene(text, "bad.json", dir.path().string());
+        });
+        ASSERT_TRUE(write_file_atomic(watched, bad));
+        ASSERT_TRUE(until("a reported bad edit", [k](const WatchStatus& st) { return st.reload_errors == k; }))
+            << "edit " << k;
+        ++corrupted;
+    }
+    EXPECT_EQ(corrupted, 100);
+    // Still running and rendering the last good scene: frames advance, its two lights stand.
+    const auto now = read_watch_status(status);
+    ASSERT_TRUE(now);
+    const auto later = until("more frames", [&](const WatchStatus& st) { return st.frame >= now->frame + 10; });
+    ASSERT_TRUE(later);
+    EXPECT_EQ(later->reloads, 1);
+    EXPECT_EQ(later->lights, 2);
+    const std::string log = game.log();
+    EXPECT_NE(log.find("scene not reloaded (the last good scene stays): " + watched + ":"), std::string::npos) << log;
+
+    // And the next good edit is picked up: the original, one light again.
+    ASSERT_TRUE(write_file_atomic(watched, original));
+    ASSERT_TRUE(until("the second reload", [](const WatchStatus& st) { return st.reloads == 2 && st.lights == 1; }));
+}
+
 TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
     test::TempDir dir;
     const std::string out = dir.file("demo");
@@ -491,6 +574,7 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--gi-view", "heatmap"}, "--gi-view: must be one of lit, direct, indirect, light_image, radiosity, distance, "
                                    "direction, jump_flood, baked, bricks, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},
+        {{"--watch"}, "--watch needs a --scene FILE to watch"},
         {{"--schedule", dir.path().string()}, "--schedule " + dir.path().string() + ": is a folder"},
         // Paths that are not regular files: refused before they are read or block.
         {{"--map", dir.path().string()}, "is a folder, not a regular file"},

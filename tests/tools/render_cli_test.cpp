@@ -1,20 +1,29 @@
 // lantern-render as users run it: the real executable, real files, exit statuses.
 #include "common/test_support.hpp"
+#include "lantern/core/file.hpp"
+#include "lantern/scene/loader.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 using lantern::test::TempDir;
@@ -278,6 +287,71 @@ TEST(RenderCli, VulkanAndCpuBackendsAgree) {
 // lantern-bake end to end: a scene with a baked light bakes its chunks with a summary line,
 // a second run reuses them all, a damaged file is named and re-baked; bad input exits 2
 // with one line and writes nothing.
+// lantern-render --watch as a designer uses it: a render per change of the scene file; a
+// malformed edit (100 random corruptions in a row) is refused with its position, writes
+// nothing, and the image keeps the last good render; the next good edit renders again.
+// Each step waits on the attempt counts lantern-render prints, never on time.
+TEST(RenderCli, WatchRendersEachEditAndKeepsTheLastGoodRender) {
+    TempDir dir;
+    const fs::path scene = dir.path() / "watched.json", out = dir.path() / "out.png", log = dir.path() / "log.txt";
+    ASSERT_TRUE(lantern::write_file_atomic(scene.string(), std::string(small_scene)));
+    const std::string exe = LANTERN_RENDER_EXE;
+    std::vector<std::string> args{exe, scene.string(), "--backend", "cpu", "--watch", "--out", out.string()};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    pid_t pid = -1;
+    ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    struct Reaper {
+        pid_t pid;
+        ~Reaper() {
+            kill(pid, SIGKILL);
+            waitpid(pid, nullptr, 0);
+        }
+    } reaper{pid};
+    // Waits until lantern-render has printed the counts (a generous deadline turns a tool that
+    // never gets there into a failure, not a hang).
+    const auto until = [&](int rendered, int refused) {
+        const std::string line = "watch: " + std::to_string(rendered) + " rendered, " + std::to_string(refused) +
+                                 " refused";
+        const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+        while (std::chrono::steady_clock::now() < end) {
+            if (lantern::test::read_file(log).find(line) != std::string::npos) return true;
+            if (waitpid(pid, nullptr, WNOHANG) == pid) break;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        ADD_FAILURE() << "never printed '" << line << "':\n" << lantern::test::read_file(log);
+        return false;
+    };
+    ASSERT_TRUE(until(1, 0));
+    const std::string first = lantern::test::read_file(out);
+    ASSERT_FALSE(first.empty());
+
+    std::uint64_t random = 7;
+    for (int k = 1; k <= 100; ++k) {
+        const std::string bad = lantern::test::corrupting_edit(small_scene, random, [&](const std::string& text) {
+            return !lantern::scene::parse_scene(text, "bad.json", dir.path().string());
+        });
+        ASSERT_TRUE(lantern::write_file_atomic(scene.string(), bad));
+        ASSERT_TRUE(until(1, k)) << "edit " << k;
+    }
+    EXPECT_EQ(lantern::test::read_file(out), first); // the last good render, untouched
+    const std::string text = lantern::test::read_file(log);
+    EXPECT_NE(text.find("lantern-render: " + scene.string() + ":"), std::string::npos) << text; // positioned errors
+
+    std::string bluer = small_scene;
+    const std::string colour = "\"color\": [1.0, 0.6, 0.3]";
+    bluer.replace(bluer.find(colour), colour.size(), "\"color\": [0.3, 0.6, 1.0]");
+    ASSERT_TRUE(lantern::write_file_atomic(scene.string(), bluer));
+    ASSERT_TRUE(until(2, 100));
+    EXPECT_NE(lantern::test::read_file(out), first);
+}
+
 TEST(BakeCli, BakesReusesAndRefusesBadInput) {
     TempDir dir;
     write(dir.path() / "s.json", R"({

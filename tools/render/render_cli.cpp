@@ -2,6 +2,7 @@
 
 #include "lantern/bake/bake.hpp"
 #include "lantern/core/cli.hpp"
+#include "lantern/core/clock.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/json_writer.hpp"
 #include "lantern/core/text.hpp"
@@ -12,12 +13,14 @@
 #include "lantern/scene/loader.hpp"
 #include "lantern/systems/scene_world.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace lantern::tools {
@@ -32,6 +35,7 @@ struct Options {
     bake::BakeSettings bake_settings;
     int frames = 1;
     bool quiet = false;
+    bool watch = false;
 };
 
 int fail(const std::string& message, int code) {
@@ -80,6 +84,11 @@ std::optional<int> parse_args(int argc, char** argv, Options& o) {
            o.bake);
     bake::add_settings_options(p, o.bake_settings, "--bake-");
     p.flag("--quiet", "no progress output on stderr", o.quiet);
+    p.flag("--watch",
+           "after the first render, render again whenever the scene file changes; a\n"
+           "malformed edit is reported and the outputs keep the last good render\n"
+           "(one stdout line per attempt; Ctrl-C stops)",
+           o.watch);
     p.epilog("Exit status: 0 ok, 1 runtime failure (e.g. no Vulkan device), 2 bad input. Nothing is\n"
              "written unless the frame succeeded; every file is written atomically.");
     if (auto exit = p.parse(argc, argv)) return exit;
@@ -264,11 +273,9 @@ Result<Backend> make_backend(const Options& o, jobs::JobSystem& jobs) {
     return b;
 }
 
-} // namespace
-
-int render_main(int argc, char** argv) {
-    Options o;
-    if (auto code = parse_args(argc, argv, o)) return *code;
+// Renders the scene file once through the frame and writes the outputs (atomically; none on
+// failure). The exit status.
+int render_file(const Options& o, jobs::JobSystem& jobs) {
     auto scene = scene::load_scene(o.scene);
     if (!scene) return fail(scene.error().message, scene.error().exit_code);
     for (const std::string& s : o.sets)
@@ -279,7 +286,6 @@ int render_main(int argc, char** argv) {
     if (!o.dump.empty())
         if (auto ok = check_dump_size(o.dump, *window); !ok) return fail(ok.error().message, ok.error().exit_code);
 
-    jobs::JobSystem jobs;
     auto backend = make_backend(o, jobs);
     if (!backend) return fail(backend.error().message, backend.error().exit_code);
     const std::string device_name = backend->backend->name();
@@ -332,6 +338,39 @@ int render_main(int argc, char** argv) {
                                                 world.resource<systems::GatheredProxies>().proxies.size(), records);
     if (auto ok = write_outputs(o, frame.backend(), timings); !ok) return fail(ok.error().message, 1);
     return 0;
+}
+
+} // namespace
+
+int render_main(int argc, char** argv) {
+    Options o;
+    if (auto code = parse_args(argc, argv, o)) return *code;
+    jobs::JobSystem jobs;
+    if (!o.watch) return render_file(o, jobs);
+    // --watch: a render per change of the file (its FileStamp, looked at ten times a second).
+    // A failed render writes nothing, so the outputs keep the last good one; the counts go
+    // to stdout, one line per attempt, for scripts (and tests) to wait on.
+    std::optional<FileStamp> seen = file_stamp(o.scene);
+    int rendered = 0, refused = 0;
+    const auto attempt = [&]() {
+        const std::int64_t start = now_ns();
+        const int code = render_file(o, jobs);
+        (code == 0 ? rendered : refused) += 1;
+        std::printf("lantern-render: watch: %d rendered, %d refused (%s, %.0f ms)\n", rendered, refused,
+                    code == 0 ? "rendered" : "refused: the outputs keep the last good render",
+                    double(now_ns() - start) * 1e-6);
+        std::fflush(stdout);
+        return code;
+    };
+    if (const int code = attempt(); code == 1 && rendered == 0) return code; // no device: nothing to watch with
+    if (!o.quiet) std::fprintf(stderr, "lantern-render: watching %s (Ctrl-C stops)\n", o.scene.c_str());
+    for (;;) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        const std::optional<FileStamp> now = file_stamp(o.scene);
+        if (now == seen) continue;
+        seen = now;
+        attempt();
+    }
 }
 
 } // namespace lantern::tools

@@ -104,7 +104,13 @@ class Game {
 
   private:
     Result<void> init(bool windowed);
-    Result<std::unique_ptr<Session>> make_session(const WorldSpec& spec, const SaveState* save);
+    Result<std::unique_ptr<Session>> make_session(const WorldSpec& spec, const SaveState* save,
+                                                  const scene::Scene* scene = nullptr);
+    // --watch: notices a change of the scene file (once a frame, by its FileStamp) and reads
+    // it; a good scene waits in pending_scene_, a malformed one is reported and counted.
+    void poll_watch();
+    // Replaces the session with one built from pending_scene_, the player where it stood.
+    Result<void> reload_scene();
     void add_systems(ecs::Schedule& schedule, Session& session);
     void input_system(Session& s);
     void render_system(Session& s);
@@ -149,6 +155,10 @@ class Game {
     bool status_failed_ = false;      // the status file could not be written (said once)
     bool quit_ = false;
     std::optional<SaveState> pending_load_;
+    std::optional<FileStamp> watched_;          // --watch: the scene file as last seen
+    std::optional<scene::Scene> pending_scene_; // --watch: checked, applied between frames
+    std::int64_t change_seen_ns_ = 0;           // when the pending change was noticed
+    int reloads_ = 0, reload_errors_ = 0;       // --watch (--status-file reports them)
     std::string message_;
     std::uint64_t raster_serials_[2] = {0, 0};
 };

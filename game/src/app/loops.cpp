@@ -26,6 +26,13 @@ int Game::run_window() {
             save_requested_ = false;
             save(*session_);
         }
+        if (options_.watch) poll_watch();
+        if (pending_scene_) {
+            if (auto ok = reload_scene(); !ok) {
+                LANTERN_LOG_ERROR("%s", ok.error().message.c_str());
+                return ok.error().exit_code;
+            }
+        }
         if (!options_.status_file.empty()) write_status(*session_);
         if (pending_load_) {
             const SaveState state = std::move(*pending_load_);
@@ -74,6 +81,14 @@ int Game::run_headless() {
         const std::int64_t t1 = now_ns();
         profile::end_frame();
         frame_ms.push_back(double(t1 - t0) * 1e-6);
+        if (options_.watch) poll_watch();
+        if (pending_scene_) {
+            if (auto ok = reload_scene(); !ok) {
+                std::fprintf(stderr, "lantern: %s\n", ok.error().message.c_str());
+                return ok.error().exit_code;
+            }
+        }
+        if (!options_.status_file.empty()) write_status(*session_);
         walking.push_back(session_->demo->is_walking(headless_frame_));
         if (headless_frame_ == memory_warm_up || headless_frame_ + 1 == frames ||
             (headless_frame_ > memory_warm_up && (headless_frame_ - memory_warm_up) % memory_every == 0))

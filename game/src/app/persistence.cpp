@@ -27,20 +27,26 @@ Result<void> Game::check_extension_data(const SaveState& state) const {
     return load_extensions(extensions_, state.extensions, scratch, state.file);
 }
 
-// One JSON line, replaced atomically after each windowed frame: what a script driving the game
+// One JSON line, replaced atomically after each frame (windowed or headless): what a script driving the game
 // through real input waits on (the frame that saw its input, where the player is) instead of
 // sleeping for a guessed time.
 void Game::write_status(Session& s) {
     glm::vec2 player(0.0f);
     s.world.view<Player, Transform>().each([&](const Player&, const Transform& t) { player = {t.position.x, t.position.z}; });
-    const platform::InputState& in = window_->input();
     json::Writer w;
-    w.begin_object(json::Layout::one_line).field("frame", window_frames_);
+    w.begin_object(json::Layout::one_line).field("frame", window_ ? window_frames_ : std::uint64_t(headless_frame_ + 1));
     w.key("player").begin_array().value(double(player.x), 4).value(double(player.y), 4).end();
-    w.key("mouse").begin_array().value(double(in.mouse_position().x), 1).value(double(in.mouse_position().y), 1).end();
-    w.key("buttons").begin_array().value(int(in.down(platform::MouseButton::left)));
-    w.value(int(in.down(platform::MouseButton::right))).end();
-    w.field("item", selected_item_ + 1).field("saves", saves_done_).end();
+    if (window_) {
+        const platform::InputState& in = window_->input();
+        w.key("mouse").begin_array().value(double(in.mouse_position().x), 1).value(double(in.mouse_position().y), 1).end();
+        w.key("buttons").begin_array().value(int(in.down(platform::MouseButton::left)));
+        w.value(int(in.down(platform::MouseButton::right))).end();
+    }
+    w.field("item", selected_item_ + 1).field("saves", saves_done_);
+    int lights = 0; // the world's lights besides the player's own (what a reload changed)
+    s.world.view<PointLight>().each([&](ecs::Entity e, const PointLight&) { lights += s.world.try_get<Player>(e) ? 0 : 1; });
+    s.world.view<EmissiveLight>().each([&](const EmissiveLight&) { ++lights; });
+    w.field("lights", lights).field("reloads", reloads_).field("reload_errors", reload_errors_).end();
     if (auto ok = write_file_atomic(options_.status_file, w.take()); !ok && !status_failed_) {
         status_failed_ = true;
         LANTERN_LOG_ERROR("status file: %s", ok.error().message.c_str());

@@ -22,8 +22,9 @@ struct GameOptions {
     std::string load;                // --load SAVE: start from a save (its world)
     std::string save_file = "lantern-save.json"; // where F5 saves and F9 loads
     RunMode mode = RunMode::automatic; // --window / --headless; automatic: window if a display can open
-    std::string status_file;         // --status-file PATH: each windowed frame's state, for scripted play
+    std::string status_file;         // --status-file PATH: each frame's state, for scripted play
     std::string schedule_dot;        // --schedule FILE.dot: the frame schedule as Graphviz DOT
+    bool watch = false;              // --watch: reload the --scene file when it changes
 
     // Headless demo.
     int frames = 900;                // --frames N

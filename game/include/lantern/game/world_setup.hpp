@@ -43,6 +43,9 @@ struct WorldOptions {
     float wall_height = 2.0f; // caves and maps
     bool decorate = true;     // torches and crystals (caves, maps); off for a bare world
     bool player_light = true; // the player carries a small light
+    // Scenes: this parsed scene instead of reading spec.path (hot reload parses the file
+    // once, checks it, and builds from what it checked).
+    const scene::Scene* scene = nullptr;
 };
 
 // Builds the world in `world` (which must hold no game entities yet). Errors (a missing or

@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -73,5 +74,15 @@ Result<void> write_file_atomic(const std::string& path, const std::string& text)
 
 // Creates the folder and its parents if missing.
 Result<void> ensure_directory(const std::string& path);
+
+// What a file is right now, to notice that it changed (hot reload): its device, inode, size
+// and modification time. An atomic replace (a new inode) or an edit in place (size or
+// time) both change it. nullopt when the path cannot be stat()ed.
+struct FileStamp {
+    std::uint64_t device = 0, inode = 0, size = 0;
+    std::int64_t modified_ns = 0;
+    friend bool operator==(const FileStamp&, const FileStamp&) = default;
+};
+std::optional<FileStamp> file_stamp(const std::string& path);
 
 } // namespace lantern
