@@ -87,11 +87,15 @@ endfunction()
 lantern_install_library(lantern_public_options public_options)
 lantern_install_library(lantern_build_options build_options)
 
-# lantern_executable(<name> SOURCES ... [DEPS ...])
+# lantern_executable(<name> SOURCES ... [DEPS ...] [INSTALL])
+# INSTALL: `cmake --install` puts it in <prefix>/bin (the game and the user-facing tools).
 function(lantern_executable name)
-    cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+    cmake_parse_arguments(ARG "INSTALL" "" "SOURCES;DEPS" ${ARGN})
     add_executable(${name} ${ARG_SOURCES})
     target_link_libraries(${name} PRIVATE lantern::build_options ${ARG_DEPS})
+    if(ARG_INSTALL)
+        install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+    endif()
 endfunction()
 
 # lantern_test(<name> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s])

@@ -1,5 +1,6 @@
 # Drives tests/extend (cmake -P; variables from its CMakeLists.txt):
-# 1. `cmake --install` of the build tree into a scratch prefix;
+# 1. `cmake --install` of the build tree into a scratch prefix (libraries, headers, shaders,
+#    the package files, and the game and tools in bin/, each run with --version);
 # 2. each example (examples/<name>/, a CMake project of its own) configures against that
 #    prefix alone (find_package(Lantern)), builds, and passes its own ctest tests;
 # 3. no compile command of an example carries Lantern's build flags (warnings, -Werror,
@@ -27,6 +28,14 @@ foreach(required lib/cmake/Lantern/LanternConfig.cmake lib/cmake/Lantern/Lantern
     if(NOT EXISTS "${prefix}/${required}")
         message(FATAL_ERROR "the installed package lacks ${required}")
     endif()
+endforeach()
+
+# The game and the user-facing tools are installed and run from the prefix.
+foreach(exe lantern lantern-render lantern-bake lantern-bench)
+    if(NOT EXISTS "${prefix}/bin/${exe}")
+        message(FATAL_ERROR "the installed package lacks bin/${exe}")
+    endif()
+    run_step("${exe} --version" "${prefix}/bin/${exe}" --version)
 endforeach()
 
 file(GLOB examples LIST_DIRECTORIES true "${EXAMPLES_DIR}/*")
