@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace lantern::test {
 
@@ -30,6 +33,27 @@ std::filesystem::path source_dir();
 std::filesystem::path shared_dir();
 
 std::string read_file(const std::filesystem::path& path);
+
+// A child process running `exe` with `args`, its stdout and stderr into `log_path`; killed
+// (and reaped) if still running when the object dies.
+class ChildProcess {
+  public:
+    ChildProcess(const std::string& exe, std::vector<std::string> args, const std::string& log_path);
+    ~ChildProcess();
+    ChildProcess(const ChildProcess&) = delete;
+    ChildProcess& operator=(const ChildProcess&) = delete;
+    bool started() const { return pid_ > 0; }
+    // Waits up to `timeout` for the exit; its status (128 + signal when killed; the same again
+    // on later calls), or nullopt when it is still running.
+    std::optional<int> wait_exit(std::chrono::milliseconds timeout);
+    std::string log() const { return read_file(log_path_); }
+
+  private:
+    std::string log_path_;
+    int pid_ = -1;
+    bool exited_ = false;
+    int status_ = 0;
+};
 
 // A random corrupting edit of `good` (hot-reload tests): a truncation, a byte overwritten or a
 // byte inserted, from characters that break JSON and scene files ({}[],:"@#, a control

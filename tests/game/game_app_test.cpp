@@ -46,46 +46,10 @@ namespace {
 const char* game_exe() { return LANTERN_GAME_EXE; }
 
 // A child process running the game; killed (and reaped) if still running at the end.
-class GameProcess {
+class GameProcess : public test::ChildProcess {
   public:
-    GameProcess(std::vector<std::string> args, const std::string& log_path) : log_path_(log_path) {
-        args.insert(args.begin(), game_exe());
-        std::vector<char*> argv;
-        for (std::string& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        posix_spawn_file_actions_t actions;
-        posix_spawn_file_actions_init(&actions);
-        posix_spawn_file_actions_addopen(&actions, 1, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        posix_spawn_file_actions_adddup2(&actions, 1, 2);
-        if (posix_spawn(&pid_, game_exe(), &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
-        posix_spawn_file_actions_destroy(&actions);
-    }
-    ~GameProcess() {
-        if (pid_ > 0 && !exited_) {
-            kill(pid_, SIGKILL);
-            waitpid(pid_, nullptr, 0);
-        }
-    }
-    bool started() const { return pid_ > 0; }
-    // Waits up to `timeout` for the exit; its status, or nullopt when it is still running.
-    std::optional<int> wait_exit(std::chrono::milliseconds timeout) {
-        const auto end = std::chrono::steady_clock::now() + timeout;
-        while (std::chrono::steady_clock::now() < end) {
-            int status = 0;
-            if (waitpid(pid_, &status, WNOHANG) == pid_) {
-                exited_ = true;
-                return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-            }
-            std::this_thread::sleep_for(20ms);
-        }
-        return std::nullopt;
-    }
-    std::string log() const { return test::read_file(log_path_); }
-
-  private:
-    std::string log_path_;
-    pid_t pid_ = -1;
-    bool exited_ = false;
+    GameProcess(std::vector<std::string> args, const std::string& log_path)
+        : ChildProcess(game_exe(), std::move(args), log_path) {}
 };
 
 int run_game(const std::vector<std::string>& args, const std::string& log) {

@@ -9,21 +9,15 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
-#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <thread>
 #include <vector>
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-
-extern char** environ;
 
 namespace fs = std::filesystem;
 using lantern::test::TempDir;
@@ -295,25 +289,10 @@ TEST(RenderCli, WatchRendersEachEditAndKeepsTheLastGoodRender) {
     TempDir dir;
     const fs::path scene = dir.path() / "watched.json", out = dir.path() / "out.png", log = dir.path() / "log.txt";
     ASSERT_TRUE(lantern::write_file_atomic(scene.string(), std::string(small_scene)));
-    const std::string exe = LANTERN_RENDER_EXE;
-    std::vector<std::string> args{exe, scene.string(), "--backend", "cpu", "--watch", "--out", out.string()};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    pid_t pid = -1;
-    ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-    struct Reaper {
-        pid_t pid;
-        ~Reaper() {
-            kill(pid, SIGKILL);
-            waitpid(pid, nullptr, 0);
-        }
-    } reaper{pid};
+    lantern::test::ChildProcess render(LANTERN_RENDER_EXE,
+                                       {scene.string(), "--backend", "cpu", "--watch", "--out", out.string()},
+                                       log.string());
+    ASSERT_TRUE(render.started());
     // Waits until lantern-render has printed the counts (a generous deadline turns a tool that
     // never gets there into a failure, not a hang).
     const auto until = [&](int rendered, int refused) {
@@ -322,8 +301,7 @@ TEST(RenderCli, WatchRendersEachEditAndKeepsTheLastGoodRender) {
         const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
         while (std::chrono::steady_clock::now() < end) {
             if (lantern::test::read_file(log).find(line) != std::string::npos) return true;
-            if (waitpid(pid, nullptr, WNOHANG) == pid) break;
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            if (render.wait_exit(std::chrono::milliseconds(10))) break;
         }
         ADD_FAILURE() << "never printed '" << line << "':\n" << lantern::test::read_file(log);
         return false;

@@ -55,8 +55,8 @@ struct SaveState {
 // saves them; the caller adds capture_extensions()).
 SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, const WorldSpec& spec);
 
-// The save as text, and back. Floats are written with 9 significant digits, so a state
-// reads back exactly.
+// The save as text, and back. Floats are written in the shortest text that reads back as
+// the same float (json::Writer), so a state reads back exactly.
 std::string format_save(const SaveState& state);
 Result<SaveState> parse_save(std::string_view text, const std::string& file_name);
 

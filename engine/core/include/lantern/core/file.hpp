@@ -4,7 +4,7 @@
 // regular file (a folder, a FIFO, a device: opened without blocking, checked before a byte
 // is read) and any file over the caller's size limit (checked before reading, and again
 // while reading in case it grows). The limits of each kind of input are documented in
-// docs/scenes.md ("Limits").
+// docs/scenes.md ("Size limits").
 //
 // write_file_atomic never leaves a half-written file: it writes a temporary file in the
 // same folder, flushes it to disk, then renames it over the target, so a crash or kill at
@@ -23,7 +23,7 @@
 
 namespace lantern {
 
-// The documented size limits of Lantern's inputs (docs/scenes.md, "Limits").
+// The documented size limits of Lantern's inputs (docs/scenes.md, "Size limits").
 inline constexpr std::uint64_t max_scene_file_bytes = std::uint64_t(16) << 20; // scene files: 16 MiB
 inline constexpr std::uint64_t max_map_file_bytes = std::uint64_t(256) << 20;  // Moving AI maps: 256 MiB
 inline constexpr std::uint64_t max_save_file_bytes = std::uint64_t(64) << 20;  // saves: 64 MiB
