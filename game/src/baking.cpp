@@ -255,7 +255,7 @@ bool WorldBaker::scan(ecs::World& world) {
 }
 
 void WorldBaker::update(ecs::World& world) {
-    LANTERN_PROFILE_SCOPE("bake");
+    LANTERN_PROFILE_SCOPE("bake_update"); // not "bake": the system's job has that name
     BakedChunks& baked = world.resource<BakedChunks>();
     BakeStatus& status = world.resource<BakeStatus>();
     status.enabled = true;

@@ -173,7 +173,8 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
         if (!map) return map.error();
         for (glm::ivec2 t : map->trees) spawn_prop(world, PropKind::tree, glm::vec2(t) + 0.5f);
         const glm::ivec2 size(map->walls.width, map->walls.height);
-        auto source = std::make_shared<systems::GridSource>(std::move(map->walls));
+        // Rock beyond the map's edge (the player cannot walk off it; the GI sees rock there too).
+        auto source = std::make_shared<systems::GridSource>(std::move(map->walls), systems::GridSource::Outside::rock);
         out.source = source;
         spawn_from = find_open_tile(*source, size / 2, 1, std::max(size.x, size.y));
         if (options.decorate) {

@@ -21,7 +21,7 @@ void CaveSource::generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const
 void GridSource::generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const {
     for (int r = 0; r < chunk_size; ++r)
         for (int c = 0; c < chunk_size; ++c)
-            cells[std::size_t(r * chunk_size + c)] = grid_.cell(coord.x * chunk_size + c, coord.y * chunk_size + r); // material kept
+            cells[std::size_t(r * chunk_size + c)] = cell({coord.x * chunk_size + c, coord.y * chunk_size + r}); // material kept
 }
 
 } // namespace lantern::systems

@@ -30,6 +30,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <set>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -412,6 +413,19 @@ TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
     EXPECT_TRUE(std::filesystem::exists(out + "/profile.txt"));
     auto trace = json::parse(test::read_file(out + "/trace.json"), "trace.json");
     EXPECT_TRUE(trace) << (trace ? "" : trace.error().message);
+    // No name is both a job and a scope: the stats add spans by name, so such a pair counts
+    // twice (the HUD's render time was doubled that way).
+    if (trace) {
+        std::map<std::string, std::set<std::string>> kinds;
+        const json::Value* events = trace->is_array() ? &*trace : trace->find("traceEvents");
+        ASSERT_TRUE(events && events->is_array());
+        for (const json::Value& e : events->as_array())
+            if (const json::Value* cat = e.find("cat"); cat && cat->is_string())
+                kinds[e.find("name")->as_string()].insert(cat->as_string());
+        ASSERT_TRUE(kinds.count("render"));
+        for (const auto& [name, cats] : kinds)
+            EXPECT_FALSE(cats.count("job") && cats.count("scope")) << name << " is both a job and a scope";
+    }
     auto timings = json::parse(test::read_file(out + "/timings.json"), "timings.json");
     ASSERT_TRUE(timings) << timings.error().message;
     const json::Value* frame_ms = timings->find("frame_ms");

@@ -180,6 +180,51 @@ TEST(Worlds, MapTreesBecomeTreePropsWithProxyShadows) {
     EXPECT_FALSE(w->source->is_wall(glm::ivec2(glm::floor(w->spawn))));
 }
 
+// docs/game.md's save example shows the game's defaults (it showed a day of 240 s, the
+// game's is 60).
+TEST(Saves, TheDocsExampleShowsTheDefaults) {
+    const std::string docs = test::read_file(test::source_dir() / "docs/game.md");
+    const std::size_t at = docs.find("\"day_length\": ");
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_EQ(std::stof(docs.substr(at + 14, 8)), DayCycle{}.day_length);
+}
+
+// Beyond a map's edge is rock, as docs/game.md says (it was open floor: the player walked off
+// the map): the source's tiles and chunks, and the player's movement at the edge.
+TEST(Worlds, BeyondTheMapIsRock) {
+    test::TempDir dir;
+    const std::string path = dir.file("open.map");
+    // No border of its own: row 0 and column 0 are open.
+    ASSERT_TRUE(write_file_atomic(path, std::string("type octile\nheight 3\nwidth 4\nmap\n....\n....\n....\n")));
+    ecs::World world;
+    WorldOptions options;
+    options.decorate = false;
+    auto w = create_world({WorldKind::map, path, 1}, world, options);
+    ASSERT_TRUE(w) << w.error().message;
+    EXPECT_FALSE(w->source->is_wall({0, 0}));
+    EXPECT_FALSE(w->source->is_wall({3, 2}));
+    for (glm::ivec2 outside : {glm::ivec2(-1, 0), glm::ivec2(0, -1), glm::ivec2(4, 1), glm::ivec2(2, 3),
+                               glm::ivec2(-500, 900)}) {
+        EXPECT_TRUE(w->source->is_wall(outside)) << outside.x << "," << outside.y;
+        EXPECT_EQ(w->source->cell(outside), scene::default_wall_cell);
+    }
+    std::vector<std::uint8_t> cells(std::size_t(systems::chunk_size * systems::chunk_size));
+    w->source->generate({0, 0}, cells);
+    EXPECT_EQ(cells[0], 0);                                       // tile (0, 0): the map's floor
+    EXPECT_EQ(cells[4], scene::default_wall_cell);                // tile (4, 0): beyond
+    EXPECT_EQ(cells[std::size_t(3 * systems::chunk_size)], 1);    // tile (0, 3): beyond
+    w->source->generate({-1, 0}, cells);
+    EXPECT_TRUE(std::all_of(cells.begin(), cells.end(), [](std::uint8_t c) { return c != 0; }));
+    // The player, pushing west from the map's first column, stays on the map.
+    const IsWall is_wall = [&](int x, int z) { return w->source->is_wall({x, z}); };
+    glm::vec2 p(0.5f, 1.5f);
+    for (int i = 0; i < 120; ++i) p = move_with_collision(p, glm::vec2(-0.1f, 0.0f), 0.3f, is_wall);
+    EXPECT_GE(p.x, 0.3f - 1e-4f);
+    // Scene files keep the GI's convention: air beyond their rows.
+    systems::GridSource scene_grid(scene::WallGrid{2, 2, {0, 0}, {1, 1, 1, 1}});
+    EXPECT_FALSE(scene_grid.is_wall({5, 5}));
+}
+
 TEST(Worlds, BadWorldFilesGiveOneClearMessage) {
     test::TempDir dir;
     const std::string path = dir.file("bad.map");

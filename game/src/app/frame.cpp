@@ -105,7 +105,8 @@ void Game::collect_raster_timings() {
 }
 
 void Game::render_system(Session& s) {
-    LANTERN_PROFILE_SCOPE("render");
+    // No profile scope of its own: the job system records the "render" job's span, and a scope
+    // of the same name was added to it in the stats (the HUD showed render's time doubled).
     ecs::World& w = s.world;
     if (!window_) {
         // Headless: at most two raster frames in flight.

@@ -292,6 +292,7 @@ HudActions Hud::draw(const HudInputs& in) {
     if (in.art && ImGui::CollapsingHeader("Art")) {
         ImGui::SliderInt("posterize", &in.art->posterize, 0, 32);
         ImGui::Checkbox("dither", &in.art->dither);
+        ImGui::Checkbox("pixel pattern", &in.art->texture_pattern);
         const auto palettes = builtin_palettes();
         std::vector<const char*> names;
         for (const Palette& p : palettes) names.push_back(p.name);

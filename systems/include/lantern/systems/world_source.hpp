@@ -1,5 +1,5 @@
 // Where wall tiles come from: a seeded procedural cave world of unbounded size, or a finite
-// grid (a scene's rows, a Moving AI map) surrounded by air. The streaming system asks a
+// grid (a scene's rows, a Moving AI map) surrounded by air (or by rock, the game's maps). The streaming system asks a
 // source for whole chunks from background jobs, so generate() must be thread-safe and
 // deterministic.
 #pragma once
@@ -39,14 +39,24 @@ class CaveSource final : public WorldSource {
 
 class GridSource final : public WorldSource {
   public:
-    explicit GridSource(scene::WallGrid grid) : grid_(std::move(grid)) {}
+    // What lies beyond the grid: air (the GI's and scene files' convention, DESIGN.md), or
+    // rock (the game's maps: the player cannot walk off the map).
+    enum class Outside : std::uint8_t { air, rock };
+    explicit GridSource(scene::WallGrid grid, Outside outside = Outside::air)
+        : grid_(std::move(grid)), outside_(outside) {}
     void generate(glm::ivec2 coord, std::span<std::uint8_t> cells) const override;
-    bool is_wall(glm::ivec2 tile) const override { return grid_.is_wall_tile(tile.x, tile.y); }
-    std::uint8_t cell(glm::ivec2 tile) const override { return grid_.cell(tile.x, tile.y); }
+    bool is_wall(glm::ivec2 tile) const override { return cell(tile) != 0; }
+    std::uint8_t cell(glm::ivec2 tile) const override {
+        const glm::ivec2 c = tile - grid_.origin;
+        if (outside_ == Outside::rock && (c.x < 0 || c.y < 0 || c.x >= grid_.width || c.y >= grid_.height))
+            return scene::default_wall_cell;
+        return grid_.cell(tile.x, tile.y);
+    }
     const scene::WallGrid& grid() const { return grid_; }
 
   private:
     scene::WallGrid grid_;
+    Outside outside_;
 };
 
 } // namespace lantern::systems
