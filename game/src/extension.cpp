@@ -24,7 +24,9 @@ ExtensionData capture_extensions(const std::vector<GameExtension>& extensions, e
 
 Result<void> load_extensions(const std::vector<GameExtension>& extensions, const ExtensionData& data,
                              ecs::World& world, const std::string& file, std::vector<std::string>* ignored) {
-    for (const auto& [name, value] : data) {
+    for (const auto& entry : data) { // not a structured binding: clang 14 cannot capture one
+        const std::string& name = entry.first;
+        const json::Value& value = entry.second;
         auto e = std::find_if(extensions.begin(), extensions.end(), [&](const GameExtension& x) { return x.name == name; });
         if (e == extensions.end() || !e->load) {
             if (ignored) ignored->push_back(name);
