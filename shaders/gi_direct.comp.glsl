@@ -62,13 +62,14 @@ int proxy_next(int i) {
 
 float light_distance(vec2 p, vec2 pos) {
     precise vec2 d = pos - p;
-    precise float dist = sqrt(d.x * d.x + d.y * d.y);
+    precise float dist = gi_length(d);
     return dist;
 }
 
 vec4 face_weights(vec4 mask, vec2 p, vec2 light_pos) {
     precise vec2 to_light = light_pos - p;
-    precise float inv_len = 1.0 / sqrt(max(to_light.x * to_light.x + to_light.y * to_light.y, 1e-6));
+    precise float squared = max(to_light.x * to_light.x + to_light.y * to_light.y, 1e-6);
+    precise float inv_len = gi_div(1.0, gi_sqrt(squared));
     return mask * wall_facing(to_light * inv_len, pc.pass.face_exponent);
 }
 

@@ -77,9 +77,9 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
             continue;
         }
         vec2 to_sun = vec2(-sun.direction_base.x, -sun.direction_base.z);
-        precise float len = sqrt(to_sun.x * to_sun.x + to_sun.y * to_sun.y);
+        precise float len = gi_length(to_sun);
         if (len < 1e-4) continue;
-        vec4 weight = mask * wall_facing(to_sun / len, pc.pass.face_exponent);
+        vec4 weight = mask * wall_facing(gi_div(to_sun, len), pc.pass.face_exponent);
         for (int f = 0; f < 4; ++f) {
             if (!(weight[f] > 0.0)) continue;
             vec2 target = face_position(f, cell, p);

@@ -10,6 +10,7 @@
 #define LANTERN_GI_COMMON_GLSL
 
 #include "gi_types.glsl"
+#include "gi_exact.glsl"
 
 layout(constant_id = 0) const uint BLOCK_H = 4;        // texel rows per invocation
 layout(local_size_x_id = 1, local_size_y_id = 2) in;  // workgroup size (blocks)
@@ -49,7 +50,8 @@ int texel_index(int x, int y) { return y * pc.size.z + x; }
 // the window's min corner (the window's textures, the heat and radiosity grids):
 // min + (i + 0.5) / tpu, exactly as the C++ reference.
 vec2 grid_texel_center(int x, int y, float tpu) {
-    return vec2(pc.camera_view.x + (float(x) + 0.5) / tpu, pc.camera_view.y + (float(y) + 0.5) / tpu);
+    precise vec2 c = vec2(pc.camera_view.x + gi_div(float(x) + 0.5, tpu), pc.camera_view.y + gi_div(float(y) + 0.5, tpu));
+    return c;
 }
 // The same for the window's textures (tpu = the resolution).
 vec2 texel_center(int x, int y) { return grid_texel_center(x, y, float(pc.size.w)); }

@@ -18,7 +18,7 @@ const uint GI_NO_RUN = 0xffffffu;
 
 // In [0, 4], monotone in atan2(d.y, d.x) (point_map.cpp pseudo_angle).
 float pseudo_angle(vec2 d) {
-    precise float t = d.x / (abs(d.x) + abs(d.y));
+    precise float t = gi_div(d.x, abs(d.x) + abs(d.y));
     precise float a = d.y >= 0.0 ? 1.0 - t : 3.0 + t;
     return a;
 }
@@ -57,7 +57,7 @@ float point_map_lookup(GpuPointLight l, vec2 target) {
     vec2 pos = l.position_radius.xy;
     float radius = l.position_radius.z, base = l.position_radius.w, margin = l.color.w;
     precise vec2 d = target - pos;
-    precise float dist = sqrt(d.x * d.x + d.y * d.y);
+    precise float dist = gi_length(d);
     int bins = point_map_bins(radius);
     int b = int(pseudo_angle(d) * (float(bins) * 0.25));
     b = max(b >= bins ? b - bins : b, 0);

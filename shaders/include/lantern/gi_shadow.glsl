@@ -9,6 +9,7 @@
 #define LANTERN_GI_SHADOW_GLSL
 
 #include "gi_types.glsl"
+#include "gi_exact.glsl"
 
 const float GI_RAY_BIAS = 1e-4;
 const float GI_DIR_EPS = 1e-6;
@@ -30,17 +31,17 @@ float saturate(float x) { return clamp(x, 0.0, 1.0); }
 float first_boundary(float start, float dir, int stp) {
     if (abs(dir) < GI_DIR_EPS) return GI_BIG;
     precise float cell = floor(start);
-    precise float t = stp > 0 ? (cell + 1.0 - start) / dir : (start - cell) / -dir;
+    precise float t = stp > 0 ? gi_div(cell + 1.0 - start, dir) : gi_div(start - cell, -dir);
     return t;
 }
-float boundary_step(float dir) { return abs(dir) < GI_DIR_EPS ? GI_BIG : abs(1.0 / dir); }
+float boundary_step(float dir) { return abs(dir) < GI_DIR_EPS ? GI_BIG : abs(gi_div(1.0, dir)); }
 int sign_of(float v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
 
 float shadow_dda(vec2 light, vec2 pixel, float radius) {
     precise vec2 ray = pixel - light;
-    precise float ray_length = sqrt(ray.x * ray.x + ray.y * ray.y);
+    precise float ray_length = gi_length(ray);
     if (ray_length < 1e-4) return 1.0;
-    precise vec2 dir = ray / ray_length;
+    precise vec2 dir = gi_div(ray, ray_length);
     precise vec2 start = light + dir * GI_RAY_BIAS;
     precise vec2 end_pos = pixel - dir * GI_RAY_BIAS;
     ray_length = max(ray_length - 2.0 * GI_RAY_BIAS, 0.0);
@@ -78,9 +79,9 @@ float shadow_dda(vec2 light, vec2 pixel, float radius) {
 bool blocks_directional_cell(ivec2 cell, vec2 start, vec3 to_sun, float to_sun_xz_length, float wall_height) {
     if (!is_wall(cell)) return false;
     precise vec2 d = vec2(cell) + 0.5 - start;
-    precise float distance_to_wall = sqrt(d.x * d.x + d.y * d.y);
+    precise float distance_to_wall = gi_length(d);
     if (abs(to_sun.y) > 0.001 && to_sun_xz_length > 1e-4) {
-        precise float vertical_rate = to_sun.y / to_sun_xz_length;
+        precise float vertical_rate = gi_div(to_sun.y, to_sun_xz_length);
         precise float height = distance_to_wall * vertical_rate;
         return height < wall_height;
     }
@@ -89,9 +90,9 @@ bool blocks_directional_cell(ivec2 cell, vec2 start, vec3 to_sun, float to_sun_x
 
 float directional_shadow_dda(vec2 pixel, vec3 light_dir, float max_distance, float wall_height) {
     vec3 to_sun = -light_dir;
-    precise float xz_length = sqrt(to_sun.x * to_sun.x + to_sun.z * to_sun.z);
+    precise float xz_length = gi_length(to_sun.xz);
     if (xz_length < 1e-4) return 1.0;
-    precise vec2 dir = vec2(to_sun.x / xz_length, to_sun.z / xz_length);
+    precise vec2 dir = vec2(gi_div(to_sun.x, xz_length), gi_div(to_sun.z, xz_length));
     precise vec2 start = pixel + dir * GI_RAY_BIAS;
     ivec2 cell = ivec2(floor(start));
     ivec2 stp = ivec2(sign_of(dir.x), sign_of(dir.y));
@@ -160,12 +161,12 @@ float proxy_width(GpuShadowProxy p, vec2 perp) {
 
 float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
     vec2 perp = vec2(-dir_shadow.y, dir_shadow.x);
-    vec2 to_pixel = pixel - p.position_size.xy;
-    float along = dot(to_pixel, dir_shadow);
+    precise vec2 to_pixel = pixel - p.position_size.xy;
+    precise float along = to_pixel.x * dir_shadow.x + to_pixel.y * dir_shadow.y;
     if (along <= 0.0) return 0.0;
     float max_length = p.lengths.x, pen_width = p.lengths.z, pen_length = p.lengths.w;
     if (along > max_length + pen_length) return 0.0;
-    float perp_dist = abs(dot(to_pixel, perp));
+    precise float perp_dist = abs(to_pixel.x * perp.x + to_pixel.y * perp.y);
     float power = p.modes.x;
     int mode = int(p.modes.w + 0.5);
     float edge = penumbra_factor(perp_dist, proxy_width(p, perp), pen_width, power, mode);
@@ -182,23 +183,25 @@ int proxy_next(int i) { return i + 1; }
 
 // The axis of proxy p's shadow from a point light (reference_shadow.cpp point_shadow_axis).
 bool point_shadow_axis(GpuShadowProxy p, vec2 light, vec2 dir, out vec2 dir_shadow) {
-    vec2 to_proxy = p.position_size.xy - light;
-    float proxy_dist = sqrt(to_proxy.x * to_proxy.x + to_proxy.y * to_proxy.y);
+    precise vec2 to_proxy = p.position_size.xy - light;
+    precise float proxy_dist = gi_length(to_proxy);
     dir_shadow = vec2(0.0);
     if (proxy_dist < 1e-4) return false;
-    vec2 dir_flat = to_proxy / proxy_dist;
-    vec2 blended = mix(dir, dir_flat, saturate(p.lengths.y));
-    float blended_len = sqrt(blended.x * blended.x + blended.y * blended.y);
-    dir_shadow = blended_len > 1e-6 ? blended / blended_len : dir_flat;
-    return dot(to_proxy, dir_shadow) > 0.0;
+    precise vec2 dir_flat = gi_div(to_proxy, proxy_dist);
+    float blend = saturate(p.lengths.y);
+    precise vec2 blended = dir * (1.0 - blend) + dir_flat * blend; // glm::mix, operation for operation
+    precise float blended_len = gi_length(blended);
+    dir_shadow = blended_len > 1e-6 ? gi_div(blended, blended_len) : dir_flat;
+    precise float ahead = to_proxy.x * dir_shadow.x + to_proxy.y * dir_shadow.y;
+    return ahead > 0.0;
 }
 
 float point_proxy_shadow(vec2 light, vec2 pixel) {
     if (!HAS_PROXIES) return 1.0;
-    vec2 ray = pixel - light;
-    float ray_len = sqrt(ray.x * ray.x + ray.y * ray.y);
+    precise vec2 ray = pixel - light;
+    precise float ray_len = gi_length(ray);
     if (ray_len < 1e-4) return 1.0;
-    vec2 dir = ray / ray_len;
+    precise vec2 dir = gi_div(ray, ray_len);
     float shadow = 1.0;
     for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
         GpuShadowProxy p = u_proxies.proxies[i];
@@ -212,9 +215,9 @@ float point_proxy_shadow(vec2 light, vec2 pixel) {
 
 float directional_proxy_shadow(vec2 pixel, vec3 light_dir) {
     if (!HAS_PROXIES) return 1.0;
-    float xz_length = sqrt(light_dir.x * light_dir.x + light_dir.z * light_dir.z);
+    precise float xz_length = gi_length(light_dir.xz);
     if (xz_length < 1e-4) return 1.0;
-    vec2 travel = vec2(light_dir.x / xz_length, light_dir.z / xz_length);
+    precise vec2 travel = vec2(gi_div(light_dir.x, xz_length), gi_div(light_dir.z, xz_length));
     float shadow = 1.0;
     for (int i = 0; i < pc.counts.w; ++i) {
         shadow = min(shadow, 1.0 - proxy_occlusion(u_proxies.proxies[i], pixel, travel));
@@ -238,16 +241,16 @@ float unfolded_reach(GpuShadowProxy p, vec2 target, vec2 travel, vec2 dir_shadow
     precise vec2 to_target = target - p.position_size.xy;
     precise float along = to_target.x * dir_shadow.x + to_target.y * dir_shadow.y;
     precise float rate = max(travel.x * dir_shadow.x + travel.y * dir_shadow.y, 1e-3);
-    return (proxy_length_edge(p) - along) / rate;
+    return gi_div(proxy_length_edge(p) - along, rate);
 }
 
 vec3 point_proxy_face_shadow(vec2 light, vec2 target, float height) {
     vec3 s = vec3(1.0, 1.0, 0.0);
     if (!HAS_PROXIES) return s;
     precise vec2 ray = target - light;
-    precise float ray_len = sqrt(ray.x * ray.x + ray.y * ray.y);
+    precise float ray_len = gi_length(ray);
     if (ray_len < 1e-4) return s;
-    precise vec2 dir = ray / ray_len;
+    precise vec2 dir = gi_div(ray, ray_len);
     s.x = point_proxy_shadow(light, target);
     s.y = point_proxy_shadow(light, target + dir * height);
     if (!(s.y > s.x)) return s;
@@ -264,9 +267,9 @@ vec3 point_proxy_face_shadow(vec2 light, vec2 target, float height) {
 
 vec3 directional_proxy_face_shadow(vec2 target, vec3 light_dir, float height) {
     vec3 s = vec3(1.0, 1.0, 0.0);
-    precise float xz_length = sqrt(light_dir.x * light_dir.x + light_dir.z * light_dir.z);
+    precise float xz_length = gi_length(light_dir.xz);
     if (!HAS_PROXIES || xz_length < 1e-4) return s;
-    precise vec2 travel = vec2(light_dir.x / xz_length, light_dir.z / xz_length);
+    precise vec2 travel = vec2(gi_div(light_dir.x, xz_length), gi_div(light_dir.z, xz_length));
     s.x = directional_proxy_shadow(target, light_dir);
     s.y = directional_proxy_shadow(target + travel * height, light_dir);
     if (!(s.y > s.x)) return s;

@@ -17,8 +17,8 @@ void sun_span_in_tile(vec2 start, vec2 dir, ivec2 cell, out float t_in, out floa
     for (int a = 0; a < 2; ++a) {
         float lo = float(cell[a]), hi = lo + 1.0;
         if (abs(dir[a]) < GI_DIR_EPS) continue; // inside the slab: the caller knows the line meets the tile
-        precise float t1 = (lo - start[a]) / dir[a];
-        precise float t2 = (hi - start[a]) / dir[a];
+        precise float t1 = gi_div(lo - start[a], dir[a]);
+        precise float t2 = gi_div(hi - start[a], dir[a]);
         t_in = max(t_in, min(t1, t2));
         t_out = min(t_out, max(t1, t2));
     }
@@ -28,8 +28,8 @@ float sun_map_visibility(int sun_index, GpuDirectionalLight sun, vec2 pixel, flo
     vec4 h0 = texelFetch(u_sun_headers, 2 * sun_index), h1 = texelFetch(u_sun_headers, 2 * sun_index + 1);
     if (h1.y > 0.5) return 1.0;
     vec3 to_sun = -sun.direction_base.xyz;
-    precise float xz_length = sqrt(to_sun.x * to_sun.x + to_sun.z * to_sun.z);
-    precise vec2 dir = vec2(to_sun.x / xz_length, to_sun.z / xz_length);
+    precise float xz_length = gi_length(to_sun.xz);
+    precise vec2 dir = vec2(gi_div(to_sun.x, xz_length), gi_div(to_sun.z, xz_length));
     vec2 perp = vec2(-dir.y, dir.x);
     precise vec2 start = pixel + dir * GI_RAY_BIAS;
     precise float u = start.x * dir.x + start.y * dir.y;

@@ -6,7 +6,10 @@
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 #include "vulkan/renderer_internal.hpp"
 
+#include <glm/vec4.hpp>
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace lantern::gi::vk {
@@ -20,6 +23,43 @@ VkFormat view_format(TexFormat f, bool rgba8) {
     case TexFormat::rgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
     }
     return VK_FORMAT_UNDEFINED;
+}
+
+// Whether the driver's fma rounds once (gi_probe_fma.comp against the host's std::fma), so
+// that gi_exact.glsl's residuals may use it (EXACT_ROUNDING 2) rather than Dekker's product.
+// Vulkan lets fma round twice, as lavapipe's does. Cases whose product needs 47 bits: an
+// unfused fma gives 0 for each.
+bool driver_fuses_fma(gpu::Device& device) {
+    std::vector<glm::vec4> entries;
+    for (int k = 1; k <= 64; ++k) {
+        const float a = 1.0f + std::ldexp(float(k), -23), b = 1.0f - std::ldexp(float(2 * k + 1), -23);
+        entries.emplace_back(a, b, -(a * b), 0.0f);
+    }
+    gpu::ComputePipelineDesc desc;
+    desc.spirv = lantern_gi_shaders_spirv("gi_probe_fma.comp");
+    desc.bindings = {gpu::BindingType::storage_buffer};
+    desc.name = "gi_probe_fma";
+    gpu::ComputePipeline pipeline = device.create_compute_pipeline(desc);
+    gpu::BufferDesc bd;
+    bd.size = entries.size() * sizeof(glm::vec4);
+    bd.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    bd.name = "gi fma probe";
+    gpu::Buffer buffer = device.create_buffer(bd);
+    device.upload(buffer, std::as_bytes(std::span<const glm::vec4>(entries)));
+    gpu::CommandList cmd = device.begin("gi fma probe");
+    cmd.bind(pipeline);
+    cmd.push_descriptors(gpu::DescriptorWrites().storage_buffer(0, buffer));
+    cmd.dispatch(1);
+    device.wait(device.submit(std::move(cmd)));
+    const std::vector<std::byte> bytes = device.read_back(buffer);
+    if (bytes.size() < entries.size() * sizeof(glm::vec4)) return false;
+    std::vector<glm::vec4> got(entries.size());
+    std::memcpy(got.data(), bytes.data(), got.size() * sizeof(glm::vec4));
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const glm::vec4 e = entries[i];
+        if (got[i].w != std::fma(e.x, e.y, e.z)) return false;
+    }
+    return true;
 }
 
 } // namespace
@@ -54,6 +94,9 @@ Result<std::unique_ptr<Renderer>> Renderer::create(gpu::Device& device, const Re
     r->block_h_ = options.block_h ? options.block_h : (cpu ? 4u : 1u);
     r->group_x_ = options.group_x ? options.group_x : (cpu ? 8u : 16u);
     r->group_y_ = options.group_y ? options.group_y : (cpu ? 8u : 8u);
+    // gi_exact.glsl: CPU drivers divide and take roots with the processor's IEEE
+    // instructions; GPUs' may err by ULPs, corrected with fma residuals where it is fused.
+    r->pipelines_->exact_rounding = cpu ? 0u : (driver_fuses_fma(device) ? 2u : 1u);
     if (device.capabilities().timestamps) {
         for (int i = 0; i < num_query_sets; ++i) {
             auto q = device.create_timestamp_queries(pass_count + 8, "gi passes");

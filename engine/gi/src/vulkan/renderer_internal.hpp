@@ -63,6 +63,7 @@ struct Renderer::Pipelines {
     using Spec = ResolvedSpec;
 
     gpu::Device* device = nullptr;
+    std::uint32_t exact_rounding = 1; // EXACT_ROUNDING in gi_exact.glsl (Renderer::create)
     std::map<Key, gpu::ComputePipeline> cache;
     std::map<Key, std::future<gpu::ComputePipeline>> pending;
     // One background thread creates the prefetched pipelines in turn: a thread per pipeline
@@ -107,7 +108,8 @@ struct Renderer::Pipelines {
                                {spec_group_y, s.gy},            {spec_has_proxies, s.proxies ? 1u : 0u},
                                {spec_has_walls, s.walls ? 1u : 0u}, {spec_per_channel, s.per_channel ? 1u : 0u},
                                {spec_segment_check, s.segment_check ? 1u : 0u}, {spec_features, s.features},
-                               {spec_faces, s.faces}};
+                               {spec_faces, s.faces},
+                               {spec_exact_rounding, exact_rounding}};
         if (std::string(shader) == "gi_direct.comp" || std::string(shader) == "gi_light_bins.comp")
             desc.specialization.push_back({spec_max_lights, max_gpu_lights});
         desc.push_constant_size = sizeof(GiPassParams);

@@ -69,6 +69,7 @@ enum SpecId : unsigned {
     spec_segment_check = 7,
     spec_features = 8, // a pass's own compile-time switches (FEATURES in gi_common.glsl)
     spec_faces = 9,    // computed_faces (FACES)
+    spec_exact_rounding = 10, // gi_exact.glsl EXACT_ROUNDING: 0 the driver's own, 1 Dekker, 2 fused fma
 };
 
 inline constexpr int max_gpu_lights = 2048;   // point lights + emissives: one 64 KiB UBO
