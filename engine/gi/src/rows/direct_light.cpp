@@ -110,6 +110,7 @@ struct DirectionalParams {
 constexpr std::uint32_t feature_upper = 1;   // unfolded proxy shadows (unfolds_proxy_shadows)
 constexpr std::uint32_t feature_sun_map = 2; // gi.sun_shadow_method shadow_map
 constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
+constexpr std::uint32_t feature_linear_falloff = 8; // gi.light_softness 1: no pow (gi_direct.comp)
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
@@ -279,7 +280,9 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
     r.cmd.barrier_compute_to_compute();
 
-    const std::uint32_t features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (point_map ? feature_point_map : 0u);
+    const std::uint32_t features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
+                                   (point_map ? feature_point_map : 0u) |
+                                   (in.settings.light_softness == 1.0f ? feature_linear_falloff : 0u);
     r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
                                                           .walls = r.plan.has_walls_in_window,
                                                           .features = features,
