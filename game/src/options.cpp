@@ -105,8 +105,8 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
     p.flag("--bench", "print per-system and per-pass percentiles (headless benchmark)", o.bench);
     p.text("--status-file", "PATH",
            "after each frame, write the frame number, player position, mouse,\n"
-           "buttons, saves, lights and --watch reloads as one JSON line (for\n"
-           "scripts and tests)",
+           "buttons, saves, lights, --watch reloads and waits while minimised\n"
+           "as one JSON line (for scripts and tests)",
            o.status_file);
     p.flag("--watch",
            "reload the --scene file when it changes (a malformed edit is\n"

@@ -398,6 +398,51 @@ TEST(GameWindow, WatchedSceneReloadsAndSurvivesCorruptingEdits) {
     ASSERT_TRUE(until("the second reload", [](const WatchStatus& st) { return st.reloads == 2 && st.lights == 1; }));
 }
 
+// Issue 19, bug 4: minimised or unmapped, the game stepped frames nobody saw (30-88 % of a
+// core). Unmapped (xdotool windowunmap: under Xvfb no window manager iconifies, and both
+// take one path), it steps no frame and sleeps on events, counting its waits in the status
+// file; mapped again, frames go on. Every step waits on the status file, never on time.
+TEST(GameWindow, UnmappedItStepsNoFrameAndGoesOnWhenMappedAgain) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string scene = dir.file("two_rooms.json"), status = dir.file("status.json");
+    ASSERT_TRUE(write_file_atomic(scene, std::string(two_rooms)));
+    GameProcess game({"--window", "--scene", scene, "--size", "480x270", "--no-hud", "--no-bake", "--status-file",
+                      status},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto window = find_window(game);
+    ASSERT_TRUE(window) << "no game window; log:\n" << game.log();
+    struct HiddenStatus {
+        unsigned long long frame = 0, waits = 0;
+    };
+    const auto until = [&](const char* what, const std::function<bool(const HiddenStatus&)>& done) {
+        const auto end = std::chrono::steady_clock::now() + 180s;
+        while (std::chrono::steady_clock::now() < end) {
+            const std::string text = test::read_file(status);
+            const std::size_t at = text.find("\"hidden_waits\": ");
+            HiddenStatus st;
+            if (std::sscanf(text.c_str(), "{\"frame\": %llu", &st.frame) == 1 && at != std::string::npos &&
+                std::sscanf(text.c_str() + at, "\"hidden_waits\": %llu", &st.waits) == 1 && done(st))
+                return std::optional<HiddenStatus>(st);
+            if (game.wait_exit(10ms)) break;
+        }
+        ADD_FAILURE() << "the game never reached: " << what << "; log:\n" << game.log();
+        return std::optional<HiddenStatus>();
+    };
+    ASSERT_TRUE(until("its first frame", [](const HiddenStatus& st) { return st.frame >= 1 && st.waits == 0; }));
+    const std::string id = std::to_string(*window);
+    ASSERT_TRUE(test::run_tool({"xdotool", "windowunmap", id}));
+    const auto hidden = until("a wait while unmapped", [](const HiddenStatus& st) { return st.waits >= 1; });
+    ASSERT_TRUE(hidden);
+    const auto still = until("five more waits", [&](const HiddenStatus& st) { return st.waits >= hidden->waits + 5; });
+    ASSERT_TRUE(still);
+    EXPECT_EQ(still->frame, hidden->frame) << "frames were stepped while the window was unmapped";
+    ASSERT_TRUE(test::run_tool({"xdotool", "windowmap", id}));
+    const auto back = until("frames again", [&](const HiddenStatus& st) { return st.frame >= hidden->frame + 5; });
+    ASSERT_TRUE(back);
+}
+
 TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
     test::TempDir dir;
     const std::string out = dir.file("demo");

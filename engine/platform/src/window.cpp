@@ -191,6 +191,9 @@ Extent Window::window_size() const {
 bool Window::minimised() const {
     return state_->minimised;
 }
+bool Window::visible() const {
+    return glfwGetWindowAttrib(state_->window, GLFW_VISIBLE) == GLFW_TRUE;
+}
 bool Window::focused() const {
     return state_->focused;
 }

@@ -150,6 +150,7 @@ class Game {
     int selected_item_ = 1; // torch
     int headless_frame_ = 0;
     std::uint64_t window_frames_ = 0; // windowed frames stepped (--status-file)
+    std::uint64_t hidden_waits_ = 0;  // waits for events while minimised or unmapped (--status-file)
     int saves_done_ = 0;              // successful saves (--status-file)
     bool save_requested_ = false;     // F5 or the HUD: saved between frames, outside the systems
     bool status_failed_ = false;      // the status file could not be written (said once)

@@ -46,7 +46,8 @@ void Game::write_status(Session& s) {
     int lights = 0; // the world's lights besides the player's own (what a reload changed)
     s.world.view<PointLight>().each([&](ecs::Entity e, const PointLight&) { lights += s.world.try_get<Player>(e) ? 0 : 1; });
     s.world.view<EmissiveLight>().each([&](const EmissiveLight&) { ++lights; });
-    w.field("lights", lights).field("reloads", reloads_).field("reload_errors", reload_errors_).end();
+    w.field("lights", lights).field("reloads", reloads_).field("reload_errors", reload_errors_);
+    w.field("hidden_waits", hidden_waits_).end();
     if (auto ok = write_file_atomic(options_.status_file, w.take()); !ok && !status_failed_) {
         status_failed_ = true;
         LANTERN_LOG_ERROR("status file: %s", ok.error().message.c_str());

@@ -137,6 +137,9 @@ class Window {
     Extent framebuffer_size() const; // pixels; {0, 0} while minimised
     Extent window_size() const;      // screen coordinates
     bool minimised() const;
+    // False while the window is unmapped: hidden, or unmapped by the window system (another
+    // workspace, some window managers' minimise). Asks the window system each call.
+    bool visible() const;
     bool focused() const;
     void set_title(const std::string& title);
     // Asks for a new size in screen coordinates; the window system answers asynchronously
