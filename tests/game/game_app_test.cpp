@@ -407,8 +407,8 @@ TEST(GameWindow, UnmappedItStepsNoFrameAndGoesOnWhenMappedAgain) {
     test::TempDir dir;
     const std::string scene = dir.file("two_rooms.json"), status = dir.file("status.json");
     ASSERT_TRUE(write_file_atomic(scene, std::string(two_rooms)));
-    GameProcess game({"--window", "--scene", scene, "--size", "480x270", "--no-hud", "--no-bake", "--status-file",
-                      status},
+    // With the timer HUD (the default): every other window test hides it.
+    GameProcess game({"--window", "--scene", scene, "--size", "960x540", "--status-file", status},
                      dir.file("game.log"));
     ASSERT_TRUE(game.started());
     const auto window = find_window(game);

@@ -220,7 +220,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
     schedule.add("render", [this, &s](ecs::SystemContext&) { render_system(s); })
         .main_thread()
         .reads_resource<DrawListResource, systems::FramePasses, systems::GiView, systems::GatheredLights,
-                        systems::GatheredProxies, GameClock>()
+                        systems::GatheredProxies, GameClock, systems::Streaming, BakeStatus>() // the HUD shows them
         .writes_resource<systems::GiConfig, DayCycle>() // the HUD edits them live
         .after("day_cycle"); // both write DayCycle: the HUD's time of day takes effect next frame
 }

@@ -78,11 +78,14 @@ HudActions Hud::draw(const HudInputs& in) {
     std::snprintf(overlay, sizeof(overlay), "%.1f ms (%.0f fps)", last, last > 0.0f ? 1000.0f / last : 0.0f);
     float top = 50.0f;
     for (float v : graph_) top = std::max(top, v * 1.1f);
-    ImGui::PlotLines("##frames", graph_.data(), int(graph_.size()), 0, overlay, 0.0f, top, ImVec2(-1, 70));
-    ImGui::Text("frame ms  p50 %.1f  p95 %.1f  p99 %.1f  max %.1f  (%u frames)", frame_ms_.p50, frame_ms_.p95,
-                frame_ms_.p99, frame_ms_.max, frame_ms_.count);
-    ImGui::SameLine();
+    // An explicit width: ImGui 1.86 (Debian 12's) drew a 1-pixel graph for the "to the right
+    // edge" width -1, and the trace button fell outside the window after the long line.
+    ImGui::PlotLines("##frames", graph_.data(), int(graph_.size()), 0, overlay, 0.0f, top,
+                     ImVec2(std::max(ImGui::GetContentRegionAvail().x, 64.0f), 70));
     if (ImGui::SmallButton("trace")) actions.export_trace = true;
+    ImGui::SameLine();
+    ImGui::TextWrapped("frame ms  p50 %.1f  p95 %.1f  p99 %.1f  max %.1f  (%u frames)", frame_ms_.p50, frame_ms_.p95,
+                       frame_ms_.p99, frame_ms_.max, frame_ms_.count);
 
     if (ImGui::CollapsingHeader("Systems (this frame, by worker lane)", ImGuiTreeNodeFlags_DefaultOpen)) {
         // The last ended frame's job spans, with the lane each ran on.
@@ -136,21 +139,21 @@ HudActions Hud::draw(const HudInputs& in) {
     }
     if (ImGui::CollapsingHeader("Lights and proxies", ImGuiTreeNodeFlags_DefaultOpen)) {
         if (in.lights)
-            ImGui::Text("point lights %zu kept of %u reaching (cap %d)   emissives %zu   suns %zu", in.lights->points.size(),
+            ImGui::TextWrapped("point lights %zu kept of %u reaching (cap %d)   emissives %zu   suns %zu", in.lights->points.size(),
                         in.lights->point_candidates, in.config ? in.config->settings.max_lights : 0,
                         in.lights->emissives.size(), in.lights->suns.size());
         if (in.proxies)
-            ImGui::Text("shadow proxies %zu (cap %d)", in.proxies->proxies.size(),
+            ImGui::TextWrapped("shadow proxies %zu (cap %d)", in.proxies->proxies.size(),
                         in.config ? in.config->settings.max_shadow_proxies : 0);
-        ImGui::Text("entities %u   chunks resident %u, loading %u   edited chunks kept %llu", in.entities,
+        ImGui::TextWrapped("entities %u   chunks resident %u, loading %u   edited chunks kept %llu", in.entities,
                     in.streaming.resident_chunks, in.streaming.loading_chunks,
                     static_cast<unsigned long long>(in.streaming.edited_chunks_stored));
         if (in.bake)
-            ImGui::Text("baked light: %d chunks, %d baking   %llu baked, %llu from the cache (last %.0f ms)", in.bake->chunks,
+            ImGui::TextWrapped("baked light: %d chunks, %d baking   %llu baked, %llu from the cache (last %.0f ms)", in.bake->chunks,
                         in.bake->pending, static_cast<unsigned long long>(in.bake->baked),
                         static_cast<unsigned long long>(in.bake->reused), in.bake->last_chunk_ms);
         if (in.report && in.report->window)
-            ImGui::Text("GI window %dx%d texels at %d/tile", in.report->window->width, in.report->window->height,
+            ImGui::TextWrapped("GI window %dx%d texels at %d/tile", in.report->window->width, in.report->window->height,
                         in.report->window->resolution);
     }
     if (in.config && ImGui::CollapsingHeader("GI settings (live)", ImGuiTreeNodeFlags_DefaultOpen)) {
