@@ -32,6 +32,33 @@ void stat_row(const profile::ScopeStats& s) {
     ImGui::Text("%.2f", s.max_ms);
 }
 
+// Rows of checkboxes and buttons: the next item goes on the same line only while it fits the
+// HUD's width, so a narrow HUD wraps the row instead of hiding its end past the right edge.
+void same_line_if_fits(float next_width) {
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + next_width <= right) ImGui::SameLine();
+}
+float checkbox_width(const char* label) {
+    return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x + ImGui::CalcTextSize(label, nullptr, true).x;
+}
+float button_width(const char* label) {
+    return ImGui::CalcTextSize(label, nullptr, true).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+}
+bool next_checkbox(const char* label, bool* value) {
+    same_line_if_fits(checkbox_width(label));
+    return ImGui::Checkbox(label, value);
+}
+bool next_button(const char* label) {
+    same_line_if_fits(button_width(label));
+    return ImGui::Button(label);
+}
+// Coloured text that wraps at the HUD's edge (ImGui::TextColored does not wrap).
+void text_colored_wrapped(const ImVec4& colour, const char* text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, colour);
+    ImGui::TextWrapped("%s", text);
+    ImGui::PopStyleColor();
+}
+
 bool begin_stat_table(const char* id, const char* first) {
     if (!ImGui::BeginTable(id, 6, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingFixedFit))
         return false;
@@ -132,8 +159,10 @@ HudActions Hud::draw(const HudInputs& in) {
         for (int p = 0; p < gi::registered_pass_count(); ++p) {
             const bool ran = in.report->ran.has(gi::Pass(p));
             const std::string& why = in.report->reason[std::size_t(p)];
-            ImGui::TextColored(ran ? ImVec4(0.5f, 1.0f, 0.5f, 1.0f) : ImVec4(0.7f, 0.7f, 0.7f, 1.0f), "%-14s %s",
-                               gi::pass_name(gi::Pass(p)), ran ? "ran" : (why.empty() ? "left out" : why.c_str()));
+            char line[256];
+            std::snprintf(line, sizeof(line), "%-14s %s", gi::pass_name(gi::Pass(p)),
+                          ran ? "ran" : (why.empty() ? "left out" : why.c_str()));
+            text_colored_wrapped(ran ? ImVec4(0.5f, 1.0f, 0.5f, 1.0f) : ImVec4(0.7f, 0.7f, 0.7f, 1.0f), line);
         }
         if (!in.report->window) ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "no GI window this frame");
     }
@@ -176,7 +205,6 @@ HudActions Hud::draw(const HudInputs& in) {
             scene::RadiositySettings& r = g.radiosity;
             scale_combo("radiosity scale", r.scale);
             ImGui::SliderInt("rays", &r.rays, 1, 64);
-            ImGui::SameLine();
             ImGui::SliderInt("steps", &r.steps, 1, 128);
             ImGui::SliderFloat("bounce feedback", &r.feedback, 0.0f, 0.95f);
             ImGui::SliderFloat("epsilon", &r.epsilon, 0.05f, 4.0f);
@@ -188,12 +216,10 @@ HudActions Hud::draw(const HudInputs& in) {
             scene::GatherSettings& r = g.gather;
             scale_combo("gather scale", r.scale);
             ImGui::SliderInt("rays", &r.rays, 1, 256);
-            ImGui::SameLine();
             ImGui::SliderInt("face rays", &r.face_rays, 1, 256);
             ImGui::SliderInt("bounces a frame", &r.bounces, 1, 16);
             ImGui::SliderInt("margin (tiles)", &r.margin, 0, 16);
             ImGui::SliderFloat("wall albedo", &g.wall_albedo, 0.0f, 1.0f);
-            ImGui::SameLine();
             ImGui::SliderFloat("albedo boost", &g.albedo_boost, 1.0f, 10.0f);
         }
         ImGui::SliderFloat("baked light", &g.baked_intensity, 0.0f, 4.0f); // seed 002's intensity
@@ -202,44 +228,38 @@ HudActions Hud::draw(const HudInputs& in) {
             // gather gi.gather.bounces; held, one frame's worth per click.
             systems::ConvergeControl& c = in.config->converge;
             ImGui::Checkbox("hold bounces", &c.hold);
-            ImGui::SameLine();
-            if (ImGui::Button("next bounce")) ++c.steps;
-            ImGui::SameLine();
-            if (ImGui::Button("restart")) ++c.restarts;
-            ImGui::SameLine();
+            if (next_button("next bounce")) ++c.steps;
+            if (next_button("restart")) ++c.restarts;
             const int per_frame = g.method == scene::GiMethod::gather ? g.gather.bounces : 1;
-            ImGui::Text("bounce %d", (in.converge_history + 1) * per_frame);
+            char bounce[32];
+            std::snprintf(bounce, sizeof(bounce), "bounce %d", (in.converge_history + 1) * per_frame);
+            same_line_if_fits(ImGui::CalcTextSize(bounce).x);
+            ImGui::TextUnformatted(bounce);
         } else {
             ImGui::SliderInt("heat rounds", &g.heat_rounds, 0, 64);
             scale_combo("heat scale", g.heat_scale);
         }
         ImGui::Checkbox("blur", &g.blur);
-        ImGui::SameLine();
-        ImGui::Checkbox("AO", &g.ao.enabled);
-        ImGui::SameLine();
-        ImGui::Checkbox("AO on walls", &g.ao.walls);
-        ImGui::SameLine();
-        ImGui::Checkbox("per channel", &g.per_channel);
+        next_checkbox("AO", &g.ao.enabled);
+        next_checkbox("AO on walls", &g.ao.walls);
+        next_checkbox("per channel", &g.per_channel);
         // gi.wall_lighting: off leaves out every wall-face pass and texture (walls go dark).
         ImGui::Checkbox("wall lighting", &g.wall_lighting);
-        ImGui::SameLine();
         // gi.window_snap: the window follows the camera by texels instead of whole tiles.
         bool texel_snap = g.window_snap == scene::WindowSnap::texel;
-        if (ImGui::Checkbox("window by texels", &texel_snap))
+        if (next_checkbox("window by texels", &texel_snap))
             g.window_snap = texel_snap ? scene::WindowSnap::texel : scene::WindowSnap::tile;
         // gi.proxy_wall_shadows: proxy shadows fold up the walls as far as they reach.
         bool unfold = g.proxy_wall_shadows == scene::ProxyWallShadows::unfold;
         if (ImGui::Checkbox("unfold proxy shadows", &unfold))
             g.proxy_wall_shadows = unfold ? scene::ProxyWallShadows::unfold : scene::ProxyWallShadows::full;
-        ImGui::SameLine();
         // gi.shadow_method: point lights' shadows by their angular maps (same image, other cost).
         bool point_maps = g.shadow_method == scene::ShadowMethod::shadow_map;
-        if (ImGui::Checkbox("light shadow maps", &point_maps))
+        if (next_checkbox("light shadow maps", &point_maps))
             g.shadow_method = point_maps ? scene::ShadowMethod::shadow_map : scene::ShadowMethod::dda;
-        ImGui::SameLine();
         // gi.sun_shadow_method: the sun's shadows by the 1D shadow map (same image, other cost).
         bool sun_map = g.sun_shadow_method == scene::SunShadowMethod::shadow_map;
-        if (ImGui::Checkbox("sun shadow map", &sun_map))
+        if (next_checkbox("sun shadow map", &sun_map))
             g.sun_shadow_method = sun_map ? scene::SunShadowMethod::shadow_map : scene::SunShadowMethod::dda;
         int tone = int(g.tone_map);
         if (ImGui::Combo("tone map", &tone, tone_maps, 4)) g.tone_map = scene::ToneMap(tone);
@@ -255,7 +275,7 @@ HudActions Hud::draw(const HudInputs& in) {
         int view = int(*in.gi_view);
         if (ImGui::Combo("view", &view, names.data(), int(names.size()))) *in.gi_view = GiDebugView(view);
         if (*in.gi_view != GiDebugView::lit && in.gi_view_drawn != *in.gi_view)
-            ImGui::TextColored(ImVec4(1, 0.7f, 0.4f, 1), "not in this frame (gi.method = radiosity has it)");
+            text_colored_wrapped(ImVec4(1, 0.7f, 0.4f, 1), "not in this frame (gi.method = radiosity has it)");
     }
     if (in.schedule && ImGui::CollapsingHeader("Schedule (systems, access, order)")) {
         // The frame's job graph as declared: what each system waits for and why (the types
@@ -287,10 +307,11 @@ HudActions Hud::draw(const HudInputs& in) {
             ImGui::EndTable();
         }
         if (sched.ambiguities.empty()) ImGui::TextUnformatted("no ambiguities");
-        for (const ecs::ScheduleInfo::Ambiguity& a : sched.ambiguities)
-            ImGui::TextColored(ImVec4(1, 0.7f, 0.4f, 1), "%s / %s both write %s (add order only)",
-                               sched.systems[a.first].name.c_str(), sched.systems[a.second].name.c_str(),
-                               a.types.front().type.c_str());
+        for (const ecs::ScheduleInfo::Ambiguity& a : sched.ambiguities) {
+            const std::string line = sched.systems[a.first].name + " / " + sched.systems[a.second].name + " both write " +
+                                     a.types.front().type + " (add order only)";
+            text_colored_wrapped(ImVec4(1, 0.7f, 0.4f, 1), line.c_str());
+        }
     }
     if (in.art && ImGui::CollapsingHeader("Art")) {
         ImGui::SliderInt("posterize", &in.art->posterize, 0, 32);
@@ -302,14 +323,12 @@ HudActions Hud::draw(const HudInputs& in) {
         ImGui::Combo("palette", &in.art->palette, names.data(), int(names.size()));
     }
     if (in.day && ImGui::CollapsingHeader("World", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::Text("placing: %s   (1 wall, 2 torch, 3 crystal, 4 lamp post, 5 tree)", in.item);
+        ImGui::TextWrapped("placing: %s   (1 wall, 2 torch, 3 crystal, 4 lamp post, 5 tree)", in.item);
         ImGui::SliderFloat("time of day", &in.day->time_of_day, 0.0f, 0.999f);
         ImGui::Checkbox("day cycle (N)", &in.day->running);
         if (ImGui::Button("save (F5)")) actions.save = true;
-        ImGui::SameLine();
-        if (ImGui::Button("load (F9)")) actions.load = true;
-        ImGui::SameLine();
-        if (ImGui::Button(in.vsync ? "vsync off" : "vsync on")) actions.toggle_vsync = true;
+        if (next_button("load (F9)")) actions.load = true;
+        if (next_button(in.vsync ? "vsync off" : "vsync on")) actions.toggle_vsync = true;
         if (!in.message.empty()) ImGui::TextWrapped("%s", in.message.c_str());
     }
     ImGui::End();

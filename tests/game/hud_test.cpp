@@ -1,0 +1,192 @@
+// The timer HUD's layout (issue 19, bug 1): Hud::draw built into a real ImGui context with
+// its default font, no window and no GPU, and its draw data read back. Debian's ImGui 1.86
+// drew the frame-time graph 1 px wide for PlotLines' "to the right edge" width, and long
+// lines pushed the trace button and text past the HUD's right edge; both are checked from
+// the vertices ImGui emits and the window's measured content width, for every gi.method's
+// settings panel.
+#include "app/hud.hpp"
+
+#include "lantern/gi/pass_table.hpp"
+#include "lantern/gi/passes.hpp"
+#include "lantern/profile/profiler.hpp"
+
+#include <gtest/gtest.h>
+#include <imgui.h>
+#include <imgui_internal.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <string>
+
+namespace lantern::game {
+namespace {
+
+constexpr ImU32 graph_colour = IM_COL32(255, 0, 255, 255); // a colour nothing else in the HUD uses
+
+struct ImGuiFixture : ::testing::Test {
+    void SetUp() override {
+        ImGui::CreateContext();
+        ImGuiIO& io = ImGui::GetIO();
+        io.IniFilename = nullptr;
+        io.DisplaySize = ImVec2(1280, 720);
+        io.DeltaTime = 1.0f / 60.0f;
+        unsigned char* pixels = nullptr;
+        int w = 0, h = 0;
+        io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h); // builds the default font
+        ImGui::StyleColorsDark();
+        ImGui::GetStyle().Colors[ImGuiCol_PlotLines] = ImGui::ColorConvertU32ToFloat4(graph_colour);
+        ImGui::GetStyle().Colors[ImGuiCol_PlotLinesHovered] = ImGui::ColorConvertU32ToFloat4(graph_colour);
+
+        // A frame history with a varied frame time, as the game's (the graph's line then
+        // spans its whole width).
+        profile::reset();
+        profile::set_enabled(true);
+        for (int i = 0; i < 300; ++i) {
+            profile::begin_frame();
+            profile::record("render", 0, 1'000'000 + (i % 7) * 300'000);
+            for (const char* job : {"stream_chunks", "gather_lights", "gather_proxies", "gi_cache_keys", "gi_submit"})
+                profile::record(job, 0, 200'000, profile::EventKind::job);
+            profile::end_frame();
+        }
+    }
+    void TearDown() override {
+        ImGui::DestroyContext();
+        profile::reset();
+    }
+
+    // Realistic inputs with the HUD's longest lines: every section a player sees open.
+    HudActions draw_frame(Hud& hud, scene::GiMethod method) {
+        config.settings.method = method;
+        config.settings.max_lights = 256;
+        config.settings.max_shadow_proxies = 256;
+        lights.points.resize(64);
+        lights.point_candidates = 1024;
+        lights.emissives.resize(4096);
+        lights.suns.resize(1);
+        proxies.proxies.resize(256);
+        report.frame = 12345;
+        gi::FrameInputs fi;
+        fi.settings = config.settings;
+        const gi::PassPlan plan = gi::plan_passes(fi, false);
+        report.ran = plan.run;
+        for (int p = 0; p < gi::registered_pass_count(); ++p)
+            report.reason[std::size_t(p)] = plan.reason[p].empty() ? "" : "not needed: " + std::string(plan.reason[p]);
+        report.window = gi::GiWindow{};
+        report.window->width = 1024;
+        report.window->height = 1024;
+        report.window->resolution = 16;
+
+        schedule.systems = {{"stream_chunks", {}, {{"Streaming", true}}, false, {}},
+                            {"gather_lights", {{"Light"}, {"Transform"}}, {{"GatheredLights", true}}, false, {}},
+                            {"gi_submit", {{"GatheredLights", true}, {"GatheredProxies", true}},
+                             {{"FrameReport", true}, {"GiCacheKeys", true}, {"GiHistory", true}, {"BakeStatus", true}},
+                             true, {}}};
+        schedule.edges = {{0, 1, false, {{"Streaming", true}}, false}, {1, 2, false, {{"GatheredLights", true}}, false}};
+        schedule.ambiguities = {{0, 2, {{"GiCacheKeysAndSomeLongerResourceName", true}}}};
+
+        HudInputs in;
+        in.schedule = &schedule;
+        in.report = &report;
+        in.config = &config;
+        in.art = &art;
+        in.gi_view = &view;
+        in.day = &day;
+        in.lights = &lights;
+        in.proxies = &proxies;
+        in.streaming.resident_chunks = 1024;
+        in.streaming.loading_chunks = 64;
+        in.streaming.edited_chunks_stored = 100000;
+        in.entities = 1000000;
+        in.world = "world: den312d.map (65x65 tiles), seed 1";
+        in.message = "saved to /home/player/.local/share/lantern/saves/slot-3.save (12 chunks, 48 KiB)";
+        in.item = "lamp post";
+        in.device = "llvmpipe (LLVM 15.0.6, 256 bits)";
+        ImGui::NewFrame();
+        const HudActions actions = hud.draw(in);
+        ImGui::Render();
+        return actions;
+    }
+
+    systems::GiConfig config;
+    ArtSettings art;
+    GiDebugView view = GiDebugView::lit;
+    DayCycle day;
+    systems::GatheredLights lights;
+    systems::GatheredProxies proxies;
+    systems::FrameReport report;
+    ecs::ScheduleInfo schedule;
+};
+
+// Opens every collapsing header of the HUD (the closed ones too) from the next frame on.
+void open_every_section(ImGuiWindow* w) {
+    for (const char* header : {"Systems (this frame, by worker lane)", "CPU percentiles (ms)", "GPU passes (timestamps, ms)",
+                               "GI passes this frame", "Lights and proxies", "GI settings (live)", "GI views",
+                               "Schedule (systems, access, order)", "Art", "World"})
+        w->StateStorage.SetInt(w->GetID(header), 1);
+}
+
+// The HUD's own window (the only one Hud::draw opens, besides ImGui's debug window).
+ImGuiWindow* hud_window() {
+    for (ImGuiWindow* w : ImGui::GetCurrentContext()->Windows)
+        if (std::string(w->Name).rfind("Lantern timer HUD", 0) == 0) return w;
+    return nullptr;
+}
+
+struct Extent {
+    float min_x = FLT_MAX, max_x = -FLT_MAX;
+    int vertices = 0;
+};
+
+Extent graph_extent() {
+    Extent e;
+    const ImDrawData* data = ImGui::GetDrawData();
+    for (int l = 0; l < data->CmdListsCount; ++l)
+        for (const ImDrawVert& v : data->CmdLists[l]->VtxBuffer)
+            if ((v.col & ~IM_COL32_A_MASK) == (graph_colour & ~IM_COL32_A_MASK) && (v.col & IM_COL32_A_MASK)) {
+                e.min_x = std::min(e.min_x, v.pos.x);
+                e.max_x = std::max(e.max_x, v.pos.x);
+                ++e.vertices;
+            }
+    return e;
+}
+
+TEST_F(ImGuiFixture, FrameTimeGraphSpansTheHudAndNothingOverflowsItsRightEdge) {
+    for (const scene::GiMethod method : {scene::GiMethod::heat, scene::GiMethod::radiosity, scene::GiMethod::gather}) {
+        SCOPED_TRACE(std::string("gi.method ") + gi::method(method).name.data());
+        Hud hud;
+        // The content size ImGui measures is the previous frame's: draw a few.
+        draw_frame(hud, method);
+        ImGuiWindow* w = hud_window();
+        ASSERT_NE(w, nullptr);
+        open_every_section(w);
+        for (int frame = 0; frame < 3; ++frame) draw_frame(hud, method);
+        ASSERT_EQ(w, hud_window());
+        const float inner = w->ContentRegionRect.GetWidth();
+        ASSERT_GT(inner, 300.0f) << "the HUD's default size is 470 px";
+
+        // Bug 1: the graph was a 1-pixel column.
+        const Extent g = graph_extent();
+        EXPECT_GT(g.vertices, 100) << "no frame-time graph drawn";
+        EXPECT_GE(g.max_x - g.min_x, 0.9f * inner) << "the frame-time graph is " << g.max_x - g.min_x
+                                                   << " px wide in a " << inner << " px HUD";
+        EXPECT_GE(g.min_x, w->Pos.x);
+        EXPECT_LE(g.max_x, w->Pos.x + w->Size.x);
+
+        // Every item (the trace button, the percentile line, the counts, each settings row)
+        // fits the HUD's width: ImGui's measured content width is the widest item's right edge.
+        EXPECT_LE(w->ContentSize.x, inner + 0.5f) << "an item reaches " << w->ContentSize.x - inner
+                                                   << " px past the HUD's right edge";
+    }
+}
+
+TEST_F(ImGuiFixture, HiddenHudDrawsNothingAndAsksForNothing) {
+    Hud hud;
+    hud.visible = false;
+    const HudActions a = draw_frame(hud, scene::GiMethod::heat);
+    EXPECT_FALSE(a.export_trace || a.save || a.load || a.toggle_vsync);
+    EXPECT_EQ(hud_window(), nullptr);
+    EXPECT_EQ(graph_extent().vertices, 0);
+}
+
+} // namespace
+} // namespace lantern::game
