@@ -118,7 +118,14 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
            o.schedule_dot);
     p.section("presentation");
     p.custom("--size", "WxH", "window size (default 1280x720)", size_option(o.window_size, 64, 16384));
-    p.custom("--internal", "WxH", "pixel-art resolution (default 480x270)", size_option(o.internal, 32, 4096));
+    p.custom("--internal", "WxH",
+             "pixel-art resolution, fixed (default: 480x270 headless; in a window, the size near 480x270 that "
+             "fills it at a whole-number scale)",
+             [&o, check = size_option(o.internal, 32, 4096)](std::string_view s) {
+                 auto error = check(s);
+                 if (!error) o.internal_fixed = true;
+                 return error;
+             });
     p.choice("--vsync", "(default on)", vsync, {"on", "off"});
     p.flag("--no-hud", "start with the timer HUD hidden (F1 toggles)", [&] { o.hud = false; });
     p.integer("--posterize", "N", "posterize to N levels per channel", o.posterize, 2, 64);

@@ -272,6 +272,16 @@ WorldRenderer::WorldRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)
 WorldRenderer::~WorldRenderer() = default;
 
 render::RenderTarget& WorldRenderer::target() { return impl_->target; }
+
+Result<void> WorldRenderer::resize(glm::ivec2 size) {
+    if (size.x <= 0 || size.y <= 0) return Error{"game world renderer: empty target size", 1};
+    const VkExtent2D now = impl_->target.extent();
+    if (int(now.width) == size.x && int(now.height) == size.y) return {};
+    impl_->target = render::RenderTarget::create(
+        *impl_->device, {std::uint32_t(size.x), std::uint32_t(size.y), VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_D32_SFLOAT,
+                         "game world"});
+    return {};
+}
 std::size_t WorldRenderer::faces_drawn() const { return impl_->faces_drawn; }
 GiDebugView WorldRenderer::gi_view_drawn() const { return impl_->view_drawn; }
 

@@ -443,6 +443,62 @@ TEST(GameWindow, UnmappedItStepsNoFrameAndGoesOnWhenMappedAgain) {
     ASSERT_TRUE(back);
 }
 
+// Issue 19, scaling: 480x270 at 2x left 44 % of the default 1280x720 window in bars. In a
+// window the pixel-art target now follows the window's size at the whole-number scale
+// nearest window / 480x270, the bars narrower than that scale; resizing the window resizes
+// the target (the status file reports both; every step waits on it, never on time).
+TEST(GameWindow, PixelArtTargetFillsTheWindowAndFollowsItsSize) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string scene = dir.file("two_rooms.json"), status = dir.file("status.json");
+    ASSERT_TRUE(write_file_atomic(scene, std::string(two_rooms)));
+    GameProcess game({"--window", "--scene", scene, "--size", "1280x720", "--no-hud", "--status-file", status},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto window = find_window(game);
+    ASSERT_TRUE(window) << "no game window; log:\n" << game.log();
+    struct Presented {
+        double frame = 0;
+        std::vector<double> internal, present; // [w, h], [x, y, w, h, scale]
+    };
+    const auto until = [&](const char* what, const std::function<bool(const Presented&)>& done) {
+        const auto end = std::chrono::steady_clock::now() + 180s;
+        std::optional<Presented> last;
+        while (std::chrono::steady_clock::now() < end) {
+            if (auto v = json::parse(test::read_file(status), "status.json"); v && v->is_object()) {
+                Presented p;
+                p.frame = v->find("frame") ? v->find("frame")->as_number() : 0;
+                for (auto [key, out] : {std::pair{"internal", &p.internal}, std::pair{"present", &p.present}})
+                    if (const json::Value* a = v->find(key); a && a->is_array())
+                        for (const json::Value& x : a->as_array()) out->push_back(x.as_number());
+                if (p.internal.size() == 2 && p.present.size() == 5) {
+                    last = p;
+                    if (done(p)) return last;
+                }
+            }
+            if (game.wait_exit(10ms)) break;
+        }
+        ADD_FAILURE() << "the game never reached: " << what << "; last status: "
+                      << (last ? test::read_file(status) : std::string("none")) << "; log:\n" << game.log();
+        return std::optional<Presented>();
+    };
+    using V = std::vector<double>;
+    // Frames after the one that changed size present the new target.
+    const auto presents = [&](V internal, V present) {
+        return [internal, present, seen = std::optional<double>()](const Presented& p) mutable {
+            if (p.internal != internal) return false;
+            if (!seen) seen = p.frame;
+            return p.frame >= *seen + 2 && p.present == present;
+        };
+    };
+    ASSERT_TRUE(until("426x240 at 3x in 1280x720", presents({426, 240}, {1, 0, 1278, 720, 3})));
+    const std::string id = std::to_string(*window);
+    ASSERT_TRUE(test::run_tool({"xdotool", "windowsize", "--sync", id, "960", "540"}));
+    ASSERT_TRUE(until("480x270 at 2x in 960x540", presents({480, 270}, {0, 0, 960, 540, 2})));
+    ASSERT_TRUE(test::run_tool({"xdotool", "windowsize", "--sync", id, "700", "400"}));
+    ASSERT_TRUE(until("700x400 at 1x", presents({700, 400}, {0, 0, 700, 400, 1})));
+}
+
 TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
     test::TempDir dir;
     const std::string out = dir.file("demo");

@@ -5,6 +5,7 @@
 #include "lantern/gpu/image.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace lantern::render {
 
@@ -37,6 +38,18 @@ PresentRect fit_integer_scale(platform::Extent source, platform::Extent destinat
     rect.height = size.height;
     rect.scale = scale;
     return rect;
+}
+
+platform::Extent fill_integer_scale(platform::Extent design, platform::Extent destination) {
+    if (design.empty() || destination.empty()) return {};
+    const double ratio = std::min(double(destination.width) / double(design.width),
+                                  double(destination.height) / double(design.height));
+    const auto scale = static_cast<std::uint32_t>(std::max(1.0, std::floor(ratio + 0.5)));
+    const auto axis = [scale](std::uint32_t dest, std::uint32_t des) {
+        const std::uint64_t limit = std::uint64_t(des) * 4;
+        return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(dest / scale, 1, limit));
+    };
+    return {axis(destination.width, design.width), axis(destination.height, design.height)};
 }
 
 std::optional<glm::vec2> destination_to_source(const PresentRect& rect, platform::Extent source,

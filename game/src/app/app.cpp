@@ -52,7 +52,8 @@ Result<void> Game::init(bool windowed) {
     auto gi = gi::vk::Renderer::create(*device_);
     if (!gi) return Error{"lantern: " + gi.error().message, 1};
     gi_renderer_ = std::move(*gi);
-    auto wr = WorldRenderer::create(*device_, options_.internal);
+    if (window_) fit_internal_to_window(); // before the first session: its camera's aspect
+    auto wr = WorldRenderer::create(*device_, internal_);
     if (!wr) return Error{"lantern: " + wr.error().message, 1};
     world_renderer_ = std::move(*wr);
     if (device_->capabilities().timestamps) {
@@ -85,7 +86,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     day.drives_sun = spec.kind != WorldKind::scene;
     w.set_resource<DayCycle>(day);
     CameraRig rig;
-    rig.aspect = float(options_.internal.x) / float(options_.internal.y);
+    rig.aspect = float(internal_.x) / float(internal_.y);
     w.set_resource<CameraRig>(rig);
     w.set_resource<DrawListResource>();
     w.set_resource<BakedChunks>();

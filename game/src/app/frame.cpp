@@ -58,10 +58,10 @@ void Game::input_system(Session& s) {
         c.toggle_day_cycle = in.pressed(Key::n);
     }
     if (mouse_free) {
-        const platform::Extent source{std::uint32_t(options_.internal.x), std::uint32_t(options_.internal.y)};
+        const platform::Extent source{std::uint32_t(internal_.x), std::uint32_t(internal_.y)};
         if (auto p = render::destination_to_source(present_rect_, source, in.mouse_position())) {
             c.has_cursor = true;
-            c.cursor_ndc = *p / glm::vec2(options_.internal);
+            c.cursor_ndc = *p / glm::vec2(internal_);
         }
         // Holding the left button keeps mining, a wall every 0.2 s.
         const bool mine_held = in.down(platform::MouseButton::left) && clock.time - last_mine_time_ > 0.2;
@@ -75,6 +75,24 @@ void Game::input_system(Session& s) {
             c.*items[selected_item_] = true;
         }
     }
+}
+
+bool Game::fit_internal_to_window() {
+    if (options_.internal_fixed || !window_) return false;
+    const platform::Extent design{std::uint32_t(options_.internal.x), std::uint32_t(options_.internal.y)};
+    const platform::Extent fill = render::fill_integer_scale(design, window_->framebuffer_size());
+    const glm::ivec2 size(int(fill.width), int(fill.height));
+    if (fill.empty() || size == internal_) return false; // minimised, or unchanged
+    internal_ = size;
+    return true;
+}
+
+void Game::follow_window_size() {
+    if (!fit_internal_to_window()) return;
+    // Between frames: nothing is recording. The old target is retired after the frames in
+    // flight; the camera keeps its field of view with the new aspect.
+    if (auto ok = world_renderer_->resize(internal_); !ok) LANTERN_LOG_ERROR("%s", ok.error().message.c_str());
+    session_->world.resource<CameraRig>().aspect = float(internal_.x) / float(internal_.y);
 }
 
 void Game::record_world(gpu::CommandList& cmd, Session& s) {
@@ -154,7 +172,7 @@ void Game::render_system(Session& s) {
     gpu::CommandList cmd = device_->begin("raster frame");
     record_world(cmd, s);
     const VkExtent2D size = frame->image().extent();
-    const platform::Extent source{std::uint32_t(options_.internal.x), std::uint32_t(options_.internal.y)};
+    const platform::Extent source{std::uint32_t(internal_.x), std::uint32_t(internal_.y)};
     present_rect_ = render::fit_integer_scale(source, {size.width, size.height});
     render::record_upscale(cmd, world_renderer_->target().color(), frame->image(), present_rect_,
                            hud ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);

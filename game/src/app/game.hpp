@@ -114,6 +114,11 @@ class Game {
     void add_systems(ecs::Schedule& schedule, Session& session);
     void input_system(Session& s);
     void render_system(Session& s);
+    // The pixel-art size that fills the window (GameOptions::internal_fixed off): sets
+    // internal_, true when it changed. follow_window_size also resizes the world renderer's
+    // target and the camera's aspect; it runs between frames.
+    bool fit_internal_to_window();
+    void follow_window_size();
     void record_world(gpu::CommandList& cmd, Session& s);
     void collect_raster_timings();
     void save(Session& s);
@@ -145,6 +150,7 @@ class Game {
     GiDebugView gi_view_ = GiDebugView::lit; // the HUD's GI views
     Hud hud_;
     render::PresentRect present_rect_;
+    glm::ivec2 internal_ = options_.internal; // the world renderer's target size now
     std::int64_t last_frame_ns_ = 0;
     double last_mine_time_ = -1.0;
     int selected_item_ = 1; // torch

@@ -29,6 +29,7 @@ int Game::run_window() {
             if (!options_.status_file.empty()) write_status(*session_);
             continue;
         }
+        follow_window_size();
         profile::begin_frame();
         report_refused(session_->frame->step());
         profile::end_frame();

@@ -47,7 +47,14 @@ void Game::write_status(Session& s) {
     s.world.view<PointLight>().each([&](ecs::Entity e, const PointLight&) { lights += s.world.try_get<Player>(e) ? 0 : 1; });
     s.world.view<EmissiveLight>().each([&](const EmissiveLight&) { ++lights; });
     w.field("lights", lights).field("reloads", reloads_).field("reload_errors", reload_errors_);
-    w.field("hidden_waits", hidden_waits_).end();
+    w.field("hidden_waits", hidden_waits_);
+    if (window_) {
+        // The pixel-art target and where it lands in the window (the last presented frame).
+        w.key("internal").begin_array().value(internal_.x).value(internal_.y).end();
+        w.key("present").begin_array().value(present_rect_.x).value(present_rect_.y);
+        w.value(present_rect_.width).value(present_rect_.height).value(present_rect_.scale).end();
+    }
+    w.end();
     if (auto ok = write_file_atomic(options_.status_file, w.take()); !ok && !status_failed_) {
         status_failed_ = true;
         LANTERN_LOG_ERROR("status file: %s", ok.error().message.c_str());

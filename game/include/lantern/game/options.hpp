@@ -35,6 +35,10 @@ struct GameOptions {
     // Presentation.
     glm::ivec2 window_size{1280, 720}; // --size WxH
     glm::ivec2 internal{480, 270};   // --internal WxH (the pixel-art resolution)
+    // In a window without --internal, `internal` is the design size: the pixel-art target
+    // follows the window, filling it at the whole-number scale nearest window / internal
+    // (render::fill_integer_scale). --internal fixes it (letterboxed at the largest scale).
+    bool internal_fixed = false;
     bool vsync = true;               // --vsync on|off
     bool hud = true;                 // --no-hud hides it at start (F1 toggles)
     int posterize = 0;               // --posterize N

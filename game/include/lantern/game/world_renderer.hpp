@@ -165,6 +165,10 @@ class WorldRenderer {
     void record(gpu::CommandList& cmd, const WorldView& view, const DrawList& list);
 
     render::RenderTarget& target();
+    // A new target of `size` pixels (the pipelines are kept: they depend on its formats only);
+    // the old one is destroyed once the frames in flight that use it have finished. Nothing
+    // happens when the size is unchanged; an empty size is refused.
+    Result<void> resize(glm::ivec2 size);
     // Box faces the last record() drew: in the view, in their box's mask and turned towards
     // the camera (the HUD shows it; the rest never reach the GPU).
     std::size_t faces_drawn() const;

@@ -41,6 +41,19 @@ struct PresentRect {
 // leftovers put the extra pixel on the right/bottom bar). Empty when either is empty.
 PresentRect fit_integer_scale(platform::Extent source, platform::Extent destination);
 
+// The source size that fills `destination` at a whole-number scale near the design's, for a
+// game whose pixel-art resolution follows its window (fit_integer_scale of a fixed 480x270
+// leaves 44 % of a 1280x720 window bars). The scale is the smaller of the two axes' ratios
+// destination / design rounded to the nearest whole number (at least 1), so pixels stay
+// about the design's size on screen; the source is destination / scale rounded down, so
+// the bars fit_integer_scale then leaves are narrower than the scale. Each axis is clamped to
+// [1, 4 x the design's] (an extreme window shape gets bars rather than a huge source).
+//
+//   fill_integer_scale({480, 270}, {1280, 720});  // {426, 240}: scale 3, bars of 1 and 0 px
+//   fill_integer_scale({480, 270}, {1920, 1080}); // {480, 270}: scale 4
+// Empty when either is empty.
+platform::Extent fill_integer_scale(platform::Extent design, platform::Extent destination);
+
 // The source pixel position under destination pixel position `p` (e.g. the mouse), or
 // nullopt when p is on a bar. Positions are continuous: pixel (i, j) covers [i, i+1).
 std::optional<glm::vec2> destination_to_source(const PresentRect& rect, platform::Extent source,
