@@ -173,3 +173,29 @@ TEST(File, StampChangesWithEveryKindOfEdit) {
     std::filesystem::remove(path);
     EXPECT_FALSE(lantern::file_stamp(path));
 }
+
+// FilesWatch (--watch of a scene and its map): nothing changed, nothing reported; an edit of
+// any watched file, its removal and its return each reported once.
+TEST(File, FilesWatchReportsAChangeOfAnyWatchedFileOnce) {
+    lantern::test::TempDir dir;
+    const std::string scene = dir.file("level.json"), map = dir.file("level.map");
+    ASSERT_TRUE(lantern::write_file_atomic(scene, std::string("{}")));
+    ASSERT_TRUE(lantern::write_file_atomic(map, std::string("type octile")));
+    lantern::FilesWatch watch;
+    EXPECT_FALSE(watch.changed()); // watching nothing
+    watch.watch({scene, map});
+    EXPECT_EQ(watch.paths(), (std::vector<std::string>{scene, map}));
+    EXPECT_FALSE(watch.changed());
+    ASSERT_TRUE(lantern::write_file_atomic(map, std::string("type octile")));
+    EXPECT_TRUE(watch.changed());
+    EXPECT_FALSE(watch.changed()) << "one edit, reported twice";
+    std::filesystem::remove(scene);
+    EXPECT_TRUE(watch.changed());
+    EXPECT_FALSE(watch.changed());
+    ASSERT_TRUE(lantern::write_file_atomic(scene, std::string("{}")));
+    EXPECT_TRUE(watch.changed());
+    // watch() takes the stamps afresh: earlier edits are not reported.
+    ASSERT_TRUE(lantern::write_file_atomic(map, std::string("type octile\n")));
+    watch.watch({scene, map});
+    EXPECT_FALSE(watch.changed());
+}

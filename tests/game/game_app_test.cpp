@@ -398,6 +398,50 @@ TEST(GameWindow, WatchedSceneReloadsAndSurvivesCorruptingEdits) {
     ASSERT_TRUE(until("the second reload", [](const WatchStatus& st) { return st.reloads == 2 && st.lights == 1; }));
 }
 
+// --watch looks at the map a scene reads too (world.map): editing the map reloads the
+// scene; a broken map is reported and the last good world stays; the mended map reloads.
+TEST(GameWindow, WatchedScenesMapReloadsTheWorld) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string scene = dir.file("level.json"), map = dir.file("level.map"), status = dir.file("status.json");
+    const std::string open_map = "type octile\nheight 9\nwidth 16\nmap\n@@@@@@@@@@@@@@@@\n"
+                                 "@..............@\n@..............@\n@..............@\n@..............@\n"
+                                 "@..............@\n@..............@\n@..............@\n@@@@@@@@@@@@@@@@\n";
+    ASSERT_TRUE(write_file_atomic(map, open_map));
+    ASSERT_TRUE(write_file_atomic(scene, std::string(R"({"lantern_scene": 1,
+  "world": {"map": "level.map"},
+  "view": {"center": [8, 4.5], "size": [16, 9]},
+  "gi": {"resolution": 4, "heat_scale": "half", "heat_rounds": 16},
+  "point_lights": [{"position": [4.5, 4.5], "color": [1.0, 0.85, 0.6], "intensity": 3.0, "radius": 10}]})")));
+    GameProcess game({"--window", "--scene", scene, "--watch", "--size", "480x270", "--no-hud", "--no-player-light",
+                      "--no-bake", "--status-file", status},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto until = [&](const char* what, const std::function<bool(const WatchStatus&)>& done) {
+        const auto end = std::chrono::steady_clock::now() + 180s;
+        while (std::chrono::steady_clock::now() < end) {
+            if (auto st = read_watch_status(status); st && done(*st)) return st;
+            if (game.wait_exit(10ms)) break;
+        }
+        ADD_FAILURE() << "the game never reached: " << what << "; log:\n" << game.log();
+        return std::optional<WatchStatus>();
+    };
+    ASSERT_TRUE(until("its first frame", [](const WatchStatus& st) { return st.frame >= 1 && st.reloads == 0; }));
+    EXPECT_NE(game.log().find("watching " + scene + " and " + map), std::string::npos) << game.log();
+    std::string walled = open_map;
+    walled.replace(walled.find("@..............@"), 16, "@......@@......@");
+    ASSERT_TRUE(write_file_atomic(map, walled));
+    ASSERT_TRUE(until("the reload after the map's edit", [](const WatchStatus& st) { return st.reloads == 1; }));
+    ASSERT_TRUE(write_file_atomic(map, walled + "@@@\n")); // a row too many and too short
+    ASSERT_TRUE(until("the broken map reported", [](const WatchStatus& st) { return st.reload_errors == 1; }));
+    const auto now = read_watch_status(status);
+    ASSERT_TRUE(now);
+    ASSERT_TRUE(until("frames after it", [&](const WatchStatus& st) { return st.frame >= now->frame + 5; }));
+    EXPECT_NE(game.log().find("level.map"), std::string::npos) << game.log();
+    ASSERT_TRUE(write_file_atomic(map, open_map));
+    ASSERT_TRUE(until("the reload of the mended map", [](const WatchStatus& st) { return st.reloads == 2; }));
+}
+
 // Issue 19, bug 4: minimised or unmapped, the game stepped frames nobody saw (30-88 % of a
 // core). Unmapped (xdotool windowunmap: under Xvfb no window manager iconifies, and both
 // take one path), it steps no frame and sleeps on events, counting its waits in the status

@@ -589,6 +589,7 @@ TEST(SceneLoader, LoadSceneImportsTheMapRelativeToTheSceneFolder) {
     auto scene = load_scene(dir.file("level.json"));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->source, dir.file("level.json"));
+    EXPECT_EQ(scene->inputs, std::vector<std::string>{dir.file("maps/small.map")}); // what --watch looks at too
     WallGrid expected_walls;
     expected_walls.width = 3;
     expected_walls.height = 2;
@@ -617,6 +618,13 @@ TEST(SceneLoader, TreesAreWallsByDefault) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->walls.cells, (std::vector<std::uint8_t>{1, 0}));
     EXPECT_TRUE(scene->shadow_proxies.empty());
+}
+
+TEST(SceneLoader, RowsSceneReadsNoOtherFile) {
+    auto scene = parse_scene(R"({"lantern_scene": 1, "world": {"rows": ["#."]}, "view": {"center": [0, 0]}})", "t.json",
+                             ".");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_TRUE(scene->inputs.empty());
 }
 
 TEST(SceneLoader, MissingMapFileNamesTheMapValueAndTheOsError) {

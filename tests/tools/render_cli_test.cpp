@@ -330,6 +330,55 @@ TEST(RenderCli, WatchRendersEachEditAndKeepsTheLastGoodRender) {
     EXPECT_NE(lantern::test::read_file(out), first);
 }
 
+// --watch also looks at the map a scene reads (world.map): an edit of the map renders again,
+// a broken map is refused and keeps the last good render, the mended map renders.
+TEST(RenderCli, WatchRendersEachEditOfTheScenesMap) {
+    TempDir dir;
+    const fs::path scene = dir.path() / "level.json", map = dir.path() / "level.map", out = dir.path() / "out.png",
+                   log = dir.path() / "log.txt";
+    const std::string open_map = "type octile\nheight 5\nwidth 10\nmap\n@@@@@@@@@@\n@........@\n@........@\n"
+                                 "@........@\n@@@@@@@@@@\n";
+    ASSERT_TRUE(lantern::write_file_atomic(map.string(), open_map));
+    ASSERT_TRUE(lantern::write_file_atomic(scene.string(), std::string(R"({
+  "lantern_scene": 1,
+  "world": { "map": "level.map" },
+  "view": { "center": [5.0, 2.5], "size": [10.0, 5.0] },
+  "gi": { "resolution": 4, "padding": 1.0, "heat_rounds": 4 },
+  "point_lights": [ { "position": [2.5, 2.5], "color": [1.0, 0.6, 0.3], "intensity": 2.0, "radius": 6.0 } ]
+})")));
+    lantern::test::ChildProcess render(LANTERN_RENDER_EXE,
+                                       {scene.string(), "--backend", "cpu", "--watch", "--out", out.string()},
+                                       log.string());
+    ASSERT_TRUE(render.started());
+    const auto until = [&](int rendered, int refused) {
+        const std::string line = "watch: " + std::to_string(rendered) + " rendered, " + std::to_string(refused) +
+                                 " refused";
+        const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+        while (std::chrono::steady_clock::now() < end) {
+            if (lantern::test::read_file(log).find(line) != std::string::npos) return true;
+            if (render.wait_exit(std::chrono::milliseconds(10))) break;
+        }
+        ADD_FAILURE() << "never printed '" << line << "':\n" << lantern::test::read_file(log);
+        return false;
+    };
+    ASSERT_TRUE(until(1, 0));
+    const std::string first = lantern::test::read_file(out);
+    ASSERT_FALSE(first.empty());
+    std::string walled = open_map;
+    walled.replace(walled.find("@........@\n@@@@"), 10, "@...@@...@"); // two wall tiles by the light
+    ASSERT_TRUE(lantern::write_file_atomic(map.string(), walled));
+    ASSERT_TRUE(until(2, 0));
+    const std::string second = lantern::test::read_file(out);
+    EXPECT_NE(second, first);
+    ASSERT_TRUE(lantern::write_file_atomic(map.string(), walled.substr(0, walled.size() - 6) + "?\n")); // a bad char
+    ASSERT_TRUE(until(2, 1));
+    EXPECT_EQ(lantern::test::read_file(out), second);
+    EXPECT_NE(lantern::test::read_file(log).find("level.map"), std::string::npos);
+    ASSERT_TRUE(lantern::write_file_atomic(map.string(), open_map));
+    ASSERT_TRUE(until(3, 1));
+    EXPECT_EQ(lantern::test::read_file(out), first);
+}
+
 TEST(BakeCli, BakesReusesAndRefusesBadInput) {
     TempDir dir;
     write(dir.path() / "s.json", R"({

@@ -274,10 +274,12 @@ Result<Backend> make_backend(const Options& o, jobs::JobSystem& jobs) {
 }
 
 // Renders the scene file once through the frame and writes the outputs (atomically; none on
-// failure). The exit status.
-int render_file(const Options& o, jobs::JobSystem& jobs) {
+// failure). The exit status. `inputs`: set to the other files the scene read (its map) once
+// it loads.
+int render_file(const Options& o, jobs::JobSystem& jobs, std::optional<std::vector<std::string>>* inputs = nullptr) {
     auto scene = scene::load_scene(o.scene);
     if (!scene) return fail(scene.error().message, scene.error().exit_code);
+    if (inputs) *inputs = scene->inputs;
     for (const std::string& s : o.sets)
         if (auto ok = scene::apply_override(*scene, s); !ok) return fail(ok.error().message, ok.error().exit_code);
     std::string why;
@@ -347,14 +349,21 @@ int render_main(int argc, char** argv) {
     if (auto code = parse_args(argc, argv, o)) return *code;
     jobs::JobSystem jobs;
     if (!o.watch) return render_file(o, jobs);
-    // --watch: a render per change of the file (its FileStamp, looked at ten times a second).
-    // A failed render writes nothing, so the outputs keep the last good one; the counts go
-    // to stdout, one line per attempt, for scripts (and tests) to wait on.
-    std::optional<FileStamp> seen = file_stamp(o.scene);
+    // --watch: a render per change of the scene file or a file it reads (its world.map; their
+    // FileStamps, looked at ten times a second). A failed render writes nothing, so the
+    // outputs keep the last good one; the counts go to stdout, one line per attempt, for
+    // scripts (and tests) to wait on.
+    FilesWatch watched;
+    watched.watch({o.scene});
     int rendered = 0, refused = 0;
     const auto attempt = [&]() {
         const std::int64_t start = now_ns();
-        const int code = render_file(o, jobs);
+        std::optional<std::vector<std::string>> read; // the files the scene read, once it loaded
+        const int code = render_file(o, jobs, &read);
+        if (read) {
+            read->insert(read->begin(), o.scene);
+            if (*read != watched.paths()) watched.watch(std::move(*read)); // stamped after the read
+        }
         (code == 0 ? rendered : refused) += 1;
         std::printf("lantern-render: watch: %d rendered, %d refused (%s, %.0f ms)\n", rendered, refused,
                     code == 0 ? "rendered" : "refused: the outputs keep the last good render",
@@ -366,10 +375,7 @@ int render_main(int argc, char** argv) {
     if (!o.quiet) std::fprintf(stderr, "lantern-render: watching %s (Ctrl-C stops)\n", o.scene.c_str());
     for (;;) {
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        const std::optional<FileStamp> now = file_stamp(o.scene);
-        if (now == seen) continue;
-        seen = now;
-        attempt();
+        if (watched.changed()) attempt();
     }
 }
 

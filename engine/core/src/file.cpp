@@ -242,4 +242,22 @@ std::optional<FileStamp> file_stamp(const std::string& path) {
                      std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec};
 }
 
+void FilesWatch::watch(std::vector<std::string> paths) {
+    paths_ = std::move(paths);
+    stamps_.clear();
+    for (const std::string& p : paths_) stamps_.push_back(file_stamp(p));
+}
+
+bool FilesWatch::changed() {
+    bool any = false;
+    for (std::size_t i = 0; i < paths_.size(); ++i) {
+        std::optional<FileStamp> now = file_stamp(paths_[i]);
+        if (now != stamps_[i]) {
+            stamps_[i] = now;
+            any = true;
+        }
+    }
+    return any;
+}
+
 } // namespace lantern

@@ -451,6 +451,7 @@ ShadowProxy tree_proxy(glm::ivec2 tile) {
 Result<void> import_map(const MapSpec& spec, const std::string& scene_file,
                         const std::string& base_dir, Scene& scene) {
     const std::string path = (std::filesystem::path(base_dir) / spec.path).string();
+    scene.inputs.push_back(path);
     auto text = read_text_file(path, max_map_file_bytes);
     if (!text) return file_error(scene_file, {spec.position, "world.map", text.error().message});
     auto map = parse_moving_ai_map(*text, path, spec.options);

@@ -260,8 +260,14 @@ int Game::run() {
     }
     session_ = std::move(*s);
     if (options_.watch) {
-        watched_ = file_stamp(options_.world.path);
-        LANTERN_LOG_INFO("watching %s: edits reload the scene", options_.world.path.c_str());
+        // The scene file and the files it reads (its world.map): an edit of either reloads.
+        std::vector<std::string> files{options_.world.path};
+        if (auto scene = scene::load_scene(options_.world.path))
+            files.insert(files.end(), scene->inputs.begin(), scene->inputs.end());
+        watched_.watch(files);
+        std::string also;
+        for (std::size_t i = 1; i < files.size(); ++i) also += (i == 1 ? " and " : ", ") + files[i];
+        LANTERN_LOG_INFO("watching %s%s: edits reload the scene", options_.world.path.c_str(), also.c_str());
     }
     return windowed ? run_window() : run_headless();
 }
@@ -269,11 +275,9 @@ int Game::run() {
 
 void Game::poll_watch() {
     const std::string& path = options_.world.path;
-    const std::optional<FileStamp> stamp = file_stamp(path);
-    if (stamp == watched_) return;
-    watched_ = stamp;
+    if (!watched_.changed()) return;
     const std::int64_t seen = now_ns();
-    auto scene = stamp ? scene::load_scene(path) : Result<scene::Scene>(make_error(path + ": the file is gone"));
+    auto scene = file_stamp(path) ? scene::load_scene(path) : Result<scene::Scene>(make_error(path + ": the file is gone"));
     if (!scene) {
         ++reload_errors_;
         pending_scene_.reset(); // a good edit followed by a bad one before the reload: neither
@@ -281,6 +285,11 @@ void Game::poll_watch() {
         LANTERN_LOG_ERROR("%s", message_.c_str());
         return;
     }
+    // The scene may name another map now: watch the files this one read (a new list is
+    // stamped now, after the read).
+    std::vector<std::string> files{path};
+    files.insert(files.end(), scene->inputs.begin(), scene->inputs.end());
+    if (files != watched_.paths()) watched_.watch(std::move(files));
     pending_scene_ = std::move(*scene);
     change_seen_ns_ = seen;
 }

@@ -162,7 +162,7 @@ class Game {
     bool status_failed_ = false;      // the status file could not be written (said once)
     bool quit_ = false;
     std::optional<SaveState> pending_load_;
-    std::optional<FileStamp> watched_;          // --watch: the scene file as last seen
+    FilesWatch watched_;                        // --watch: the scene file and the files it reads
     std::optional<scene::Scene> pending_scene_; // --watch: checked, applied between frames
     std::int64_t change_seen_ns_ = 0;           // when the pending change was noticed
     int reloads_ = 0, reload_errors_ = 0;       // --watch (--status-file reports them)

@@ -85,4 +85,20 @@ struct FileStamp {
 };
 std::optional<FileStamp> file_stamp(const std::string& path);
 
+// Whether any of a set of files changed since it was last looked at: a scene file and the
+// files it reads (world.map), for --watch. A file that appears, disappears or changes its
+// FileStamp counts. Not thread-safe; one owner.
+class FilesWatch {
+  public:
+    // Watches `paths` from now on: their stamps are taken now.
+    void watch(std::vector<std::string> paths);
+    // Takes the stamps again: true when any differs from the last look.
+    bool changed();
+    const std::vector<std::string>& paths() const { return paths_; }
+
+  private:
+    std::vector<std::string> paths_;
+    std::vector<std::optional<FileStamp>> stamps_;
+};
+
 } // namespace lantern

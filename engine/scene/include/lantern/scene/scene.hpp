@@ -269,6 +269,9 @@ struct Scene {
     std::vector<DirectionalLight> directional_lights;
     std::vector<ShadowProxy> shadow_proxies;
     std::vector<Material> materials; // cell value 2 + k is materials[k]
+    // The other files the scene was read from (its world.map), as opened: what --watch looks
+    // at besides the scene file. Empty for a scene built in code.
+    std::vector<std::string> inputs;
 
     friend bool operator==(const Scene&, const Scene&) = default;
 };
