@@ -251,32 +251,33 @@ void print_frame(const Options& o, const FrameRecord& f) {
                  ran.empty() ? "nothing" : ran.c_str(), skipped.empty() ? "nothing" : skipped.c_str());
 }
 
-struct Backend {
+// The Vulkan device and GI renderer, made by the first render and kept for the next ones of
+// --watch: making them compiles every pipeline (about 5.8 s of the 5.9 s a watched re-render
+// took on lavapipe, benchmarks/reload_latency.py). The game keeps its renderer across
+// reloads the same way.
+struct KeptDevice {
     std::unique_ptr<gpu::Device> device;
     std::unique_ptr<gi::vk::Renderer> renderer;
-    std::unique_ptr<gi::Backend> backend;
 };
 
-Result<Backend> make_backend(const Options& o, jobs::JobSystem& jobs) {
-    Backend b;
-    if (o.backend == "cpu") {
-        b.backend = gi::make_reference_backend(&jobs);
-        return b;
+Result<std::unique_ptr<gi::Backend>> make_backend(const Options& o, jobs::JobSystem& jobs, KeptDevice& kept) {
+    if (o.backend == "cpu") return gi::make_reference_backend(&jobs);
+    if (!kept.renderer) {
+        auto device = gpu::Device::create();
+        if (!device) return make_error(device.error().message + " (try --backend cpu)", 1);
+        auto renderer = gi::vk::Renderer::create(**device);
+        if (!renderer) return renderer.error();
+        kept.device = std::move(device.value());
+        kept.renderer = std::move(renderer.value());
     }
-    auto device = gpu::Device::create();
-    if (!device) return make_error(device.error().message + " (try --backend cpu)", 1);
-    b.device = std::move(device.value());
-    auto renderer = gi::vk::Renderer::create(*b.device);
-    if (!renderer) return renderer.error();
-    b.renderer = std::move(renderer.value());
-    b.backend = gi::make_vulkan_backend(*b.renderer);
-    return b;
+    return gi::make_vulkan_backend(*kept.renderer);
 }
 
 // Renders the scene file once through the frame and writes the outputs (atomically; none on
 // failure). The exit status. `inputs`: set to the other files the scene read (its map) once
 // it loads.
-int render_file(const Options& o, jobs::JobSystem& jobs, std::optional<std::vector<std::string>>* inputs = nullptr) {
+int render_file(const Options& o, jobs::JobSystem& jobs, KeptDevice& kept,
+                std::optional<std::vector<std::string>>* inputs = nullptr) {
     auto scene = scene::load_scene(o.scene);
     if (!scene) return fail(scene.error().message, scene.error().exit_code);
     if (inputs) *inputs = scene->inputs;
@@ -288,9 +289,9 @@ int render_file(const Options& o, jobs::JobSystem& jobs, std::optional<std::vect
     if (!o.dump.empty())
         if (auto ok = check_dump_size(o.dump, *window); !ok) return fail(ok.error().message, ok.error().exit_code);
 
-    auto backend = make_backend(o, jobs);
+    auto backend = make_backend(o, jobs, kept);
     if (!backend) return fail(backend.error().message, backend.error().exit_code);
-    const std::string device_name = backend->backend->name();
+    const std::string device_name = (*backend)->name();
     std::shared_ptr<const gi::BakedLight> baked;
     if (!o.bake.empty()) {
         bake::BakeOptions options;
@@ -308,7 +309,7 @@ int render_file(const Options& o, jobs::JobSystem& jobs, std::optional<std::vect
     ecs::World world;
     systems::SceneWorld sw = systems::populate_world(*scene, world);
     sw.config.lit_image = !o.out.empty();
-    systems::GiFrame frame(world, jobs, sw.source, std::move(backend->backend), sw.config);
+    systems::GiFrame frame(world, jobs, sw.source, std::move(*backend), sw.config);
     world.resource<systems::BakedGi>().light = baked;
     frame.warm_up();
     profile::set_enabled(true);
@@ -348,7 +349,8 @@ int render_main(int argc, char** argv) {
     Options o;
     if (auto code = parse_args(argc, argv, o)) return *code;
     jobs::JobSystem jobs;
-    if (!o.watch) return render_file(o, jobs);
+    KeptDevice kept;
+    if (!o.watch) return render_file(o, jobs, kept);
     // --watch: a render per change of the scene file or a file it reads (its world.map; their
     // FileStamps, looked at ten times a second). A failed render writes nothing, so the
     // outputs keep the last good one; the counts go to stdout, one line per attempt, for
@@ -359,7 +361,7 @@ int render_main(int argc, char** argv) {
     const auto attempt = [&]() {
         const std::int64_t start = now_ns();
         std::optional<std::vector<std::string>> read; // the files the scene read, once it loaded
-        const int code = render_file(o, jobs, &read);
+        const int code = render_file(o, jobs, kept, &read);
         if (read) {
             read->insert(read->begin(), o.scene);
             if (*read != watched.paths()) watched.watch(std::move(*read)); // stamped after the read
