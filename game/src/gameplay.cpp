@@ -261,7 +261,8 @@ void interact(ecs::SystemContext& ctx) {
     ecs::World& w = ctx.world;
     const Controls& c = w.resource<Controls>();
     const bool wants = c.mine || c.place_wall || c.place_torch || c.place_crystal || c.place_tree || c.place_lamp;
-    if (!wants || !c.has_cursor) return;
+    if (!wants || !c.has_cursor || !w.has_resource<Inventory>()) return;
+    Inventory& inventory = w.resource<Inventory>();
     const auto player = player_position(w);
     std::optional<scene::PerspectiveCamera> camera;
     w.view<Camera>().each([&](const Camera& cam) {
@@ -274,17 +275,47 @@ void interact(ecs::SystemContext& ctx) {
     auto in_reach = [&](glm::ivec2 tile) {
         return glm::distance(glm::vec2(tile) + 0.5f, glm::vec2(player->x, player->z)) <= interaction_range;
     };
+    const auto gain = [&](Item item) { inventory[item] = std::min(inventory[item] + 1, Inventory::max_stack); };
     if (c.mine) {
-        if (auto tile = pick_wall(ray, w.resource<systems::GiConfig>().wall_height, is_wall); tile && in_reach(*tile))
-            streaming.set_wall(w, *tile, false);
+        // The wall under the cursor yields its block; on open ground, a torch or prop placed
+        // on that tile is picked back up (the scene's own lights are not the player's).
+        if (auto tile = pick_wall(ray, w.resource<systems::GiConfig>().wall_height, is_wall)) {
+            if (in_reach(*tile)) {
+                streaming.set_wall(w, *tile, false);
+                gain(Item::wall);
+            }
+            return;
+        }
+        const auto ground = pick_ground(ray);
+        if (!ground || !in_reach(*ground)) return;
+        const auto on_tile = [&](glm::vec2 p) { return glm::ivec2(glm::floor(p)) == *ground; };
+        std::optional<std::pair<ecs::Entity, Item>> found;
+        w.view<Torch, PointLight>().each([&](ecs::Entity e, const Torch&, const PointLight& l) {
+            if (!found && on_tile(l.position)) found = {e, Item::torch};
+        });
+        w.view<Prop>().each([&](ecs::Entity e, const Prop& p) {
+            if (found || !on_tile(p.position)) return;
+            found = {e, p.kind == PropKind::crystal ? Item::crystal : p.kind == PropKind::tree ? Item::tree : Item::lamp_post};
+        });
+        if (found) {
+            ctx.commands().destroy(found->first);
+            gain(found->second);
+        }
         return;
     }
+    const Item item = c.place_wall      ? Item::wall
+                      : c.place_torch   ? Item::torch
+                      : c.place_crystal ? Item::crystal
+                      : c.place_tree    ? Item::tree
+                                        : Item::lamp_post;
+    if (inventory[item] <= 0) return; // nothing of it left: mine or pick some up
     const auto tile = pick_ground(ray);
     if (!tile || !in_reach(*tile) || streaming.is_wall(*tile)) return;
     const glm::vec2 center = glm::vec2(*tile) + 0.5f;
     if (c.place_wall) {
         // Never wall the player in.
-        if (glm::distance(center, glm::vec2(player->x, player->z)) > 0.9f) streaming.set_wall(w, *tile, true);
+        if (glm::distance(center, glm::vec2(player->x, player->z)) <= 0.9f) return;
+        streaming.set_wall(w, *tile, true);
     } else if (c.place_torch) {
         const TorchParts parts = torch_parts(center, float(tile->x * 13 + tile->y * 7) * 0.37f);
         auto& cb = ctx.commands();
@@ -301,6 +332,7 @@ void interact(ecs::SystemContext& ctx) {
         if (parts.proxy) cb.emplace<ShadowProxy>(e, *parts.proxy);
         if (parts.light) cb.emplace<PointLight>(e, *parts.light);
     }
+    --inventory[item];
 }
 
 } // namespace
@@ -313,8 +345,8 @@ void add_gameplay_systems(ecs::Schedule& schedule) {
     schedule.add("interact", [](ecs::SystemContext& ctx) { interact(ctx); })
         .main_thread() // edits the wall mirror
         .reads_resource<Controls, systems::GiConfig>()
-        .reads<Player, Transform, Camera>()
-        .writes_resource<systems::Streaming>()
+        .reads<Player, Transform, Camera, Torch, PointLight, Prop>() // what it picks up
+        .writes_resource<systems::Streaming, Inventory>()
         .writes<WallChunk>();
     schedule.add("torch_flicker", [](ecs::SystemContext& ctx) {
         const double t = ctx.world.resource<GameClock>().time;

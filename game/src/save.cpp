@@ -17,6 +17,9 @@
 namespace lantern::game {
 namespace {
 
+// The inventory's keys in a save, in Item order.
+constexpr const char* inventory_keys[item_count] = {"wall", "torch", "crystal", "lamp_post", "tree"};
+
 // ---------------------------------------------------------------- writing
 
 // Vectors as one-line arrays of their floats (shortest text that reads back exactly).
@@ -241,6 +244,7 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
     s.world = spec;
     world.view<Player, Transform>().each([&](const Player&, const Transform& t) { s.player = {t.position.x, t.position.z}; });
     if (world.has_resource<DayCycle>()) s.day = world.resource<DayCycle>();
+    if (world.has_resource<Inventory>()) s.inventory = world.resource<Inventory>();
     // Every entity with a game component, in entity order (stable between saves).
     std::vector<ecs::Entity> entities;
     auto collect = [&](ecs::Entity e) { entities.push_back(e); };
@@ -299,6 +303,9 @@ std::string format_save(const SaveState& s) {
     write_vec(w, "player", s.player);
     w.key("day").begin_object(json::Layout::one_line).field("time_of_day", s.day.time_of_day);
     w.field("running", s.day.running).field("day_length", s.day.day_length).field("drives_sun", s.day.drives_sun).end();
+    w.key("inventory").begin_object(json::Layout::one_line);
+    for (int i = 0; i < item_count; ++i) w.field(inventory_keys[i], s.inventory.counts[std::size_t(i)]);
+    w.end();
     w.key("entities").begin_array();
     for (const SavedEntity& e : s.entities) write_entity(w, e);
     w.end();
@@ -350,7 +357,7 @@ Result<SaveState> parse_save(std::string_view text, const std::string& file_name
     if (!doc) return doc.error();
     Reader r("the save");
     SaveState s;
-    Fields top(r, *doc, "", {"lantern_save", "world", "player", "day", "entities", "edits", "baked", "extensions"});
+    Fields top(r, *doc, "", {"lantern_save", "world", "player", "day", "inventory", "entities", "edits", "baked", "extensions"});
     s.file = file_name;
     int version = 0;
     top.required("lantern_save", version, IntRange{1, 1 << 20});
@@ -376,6 +383,11 @@ Result<SaveState> parse_save(std::string_view text, const std::string& file_name
             .optional("running", s.day.running)
             .optional("day_length", s.day.day_length, greater_than(0.0))
             .optional("drives_sun", s.day.drives_sun);
+    }
+    if (const json::Value* inv = top.find("inventory")) {
+        Fields items(r, *inv, "inventory", {"wall", "torch", "crystal", "lamp_post", "tree"});
+        for (int i = 0; i < item_count; ++i)
+            items.optional(inventory_keys[i], s.inventory.counts[std::size_t(i)], IntRange{0, Inventory::max_stack});
     }
     read_list(r, top, "entities", s.entities,
               [&](const json::Value& v, const std::string& path, SavedEntity& e) { read_entity(r, v, path, e); });
@@ -454,6 +466,7 @@ void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player) {
         if (PointLight* l = world.try_get<PointLight>(player)) l->position = state.player;
     }
     world.set_resource<DayCycle>(state.day);
+    world.set_resource<Inventory>(state.inventory);
 }
 
 } // namespace lantern::game

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 #include <sys/stat.h>
@@ -170,6 +171,7 @@ struct GameStatus {
     unsigned long long frame = 0;
     glm::vec2 player{0.0f}, mouse{0.0f};
     int left = 0, right = 0, item = 0, saves = 0;
+    std::array<int, 5> inventory{-1, -1, -1, -1, -1}; // wall, torch, crystal, lamp post, tree
 };
 
 std::optional<GameStatus> read_status(const std::string& path) {
@@ -181,6 +183,11 @@ std::optional<GameStatus> read_status(const std::string& path) {
                               &st.frame, &st.player.x, &st.player.y, &st.mouse.x, &st.mouse.y, &st.left, &st.right,
                               &st.item, &st.saves);
     if (n != 9) return std::nullopt;
+    const std::size_t at = text.find("\"inventory\": [");
+    if (at == std::string::npos ||
+        std::sscanf(text.c_str() + at, "\"inventory\": [%d, %d, %d, %d, %d]", &st.inventory[0], &st.inventory[1],
+                    &st.inventory[2], &st.inventory[3], &st.inventory[4]) != 5)
+        return std::nullopt;
     return st;
 }
 
@@ -244,9 +251,14 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
     const double dark = luminance(first, torch_px - 30, torch_px + 30);
     ASSERT_TRUE(test::x_key(*window, "2", true));
     ASSERT_TRUE(test::x_key(*window, "2", false));
-    ASSERT_TRUE(until("item 2 (torch) selected", [](const GameStatus& st) { return st.item == 2; }));
+    const auto selected = until("item 2 (torch) selected", [](const GameStatus& st) { return st.item == 2; });
+    ASSERT_TRUE(selected);
+    const std::array<int, 5> carried = selected->inventory;
+    EXPECT_EQ(carried, (std::array<int, 5>{0, 8, 4, 2, 4})) << "a new game's inventory";
     ASSERT_TRUE(point_at(torch_px));
     ASSERT_TRUE(click(3));
+    // Placing consumes a torch from the inventory.
+    ASSERT_TRUE(until("a torch fewer", [&](const GameStatus& st) { return st.inventory[1] == carried[1] - 1; }));
     const test::RgbImage lit = capture_until(*window, [&](const test::RgbImage& img) {
         return luminance(img, torch_px - 30, torch_px + 30) > dark + 25.0;
     }, 180s, &met);
@@ -288,6 +300,8 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
         return gap_light(img) > before_gap + 15.0;
     }, 180s, &met);
     EXPECT_TRUE(met) << "no light came through the gap: " << before_gap << " -> " << gap_light(mined);
+    // Mining yields the block.
+    ASSERT_TRUE(until("a wall block in the inventory", [&](const GameStatus& st) { return st.inventory[0] == 1; }));
     dump(mined, "4_mined");
     // Where the wall's top was, the floor of the east room shows now.
     EXPECT_GT(patch_difference(walked, mined, wall_px - 8, wall_px + 8), 20.0) << "the mined wall still looks the same";
@@ -306,6 +320,7 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
     ASSERT_TRUE(state) << state.error().message;
     EXPECT_EQ(state->world.kind, game::WorldKind::scene);
     EXPECT_NEAR(state->player.x, at_wall.x, 0.05f);
+    EXPECT_EQ(state->inventory.counts, (std::array<int, 5>{1, 7, 4, 2, 4})) << "the inventory is not in the save";
     bool torch = false;
     for (const auto& e : state->entities)
         if (e.torch && glm::distance(e.point_light->position, glm::vec2(3.5f, 4.5f)) < 0.01f) torch = true;

@@ -17,6 +17,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <array>
 #include <csignal>
 #include <fstream>
 #include <random>
@@ -250,6 +251,9 @@ SaveState sample_state(ecs::World& world, systems::Streaming& streaming, jobs::J
     streaming.set_wall(world, s + glm::ivec2(40, 3), true); // not resident
     spawn_prop(world, PropKind::lamp_post, w->spawn + glm::vec2(2.0f, 1.0f));
     spawn_prop(world, PropKind::tree, w->spawn + glm::vec2(-2.0f, 1.0f));
+    Inventory carried;
+    carried.counts = {17, 3, 0, 999, 1};
+    world.set_resource<Inventory>(carried);
     world.resource<DayCycle>() = DayCycle{true, 0.625f, 30.0f};
     return capture_save(world, streaming, w->spec);
 }
@@ -300,6 +304,28 @@ TEST(Saves, RoundTripIsExactAndRestoresTheWorld) {
     expect_same(saved, again);
     EXPECT_TRUE(fresh.resource<DayCycle>().running);
     EXPECT_FLOAT_EQ(fresh.resource<DayCycle>().time_of_day, 0.625f);
+    EXPECT_EQ(fresh.resource<Inventory>().counts, (std::array<int, item_count>{17, 3, 0, 999, 1}));
+}
+
+// The inventory in saves: a save without one (written before it existed) gives a new game's;
+// counts outside [0, 999] and unknown items are refused with their position.
+TEST(Saves, InventoryDefaultsAndBadCountsAreRefused) {
+    const std::string head = "{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2]";
+    auto old = parse_save(head + "}", "t.json");
+    ASSERT_TRUE(old) << old.error().message;
+    EXPECT_EQ(old->inventory, Inventory{});
+    auto some = parse_save(head + ", \"inventory\": {\"wall\": 5, \"tree\": 0}}", "t.json");
+    ASSERT_TRUE(some) << some.error().message;
+    EXPECT_EQ(some->inventory.counts, (std::array<int, item_count>{5, 8, 4, 2, 0})); // the rest a new game's
+    auto negative = parse_save(head + ", \"inventory\": {\"torch\": -1}}", "t.json");
+    ASSERT_FALSE(negative);
+    EXPECT_NE(negative.error().message.find("t.json:1:90: inventory.torch: must be an integer in [0, 999], got -1"), std::string::npos) << negative.error().message;
+    auto huge = parse_save(head + ", \"inventory\": {\"wall\": 1000}}", "t.json");
+    ASSERT_FALSE(huge);
+    EXPECT_NE(huge.error().message.find("inventory.wall"), std::string::npos) << huge.error().message;
+    auto unknown = parse_save(head + ", \"inventory\": {\"sword\": 1}}", "t.json");
+    ASSERT_FALSE(unknown);
+    EXPECT_NE(unknown.error().message.find("sword"), std::string::npos) << unknown.error().message;
 }
 
 TEST(Saves, MalformedSavesAreRejectedWithPositions) {

@@ -179,6 +179,29 @@ TEST_F(ImGuiFixture, FrameTimeGraphSpansTheHudAndNothingOverflowsItsRightEdge) {
     }
 }
 
+// The hotbar (issue 19: the selected item and the counts on screen, no HUD needed): bottom
+// centre, whole on the display, one slot per item.
+TEST_F(ImGuiFixture, HotbarSitsWholeAtTheBottomCentre) {
+    Inventory inventory;
+    inventory.counts = {12, 0, 4, 999, 1};
+    for (int frame = 0; frame < 3; ++frame) { // auto-resized windows take their size on the next frames
+        ImGui::NewFrame();
+        draw_hotbar(inventory, 1);
+        ImGui::Render();
+    }
+    const ImGuiWindow* bar = nullptr;
+    for (ImGuiWindow* w : ImGui::GetCurrentContext()->Windows)
+        if (std::string(w->Name) == "##hotbar") bar = w;
+    ASSERT_NE(bar, nullptr);
+    EXPECT_NEAR(bar->Pos.x + bar->Size.x * 0.5f, 640.0f, 1.0f);
+    EXPECT_GE(bar->Pos.x, 0.0f);
+    EXPECT_LE(bar->Pos.x + bar->Size.x, 1280.0f);
+    EXPECT_LE(bar->Pos.y + bar->Size.y, 720.0f);
+    EXPECT_GE(bar->Pos.y + bar->Size.y, 700.0f);
+    EXPECT_GT(bar->Size.x, 5 * 80.0f) << "five slots";
+    EXPECT_LE(bar->ContentSize.x, bar->ContentRegionRect.GetWidth() + 0.5f);
+}
+
 TEST_F(ImGuiFixture, HiddenHudDrawsNothingAndAsksForNothing) {
     Hud hud;
     hud.visible = false;

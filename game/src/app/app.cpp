@@ -80,6 +80,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     auto s = std::make_unique<Session>();
     ecs::World& w = s->world;
     w.set_resource<Controls>();
+    w.set_resource<Inventory>();
     w.set_resource<GameClock>();
     DayCycle day;
     day.time_of_day = 0.85f; // night: torches and crystals carry the caves
@@ -221,7 +222,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
     schedule.add("render", [this, &s](ecs::SystemContext&) { render_system(s); })
         .main_thread()
         .reads_resource<DrawListResource, systems::FramePasses, systems::GiView, systems::GatheredLights,
-                        systems::GatheredProxies, GameClock, systems::Streaming, BakeStatus>() // the HUD shows them
+                        systems::GatheredProxies, GameClock, systems::Streaming, BakeStatus, Inventory>() // the HUD and hotbar show them
         .writes_resource<systems::GiConfig, DayCycle>() // the HUD edits them live
         .after("day_cycle"); // both write DayCycle: the HUD's time of day takes effect next frame
 }

@@ -140,8 +140,8 @@ void Game::render_system(Session& s) {
     if (!frame) return; // minimised: nothing to draw
     const bool hud = hud_.visible && overlay_;
     HudActions actions;
+    if (overlay_) overlay_->new_frame(); // the hotbar is drawn with the HUD hidden too
     if (hud) {
-        overlay_->new_frame();
         systems::FrameReport report;
         const systems::FramePasses& f = w.resource<systems::FramePasses>();
         report.ran = f.run;
@@ -169,14 +169,15 @@ void Game::render_system(Session& s) {
         in.device = device_->name();
         actions = hud_.draw(in);
     }
+    if (overlay_ && w.has_resource<Inventory>()) draw_hotbar(w.resource<Inventory>(), selected_item_);
     gpu::CommandList cmd = device_->begin("raster frame");
     record_world(cmd, s);
     const VkExtent2D size = frame->image().extent();
     const platform::Extent source{std::uint32_t(internal_.x), std::uint32_t(internal_.y)};
     present_rect_ = render::fit_integer_scale(source, {size.width, size.height});
     render::record_upscale(cmd, world_renderer_->target().color(), frame->image(), present_rect_,
-                           hud ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
-    if (hud) overlay_->record(cmd, frame->image());
+                           overlay_ ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    if (overlay_) overlay_->record(cmd, frame->image());
     swapchain_->present(std::move(*frame), std::move(cmd));
     collect_raster_timings();
     if (actions.export_trace) export_trace();

@@ -39,7 +39,6 @@
 namespace lantern::game::app {
 
 
-inline constexpr const char* item_names[] = {"wall", "torch", "crystal", "lamp post", "tree"};
 inline constexpr int warm_up_frames = 30; // left out of the headless percentiles (pipelines, first loads)
 // Memory is compared from this frame on (or from half the run, if shorter): by then the demo has
 // walked through its first chunks and every pipeline and GI texture exists.

@@ -323,7 +323,7 @@ HudActions Hud::draw(const HudInputs& in) {
         ImGui::Combo("palette", &in.art->palette, names.data(), int(names.size()));
     }
     if (in.day && ImGui::CollapsingHeader("World", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::TextWrapped("placing: %s   (1 wall, 2 torch, 3 crystal, 4 lamp post, 5 tree)", in.item);
+        ImGui::TextWrapped("placing: %s   (keys 1-5; the hotbar shows what is left)", in.item);
         ImGui::SliderFloat("time of day", &in.day->time_of_day, 0.0f, 0.999f);
         ImGui::Checkbox("day cycle (N)", &in.day->running);
         if (ImGui::Button("save (F5)")) actions.save = true;
@@ -333,6 +333,31 @@ HudActions Hud::draw(const HudInputs& in) {
     }
     ImGui::End();
     return actions;
+}
+
+void draw_hotbar(const Inventory& inventory, int selected) {
+    const ImGuiViewport* view = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(view->WorkPos.x + view->WorkSize.x * 0.5f, view->WorkPos.y + view->WorkSize.y - 6.0f),
+                            ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowBgAlpha(0.6f);
+    constexpr ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                       ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                       ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoMove;
+    if (ImGui::Begin("##hotbar", nullptr, flags)) {
+        for (int i = 0; i < item_count; ++i) {
+            if (i) ImGui::SameLine();
+            const int count = inventory.counts[std::size_t(i)];
+            const bool chosen = i == selected;
+            const ImVec4 fill = chosen ? ImVec4(0.85f, 0.6f, 0.2f, 0.9f) : ImVec4(0.15f, 0.15f, 0.18f, 0.9f);
+            ImGui::PushStyleColor(ImGuiCol_Button, fill);
+            ImGui::PushStyleColor(ImGuiCol_Text, count > 0 ? ImVec4(1, 1, 1, 1) : ImVec4(0.5f, 0.5f, 0.5f, 1));
+            char label[48];
+            std::snprintf(label, sizeof(label), "%d %s\n%d##slot%d", i + 1, item_names[i], count, i);
+            ImGui::Button(label, ImVec2(86, 40));
+            ImGui::PopStyleColor(2);
+        }
+    }
+    ImGui::End();
 }
 
 } // namespace lantern::game

@@ -59,4 +59,9 @@ class Hud {
     std::vector<float> graph_;
 };
 
+// The hotbar (drawn with the HUD hidden too, inside an ImGui frame): one slot per item at
+// the bottom centre of the display with its key, name and count, the selected one
+// highlighted, an empty one dimmed. Takes no input: keys 1-5 select.
+void draw_hotbar(const Inventory& inventory, int selected);
+
 } // namespace lantern::game

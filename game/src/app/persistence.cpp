@@ -48,6 +48,11 @@ void Game::write_status(Session& s) {
     s.world.view<EmissiveLight>().each([&](const EmissiveLight&) { ++lights; });
     w.field("lights", lights).field("reloads", reloads_).field("reload_errors", reload_errors_);
     w.field("hidden_waits", hidden_waits_);
+    if (s.world.has_resource<Inventory>()) {
+        w.key("inventory").begin_array(); // wall, torch, crystal, lamp post, tree
+        for (int count : s.world.resource<Inventory>().counts) w.value(count);
+        w.end();
+    }
     if (window_) {
         // The pixel-art target and where it lands in the window (the last presented frame).
         w.key("internal").begin_array().value(internal_.x).value(internal_.y).end();

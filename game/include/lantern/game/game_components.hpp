@@ -6,6 +6,7 @@
 
 #include <glm/vec2.hpp>
 
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -67,6 +68,20 @@ struct CameraRig {
     float back = 9.0f;          // tiles behind the player along +z (the camera looks towards -z)
     float fov_deg = 40.0f;
     float aspect = 16.0f / 9.0f;
+};
+
+// What the player carries (issue 19: mining yields the block, placing consumes, placed things
+// can be picked back up). The hotbar shows it; saves keep it.
+enum class Item : std::uint8_t { wall, torch, crystal, lamp_post, tree };
+inline constexpr int item_count = 5;
+inline constexpr const char* item_names[item_count] = {"wall", "torch", "crystal", "lamp post", "tree"};
+struct Inventory {
+    static constexpr int max_stack = 999;
+    // A new game's: no blocks (mine some), a few lights and props to place.
+    std::array<int, item_count> counts{0, 8, 4, 2, 4};
+    int& operator[](Item i) { return counts[std::size_t(i)]; }
+    int operator[](Item i) const { return counts[std::size_t(i)]; }
+    friend bool operator==(const Inventory&, const Inventory&) = default;
 };
 
 // Reach of the player's hands, tiles.

@@ -36,6 +36,7 @@ struct SaveState {
     WorldSpec world;
     glm::vec2 player{0.0f};
     DayCycle day;
+    Inventory inventory; // a save without one: a new game's
     std::vector<SavedEntity> entities;
     std::vector<systems::Streaming::EditedChunk> edits; // sorted by chunk
     // The baked light's cache keys of the chunks baked when saved (docs/baked.md, "In the
