@@ -302,6 +302,18 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
     EXPECT_TRUE(met) << "no light came through the gap: " << before_gap << " -> " << gap_light(mined);
     // Mining yields the block.
     ASSERT_TRUE(until("a wall block in the inventory", [&](const GameStatus& st) { return st.inventory[0] == 1; }));
+
+    // Place a crystal beside the player (3, right click), then pick it back up (left click on
+    // its tile): the count goes down and back.
+    ASSERT_TRUE(test::x_key(*window, "3", true));
+    ASSERT_TRUE(test::x_key(*window, "3", false));
+    ASSERT_TRUE(until("item 3 (crystal) selected", [](const GameStatus& st) { return st.item == 3; }));
+    const glm::ivec2 crystal_px = screen_of(at_wall, {10.5f, 0.0f, 4.5f});
+    ASSERT_TRUE(point_at(crystal_px));
+    ASSERT_TRUE(click(3));
+    ASSERT_TRUE(until("a crystal placed", [&](const GameStatus& st) { return st.inventory[2] == carried[2] - 1; }));
+    ASSERT_TRUE(click(1));
+    ASSERT_TRUE(until("the crystal picked up", [&](const GameStatus& st) { return st.inventory[2] == carried[2]; }));
     dump(mined, "4_mined");
     // Where the wall's top was, the floor of the east room shows now.
     EXPECT_GT(patch_difference(walked, mined, wall_px - 8, wall_px + 8), 20.0) << "the mined wall still looks the same";
