@@ -1,12 +1,16 @@
-// The timer HUD's layout (issue 19, bug 1): Hud::draw built into a real ImGui context with
+// The game's screen overlay and draw list without a window or GPU. The timer HUD's layout (issue 19, bug 1): Hud::draw built into a real ImGui context with
 // its default font, no window and no GPU, and its draw data read back. Debian's ImGui 1.86
 // drew the frame-time graph 1 px wide for PlotLines' "to the right edge" width, and long
 // lines pushed the trace button and text past the HUD's right edge; both are checked from
 // the vertices ImGui emits and the window's measured content width, for every gi.method's
 // settings panel.
+#include "app/draw_list.hpp"
 #include "app/hud.hpp"
 
+#include "lantern/game/gameplay.hpp"
 #include "lantern/gi/pass_table.hpp"
+#include "lantern/jobs/job_system.hpp"
+#include "lantern/systems/world_source.hpp"
 #include "lantern/gi/passes.hpp"
 #include "lantern/profile/profiler.hpp"
 
@@ -209,6 +213,73 @@ TEST_F(ImGuiFixture, HiddenHudDrawsNothingAndAsksForNothing) {
     EXPECT_FALSE(a.export_trace || a.save || a.load || a.toggle_vsync);
     EXPECT_EQ(hud_window(), nullptr);
     EXPECT_EQ(graph_extent().vertices, 0);
+}
+
+// Issue 19: a scene file's lights were invisible (no light or shadow may come from nothing).
+// The draw list now carries a lamp for each point light that no torch, prop or player owns
+// and a glowing slab for each such emissive light, in the light's hue; the game's own
+// torches, props and the player's lantern keep their models only; lights inside walls and
+// out of view are not drawn.
+TEST(DrawList, SceneLightsAreDrawnAndTheGamesOwnAreNotDrawnTwice) {
+    scene::WallGrid grid;
+    grid.width = 40;
+    grid.height = 30;
+    grid.cells.assign(std::size_t(grid.width * grid.height), 0);
+    grid.cells[std::size_t(12 + 10 * grid.width)] = 1; // a wall tile at (12, 10)
+    systems::Streaming streaming(std::make_shared<systems::GridSource>(grid));
+    ecs::World world;
+    jobs::JobSystem::Config no_workers;
+    no_workers.worker_threads = 0;
+    jobs::JobSystem jobs(no_workers);
+    streaming.load_all(world, jobs, {0.0f, 0.0f, 40.0f, 30.0f});
+    const glm::vec2 player(10.5f, 10.5f);
+    spawn_player(world, player, true); // carries a lantern (a PointLight)
+    spawn_torch(world, {8.5f, 9.5f}, 0.0f);
+    spawn_prop(world, PropKind::crystal, {11.5f, 8.5f}); // a Prop with an EmissiveLight
+    const auto light = [&](glm::vec2 at, glm::vec3 color) {
+        const ecs::Entity e = world.create();
+        PointLight l;
+        l.position = at;
+        l.color = color;
+        l.height = 1.2f;
+        world.emplace<PointLight>(e, l);
+    };
+    light({9.5f, 12.5f}, {0.2f, 0.4f, 0.8f});  // a scene's blue lamp
+    light({12.5f, 10.5f}, {1.0f, 0.0f, 0.0f}); // inside the wall tile: not drawn
+    light({39.5f, 29.5f}, {0.0f, 1.0f, 0.0f}); // far out of view
+    const ecs::Entity lava = world.create();
+    EmissiveLight pool;
+    pool.position = {7.5f, 11.5f};
+    pool.color = {2.0f, 0.6f, 0.1f};
+    world.emplace<EmissiveLight>(lava, pool);
+
+    DrawContext ctx;
+    ctx.camera = follow_camera({player.x, 0.0f, player.y}, CameraRig{});
+    DrawList list;
+    build_draw_list(world, streaming, ctx, list);
+    const auto glow_at = [&](glm::vec2 at) {
+        std::vector<const BoxInstance*> found;
+        for (const BoxInstance& b : list.boxes)
+            if (b.material == float(Material::glow) && glm::distance(glm::vec2(b.center.x, b.center.z), at) < 0.2f)
+                found.push_back(&b);
+        return found;
+    };
+    const auto blue = glow_at({9.5f, 12.5f});
+    ASSERT_EQ(blue.size(), 1u) << "the scene's point light has no lamp";
+    EXPECT_NEAR(blue[0]->center.y, 1.2f, 1e-5f) << "the lamp hangs at the light's height";
+    EXPECT_NEAR(blue[0]->color.b, 1.0f, 1e-5f);
+    EXPECT_NEAR(blue[0]->color.r, 0.25f, 1e-5f) << "the light's hue, brightest channel 1";
+    EXPECT_TRUE(glow_at({12.5f, 10.5f}).empty()) << "a light inside a wall is drawn";
+    EXPECT_TRUE(glow_at({39.5f, 29.5f}).empty()) << "a light out of view is drawn";
+    const auto slab = glow_at({7.5f, 11.5f});
+    ASSERT_EQ(slab.size(), 1u) << "the scene's emissive light has no slab";
+    EXPECT_LT(slab[0]->center.y, 0.1f);
+    EXPECT_NEAR(slab[0]->color.g, 0.3f, 1e-5f);
+    // The game's own: one flame for the torch, the crystal's two glowing boxes, and nothing
+    // glowing at the player (its lantern is part of its model).
+    EXPECT_EQ(glow_at({8.5f, 9.5f}).size(), 1u);
+    EXPECT_EQ(glow_at({11.5f, 8.5f}).size(), 2u);
+    EXPECT_TRUE(glow_at(player).empty());
 }
 
 } // namespace

@@ -119,6 +119,27 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
                                 Material::glow, 2.2f * f));
     });
 
+    // A scene file's own lights (no torch, prop or player of the game's carries them) are
+    // drawn too, so no light comes from nothing: a point light as a small lamp of its colour
+    // at its height (a post below it), an emissive light as a glowing slab on the ground.
+    world.view<PointLight>().each([&](ecs::Entity e, const PointLight& l) {
+        if (world.try_get<Torch>(e) || world.try_get<Prop>(e) || world.try_get<Player>(e)) return;
+        if (!in_rect(l.position, lo, hi) || streaming.is_wall(glm::ivec2(glm::floor(l.position)))) return;
+        const glm::vec3 at(l.position.x, 0.0f, l.position.y);
+        const float y = std::clamp(l.height, 0.3f, 3.0f);
+        const glm::vec3 glow = l.color / std::max({l.color.r, l.color.g, l.color.b, 1e-3f});
+        out.boxes.push_back(box(at + glm::vec3(0, (y - 0.1f) * 0.5f, 0), {0.04f, (y - 0.1f) * 0.5f, 0.04f},
+                                {0.2f, 0.2f, 0.23f}, Material::prop));
+        out.boxes.push_back(box(at + glm::vec3(0, y, 0), glm::vec3(0.1f), glow, Material::glow, 2.0f));
+    });
+    world.view<EmissiveLight>().each([&](ecs::Entity e, const EmissiveLight& l) {
+        if (world.try_get<Prop>(e) || !in_rect(l.position, lo, hi)) return;
+        if (streaming.is_wall(glm::ivec2(glm::floor(l.position)))) return;
+        const glm::vec3 glow = l.color / std::max({l.color.r, l.color.g, l.color.b, 1e-3f});
+        const float r = std::clamp(l.radius * 0.08f, 0.12f, 0.35f);
+        out.boxes.push_back(box({l.position.x, 0.03f, l.position.y}, {r, 0.03f, r}, glow, Material::glow, 1.4f));
+    });
+
     // The player.
     world.view<Player, Transform>().each([&](const Player& p, const Transform& t) {
         const glm::vec3 at(t.position.x, 0.0f, t.position.z);
