@@ -149,6 +149,12 @@ vec3 gi_view_color(vec3 pos) {
 }
 
 void main() {
+    if (XRAY) {
+        // Every other pixel, in the box's own colour: the world behind still shows through.
+        if (((int(gl_FragCoord.x) + int(gl_FragCoord.y)) & 1) != 0) discard;
+        out_color = vec4(in_color.rgb, 1.0);
+        return;
+    }
     if (GI_VIEW != 0) {
         // Side faces sample just inside their box (their own tile), not the tile boundary.
         const vec3 normals[4] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1));

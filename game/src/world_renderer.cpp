@@ -145,7 +145,7 @@ std::optional<ViewSource> view_source(GiDebugView v, const gi::FrameInputs& in) 
 }
 
 gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int face, bool gi, bool art, int lookup,
-                                        int view) {
+                                        int view, bool xray = false) {
     gpu::GraphicsPipelineDesc p;
     p.vertex_spirv = lantern_game_shaders_spirv("game_world.vert");
     p.fragment_spirv = lantern_game_shaders_spirv("game_world.frag");
@@ -160,9 +160,11 @@ gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int 
                         {1, gi ? 1u : 0u},
                         {2, art ? 1u : 0u},
                         {3, std::uint32_t(lookup)},
-                        {4, std::uint32_t(view)}};
+                        {4, std::uint32_t(view)},
+                        {5, xray ? 1u : 0u}};
     p.cull = VK_CULL_MODE_NONE; // faces turned away are never listed
-    p.depth = {true, true, VK_COMPARE_OP_LESS};
+    // The x-ray pass draws where the depth buffer holds something nearer, and keeps it.
+    p.depth = xray ? gpu::DepthState{true, false, VK_COMPARE_OP_GREATER} : gpu::DepthState{true, true, VK_COMPARE_OP_LESS};
     p.color_format = target.color_format();
     p.depth_format = target.depth_format();
     p.name = "game world";
@@ -238,6 +240,8 @@ struct WorldRenderer::Impl {
     // By face, wall lookup, GI on, art on, GI view mode (specialisation constants), created on
     // first use.
     std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4 * view_modes> pipelines;
+    std::array<gpu::GraphicsPipeline, face_count> xray_pipelines; // by face, created on first use
+    std::array<std::vector<BoxInstance>, face_count> xray_faces;   // this frame's (reused)
     render::StreamBuffer instances;
     gpu::BufferView instance_texels; // RGBA32F, three texels per box
     render::StreamBuffer frame;
@@ -264,6 +268,11 @@ struct WorldRenderer::Impl {
             face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0) + 4 * int(view)));
         gpu::GraphicsPipeline& p = pipelines[std::size_t(key)];
         if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, gi, art, lookup, view));
+        return p;
+    }
+    const gpu::GraphicsPipeline& xray_pipeline(int face) {
+        gpu::GraphicsPipeline& p = xray_pipelines[std::size_t(face)];
+        if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, false, false, lookup_grid, view_off, true));
         return p;
     }
 };
@@ -367,6 +376,20 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
         std::memcpy(static_cast<void*>(two), &r, sizeof(r));
         m.upload.insert(m.upload.end(), two, two + 2);
     }
+    // The x-ray faces last, by face (one pipeline each), as glow (the vertex stage reads no
+    // probe record for them).
+    for (auto& f : m.xray_faces) f.clear();
+    for (BoxInstance b : list.xray) {
+        const glm::vec3 half = glm::max(b.half, glm::vec3(0.0f));
+        if (outside(planes, b.center - half, b.center + half)) continue;
+        b.material = float(int(Material::glow));
+        const int mask = int(b.face_mask + 0.5f);
+        for (int face = 0; face < face_count; ++face)
+            if (((mask >> face) & 1) && glm::dot(view.camera.position - (b.center + half * face_normal[face]), face_normal[face]) > 0.0f)
+                m.xray_faces[std::size_t(face)].push_back(b);
+    }
+    const auto xray_first = std::uint32_t(m.upload.size());
+    for (const auto& f : m.xray_faces) m.upload.insert(m.upload.end(), f.begin(), f.end());
     const VkDeviceSize bytes = VkDeviceSize(m.upload.size()) * sizeof(BoxInstance);
     if (bytes > m.instances.capacity()) {
         VkDeviceSize capacity = m.instances.capacity();
@@ -468,6 +491,20 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
             }
             cmd.draw(6 * count, 1, 6 * first, 0);
         }
+        first += count;
+    }
+    // The x-ray pass after everything else: the depth buffer is complete.
+    first = xray_first;
+    for (int face = 0; face < face_count; ++face) {
+        const auto count = std::uint32_t(m.xray_faces[std::size_t(face)].size());
+        if (!count) continue;
+        cmd.bind(m.xray_pipeline(face));
+        if (!pushed) {
+            cmd.push_descriptors(writes);
+            cmd.push_constants(std::int32_t{0});
+            pushed = true;
+        }
+        cmd.draw(6 * count, 1, 6 * first, 0);
         first += count;
     }
     m.target.end(cmd);

@@ -490,6 +490,52 @@ TEST_F(WorldRendererTest, WallsOccludeTheGroundBehindThem) {
     EXPECT_EQ(again.pixels, image.pixels);
 }
 
+// Issue 19: the player stays visible behind walls. DrawList::xray boxes are drawn again only
+// where something nearer hides them, as a checkerboard of their colour: behind a wall, half
+// the hidden pixels show the silhouette and half the wall; in the open they add nothing.
+TEST_F(WorldRendererTest, XraySilhouetteShowsOnlyWhereTheBoxIsHidden) {
+    const scene::PerspectiveCamera camera = follow({10.5f, 9.0f});
+    WorldView view;
+    view.camera = camera;
+    const glm::vec3 player{10.5f, 0.42f, 9.0f}, half{0.26f, 0.42f, 0.2f};
+    const glm::vec3 green{0.0f, 1.0f, 0.0f};
+    auto render = [&](bool wall, bool xray, glm::vec3 at) {
+        DrawList list = flat_floor({0, 0, 1});
+        if (wall) list.boxes.push_back(glow_box({10.5f, 1.0f, 10.0f}, {0.5f, 1.0f, 0.5f}, {1, 0, 0})); // in front
+        list.boxes.push_back(glow_box(at, half, {1, 1, 0}));
+        if (xray) list.xray.push_back(glow_box(at, half, green));
+        return draw(view, list, nullptr);
+    };
+    const std::array<int, 3> red = glow_pixel({1, 0, 0});
+    auto silhouette = [](const render::Rgba8Image& image) {
+        int n = 0;
+        for (std::size_t i = 0; i < image.pixels.size(); i += 4)
+            n += image.pixels[i] == 0 && image.pixels[i + 1] == 255 && image.pixels[i + 2] == 0;
+        return n;
+    };
+    const glm::ivec2 front = project_pixel(camera, player + glm::vec3(0.0f, 0.0f, half.z));
+    const auto hidden = render(true, false, player);
+    ASSERT_EQ(pixel(hidden, front.x, front.y), red) << "the wall does not hide the box";
+    const auto xray = render(true, true, player);
+    maybe_write_png(xray, "xray");
+    EXPECT_EQ(silhouette(hidden), 0);
+    const int shown = silhouette(xray);
+    EXPECT_GT(shown, 20) << "no silhouette behind the wall";
+    // A checkerboard: around the hidden front face, silhouette and wall alternate.
+    int green_px = 0, red_px = 0;
+    for (int dy = -2; dy < 2; ++dy)
+        for (int dx = -2; dx < 2; ++dx) {
+            const auto c = pixel(xray, front.x + dx, front.y + dy);
+            green_px += c == std::array<int, 3>{0, 255, 0};
+            red_px += c == red;
+        }
+    EXPECT_EQ(green_px, 8);
+    EXPECT_EQ(red_px, 8);
+    // Out in the open (two tiles west of the wall) the x-ray adds nothing.
+    const glm::vec3 open = player - glm::vec3(2.0f, 0.0f, 0.0f);
+    EXPECT_EQ(render(true, true, open).pixels, render(true, false, open).pixels);
+}
+
 TEST_F(WorldRendererTest, FaceMaskDropsFaces) {
     const scene::PerspectiveCamera camera = follow({10.0f, 10.0f});
     WorldView view;

@@ -4,6 +4,8 @@
 #include "lantern/gpu/command_list.hpp"
 #include "lantern/gpu/device.hpp"
 
+#include <algorithm>
+
 namespace lantern::render {
 
 namespace {
@@ -15,6 +17,9 @@ constexpr VkPipelineStageFlags reader_stages =
 constexpr VkAccessFlags reader_accesses = VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT |
                                           VK_ACCESS_INDEX_READ_BIT | VK_ACCESS_UNIFORM_READ_BIT |
                                           VK_ACCESS_SHADER_READ_BIT;
+
+constexpr std::size_t max_update_bytes = 65536;     // vkCmdUpdateBuffer's limit per command
+constexpr std::size_t max_inline_bytes = 1u << 20;  // in the command buffer up to this size
 
 } // namespace
 
@@ -32,7 +37,12 @@ void StreamBuffer::write(gpu::CommandList& cmd, std::span<const std::byte> bytes
     // Write-after-read: the previous frame's draws may still be reading the buffer.
     cmd.memory_barrier(reader_stages, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
                        VK_ACCESS_TRANSFER_WRITE_BIT);
-    cmd.upload(buffer_, 0, bytes);
+    if (bytes.size() <= max_inline_bytes) {
+        for (std::size_t at = 0; at < bytes.size(); at += max_update_bytes)
+            cmd.update_buffer(buffer_, at, bytes.subspan(at, std::min(max_update_bytes, bytes.size() - at)));
+    } else {
+        cmd.upload(buffer_, 0, bytes);
+    }
     cmd.memory_barrier(VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, reader_stages,
                        reader_accesses);
 }

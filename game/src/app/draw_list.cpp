@@ -15,6 +15,8 @@ BoxInstance box(glm::vec3 center, glm::vec3 half, glm::vec3 color, Material m, f
     return BoxInstance{center, float(int(m)), half, mask, color, emissive};
 }
 
+constexpr glm::vec3 player_xray_colour(0.55f, 0.8f, 1.0f);
+
 bool in_rect(glm::vec2 p, glm::vec2 lo, glm::vec2 hi) { return p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y; }
 
 } // namespace
@@ -146,6 +148,10 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         const auto [lit, record] = probe_lit({t.position.x, t.position.z});
         out.boxes.push_back(box(at + glm::vec3(0, 0.42f, 0), {0.26f, 0.42f, 0.2f}, {0.22f, 0.36f, 0.72f}, lit, record));
         out.boxes.push_back(box(at + glm::vec3(0, 1.04f, 0), {0.22f, 0.2f, 0.22f}, {0.9f, 0.72f, 0.56f}, lit, record));
+        // Its silhouette where walls (or trees) hide it: body and head only (the backpack
+        // behind the body would show through it).
+        out.xray.push_back(box(at + glm::vec3(0, 0.42f, 0), {0.26f, 0.42f, 0.2f}, player_xray_colour, Material::glow));
+        out.xray.push_back(box(at + glm::vec3(0, 1.04f, 0), {0.22f, 0.2f, 0.22f}, player_xray_colour, Material::glow));
         // Which way it faces: a small backpack on the other side.
         const glm::vec2 back = -p.facing * 0.2f;
         out.boxes.push_back(box(at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.14f, 0.18f, 0.14f}, {0.45f, 0.3f, 0.15f}, lit, record));

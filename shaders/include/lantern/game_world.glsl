@@ -24,6 +24,10 @@ layout(constant_id = 3) const int WALL_LOOKUP = 0;
 // texture u_view under it, seen from above: 1 light (tone-mapped), 2 distance field, 3
 // direction map, 4 jump flood (packed nearest-wall coordinates).
 layout(constant_id = 4) const int GI_VIEW = 0;
+// The x-ray pass (DrawList::xray): a box's faces drawn only where something nearer hides them
+// (depth test GREATER, no depth write), as a flat checkerboard of their colour, so the player
+// stays visible behind walls.
+layout(constant_id = 5) const bool XRAY = false;
 
 // The frame constants (WorldFrame in game/src/world_renderer.cpp), read as frames[slot] with
 // `slot` a push constant that is always 0. Why the indirection: lavapipe specialises a shader

@@ -94,6 +94,9 @@ glm::vec3 probe_face_light(const ProbeRecord& r, float phi);
 struct DrawList {
     std::vector<BoxInstance> boxes;
     std::vector<ProbeRecord> probes; // lit_probes boxes' records
+    // Drawn again after the boxes, only where something nearer hides them, as a checkerboard
+    // of their colour (the player's silhouette behind walls). Material and emission unused.
+    std::vector<BoxInstance> xray;
 };
 
 // Building blocks for a DrawList.

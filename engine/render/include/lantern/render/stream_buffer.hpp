@@ -8,9 +8,11 @@
 //
 // The write is ordered after every earlier draw reading the buffer (in this list or an
 // earlier submission) and before every later one, so one device-local buffer serves any
-// number of frames in flight. Up to 64 KiB the bytes travel inside the command buffer
-// (vkCmdUpdateBuffer); larger writes take a staging buffer per write (one allocation:
-// fine for a few per frame).
+// number of frames in flight. Up to 1 MiB the bytes travel inside the command buffer
+// (vkCmdUpdateBuffer, 64 KiB a command): no allocation per frame. (The game's box list
+// passes 64 KiB in big views; with a staging buffer per write, device memory rose and fell
+// every frame: the soak test's "no growth" saw it.) Larger writes take a staging buffer per
+// write (one allocation: fine for a few per frame).
 //
 // Static geometry needs none of this: create the buffer once and Device::upload it.
 // Ownership: move-only (a gpu::Buffer); destroy before the Device.
