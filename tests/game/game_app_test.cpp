@@ -360,6 +360,19 @@ std::optional<WatchStatus> read_watch_status(const std::string& path) {
     return st;
 }
 
+// Waits until the status file's counters satisfy `done` (a failure naming `what`, with the
+// game's log, if the game exits first or 180 s pass).
+std::optional<WatchStatus> wait_watch_status(GameProcess& game, const std::string& status, const char* what,
+                                             const std::function<bool(const WatchStatus&)>& done) {
+    const auto end = std::chrono::steady_clock::now() + 180s;
+    while (std::chrono::steady_clock::now() < end) {
+        if (auto st = read_watch_status(status); st && done(*st)) return st;
+        if (game.wait_exit(10ms)) break;
+    }
+    ADD_FAILURE() << "the game never reached: " << what << "; log:\n" << game.log();
+    return std::nullopt;
+}
+
 // Hot reload (--watch), as a designer iterates: the running game (a window under Xvfb, no
 // input, so nothing but the file changes the world) picks up an edit of its scene file, then
 // survives 100 random corrupting edits in a row, each reported and counted, still rendering
@@ -376,13 +389,7 @@ TEST(GameWindow, WatchedSceneReloadsAndSurvivesCorruptingEdits) {
                      dir.file("game.log"));
     ASSERT_TRUE(game.started());
     const auto until = [&](const char* what, const std::function<bool(const WatchStatus&)>& done) {
-        const auto end = std::chrono::steady_clock::now() + 180s;
-        while (std::chrono::steady_clock::now() < end) {
-            if (auto st = read_watch_status(status); st && done(*st)) return st;
-            if (game.wait_exit(10ms)) break;
-        }
-        ADD_FAILURE() << "the game never reached: " << what << "; log:\n" << game.log();
-        return std::optional<WatchStatus>();
+        return wait_watch_status(game, status, what, done);
     };
     const auto first = until("its first frame", [](const WatchStatus& st) { return st.frame >= 1; });
     ASSERT_TRUE(first);
@@ -445,13 +452,7 @@ TEST(GameWindow, WatchedScenesMapReloadsTheWorld) {
                      dir.file("game.log"));
     ASSERT_TRUE(game.started());
     const auto until = [&](const char* what, const std::function<bool(const WatchStatus&)>& done) {
-        const auto end = std::chrono::steady_clock::now() + 180s;
-        while (std::chrono::steady_clock::now() < end) {
-            if (auto st = read_watch_status(status); st && done(*st)) return st;
-            if (game.wait_exit(10ms)) break;
-        }
-        ADD_FAILURE() << "the game never reached: " << what << "; log:\n" << game.log();
-        return std::optional<WatchStatus>();
+        return wait_watch_status(game, status, what, done);
     };
     ASSERT_TRUE(until("its first frame", [](const WatchStatus& st) { return st.frame >= 1 && st.reloads == 0; }));
     EXPECT_NE(game.log().find("watching " + scene + " and " + map), std::string::npos) << game.log();

@@ -281,6 +281,19 @@ TEST(RenderCli, VulkanAndCpuBackendsAgree) {
 // lantern-bake end to end: a scene with a baked light bakes its chunks with a summary line,
 // a second run reuses them all, a damaged file is named and re-baked; bad input exits 2
 // with one line and writes nothing.
+// Waits until a watching lantern-render has printed these attempt counts (a generous deadline
+// turns a tool that never gets there into a failure, not a hang).
+bool watch_counts_reach(lantern::test::ChildProcess& render, const fs::path& log, int rendered, int refused) {
+    const std::string line = "watch: " + std::to_string(rendered) + " rendered, " + std::to_string(refused) + " refused";
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(180);
+    while (std::chrono::steady_clock::now() < end) {
+        if (lantern::test::read_file(log).find(line) != std::string::npos) return true;
+        if (render.wait_exit(std::chrono::milliseconds(10))) break;
+    }
+    ADD_FAILURE() << "never printed '" << line << "':\n" << lantern::test::read_file(log);
+    return false;
+}
+
 // lantern-render --watch as a designer uses it: a render per change of the scene file; a
 // malformed edit (100 random corruptions in a row) is refused with its position, writes
 // nothing, and the image keeps the last good render; the next good edit renders again.
@@ -293,19 +306,7 @@ TEST(RenderCli, WatchRendersEachEditAndKeepsTheLastGoodRender) {
                                        {scene.string(), "--backend", "cpu", "--watch", "--out", out.string()},
                                        log.string());
     ASSERT_TRUE(render.started());
-    // Waits until lantern-render has printed the counts (a generous deadline turns a tool that
-    // never gets there into a failure, not a hang).
-    const auto until = [&](int rendered, int refused) {
-        const std::string line = "watch: " + std::to_string(rendered) + " rendered, " + std::to_string(refused) +
-                                 " refused";
-        const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-        while (std::chrono::steady_clock::now() < end) {
-            if (lantern::test::read_file(log).find(line) != std::string::npos) return true;
-            if (render.wait_exit(std::chrono::milliseconds(10))) break;
-        }
-        ADD_FAILURE() << "never printed '" << line << "':\n" << lantern::test::read_file(log);
-        return false;
-    };
+    const auto until = [&](int rendered, int refused) { return watch_counts_reach(render, log, rendered, refused); };
     ASSERT_TRUE(until(1, 0));
     const std::string first = lantern::test::read_file(out);
     ASSERT_FALSE(first.empty());
@@ -352,17 +353,7 @@ TEST(RenderCli, WatchRendersEachEditOfTheScenesMap) {
                                        {scene.string(), "--backend", "vulkan", "--watch", "--out", out.string()},
                                        log.string());
     ASSERT_TRUE(render.started());
-    const auto until = [&](int rendered, int refused) {
-        const std::string line = "watch: " + std::to_string(rendered) + " rendered, " + std::to_string(refused) +
-                                 " refused";
-        const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(180);
-        while (std::chrono::steady_clock::now() < end) {
-            if (lantern::test::read_file(log).find(line) != std::string::npos) return true;
-            if (render.wait_exit(std::chrono::milliseconds(10))) break;
-        }
-        ADD_FAILURE() << "never printed '" << line << "':\n" << lantern::test::read_file(log);
-        return false;
-    };
+    const auto until = [&](int rendered, int refused) { return watch_counts_reach(render, log, rendered, refused); };
     {
         // No device: lantern-render exits 1 before its first render.
         const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(180);
