@@ -16,10 +16,27 @@ layout(location = 3) flat in vec3 in_box_min;
 layout(location = 4) flat in vec3 in_box_max;
 layout(location = 5) flat in vec3 in_face_light; // WALL_TOP_PER_FACE: the top's light
 layout(location = 6) flat in vec3 in_probe_light; // lit_probes: the baked light's direction
+layout(location = 7) flat in ivec4 in_texel; // texel_lit: the face's first atlas texel, texture size, face width, height
 
 layout(location = 0) out vec4 out_color;
 
-const int MATERIAL_GROUND = 0, MATERIAL_WALL = 1, MATERIAL_PROP = 2, MATERIAL_GLOW = 3, MATERIAL_LIT_PROBES = 4;
+const int MATERIAL_GROUND = 0, MATERIAL_WALL = 1, MATERIAL_PROP = 2, MATERIAL_GLOW = 3, MATERIAL_LIT_PROBES = 4,
+          MATERIAL_TEXEL_LIT = 5;
+
+// The atlas texel of a texel_lit box's face under `pos` (texel::box_model's layout: a face's
+// texel (i, j) counts i along its `right` and j down from its top edge, seen from outside).
+int face_texel(vec3 pos) {
+    const vec3 p = pos - in_box_min, e = max(in_box_max - in_box_min, vec3(1e-6));
+    float s, t; // across the face along `right`, and up it, 0..1
+    if (FACE == 0) { s = 1.0 - p.z / e.z; t = p.y / e.y; }
+    else if (FACE == 1) { s = p.z / e.z; t = p.y / e.y; }
+    else if (FACE == 2) { s = p.x / e.x; t = p.y / e.y; }
+    else if (FACE == 3) { s = 1.0 - p.x / e.x; t = p.y / e.y; }
+    else { s = p.x / e.x; t = 1.0 - p.z / e.z; }
+    const int i = clamp(int(floor(s * float(in_texel.z))), 0, in_texel.z - 1);
+    const int j = clamp(int(floor((1.0 - t) * float(in_texel.w))), 0, in_texel.w - 1);
+    return in_texel.x + j * in_texel.y + i;
+}
 
 // ---- the pixel-art pattern: 8 texels per tile on every face, a function of world position
 
@@ -169,6 +186,13 @@ void main() {
     vec3 color;
     if (in_material == MATERIAL_GLOW) {
         color = in_color.rgb * in_color.a;
+    } else if (TEXEL && in_material == MATERIAL_TEXEL_LIT && in_texel.y > 0) {
+        // Light, albedo and the GI's bounce all by the texel: the model's light changes in
+        // steps of its art's texels.
+        const int texel = face_texel(clamp(in_position, in_box_min, in_box_max));
+        vec3 light = texel_lit[texel].rgb;
+        if (HAS_GI) light += ground_indirect_light(texel_surfaces[3 * texel].xyz);
+        color = texel_albedo[texel].rgb * in_color.rgb * light;
     } else {
         // Interpolation can step a hair off the box at its edges: keep the point on it, so
         // the routing (which cell, which side) follows the face being drawn.

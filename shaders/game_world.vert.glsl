@@ -25,6 +25,7 @@ layout(location = 3) flat out vec3 out_box_min; // the box, to keep interpolated
 layout(location = 4) flat out vec3 out_box_max;
 layout(location = 5) flat out vec3 out_face_light; // WALL_TOP_PER_FACE: the top's light
 layout(location = 6) flat out vec3 out_probe_light; // lit_probes: what the baked light's direction adds
+layout(location = 7) flat out ivec4 out_texel; // texel_lit (TEXEL): atlas index of the face's texel (0, 0), texture size, face width, height
 
 const vec3 face_normal[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
 const vec3 face_u[5] = vec3[](vec3(0, 0, 1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(1, 0, 0), vec3(1, 0, 0));
@@ -68,6 +69,16 @@ void main() {
                                (2.0 / (3.0 * pi));
             out_probe_light = max(pi * e, vec3(0.0)) - a0;
         }
+    }
+    out_texel = ivec4(0);
+    if (TEXEL && out_material == 5) { // texel_lit: world_renderer.hpp TexelRecord, at texel `emissive`
+        const int base = int(in_color_emissive.w + 0.5);
+        const vec4 texture = texelFetch(u_boxes, base);
+        const vec4 rect = texelFetch(u_boxes, base + 1 + face);
+        const int size = int(texture.y + 0.5);
+        out_texel = ivec4(int(texture.x + 0.5) + int(rect.y + 0.5) * size + int(rect.x + 0.5), size, int(rect.z + 0.5),
+                          int(rect.w + 0.5));
+        out_color.a = 0.0;
     }
     if (WALL_TOP_PER_FACE && HAS_GI) {
         set_gi_shading();

@@ -56,26 +56,35 @@ enum Lookup : int { lookup_grid = 0, lookup_air = 1, lookup_wall = 2, lookup_cou
 
 // The draws of a frame, in order: tops (wall boxes' first: their light is one value per face,
 // computed by the vertex stage; then props and glow), the sides of wall boxes, other sides, the
+// texel_lit boxes by face (their own pipelines: only they pay for the texel lookups), the
 // ground last (what stands on it hides it before it is shaded).
 struct DrawGroup {
     int face;
     Lookup lookup;
+    bool texel = false;
 };
-constexpr std::array<DrawGroup, 11> draw_groups = {{
+constexpr std::array<DrawGroup, 16> draw_groups = {{
     {4, lookup_wall}, {4, lookup_grid},
     {0, lookup_wall}, {1, lookup_wall}, {2, lookup_wall}, {3, lookup_wall},
     {0, lookup_grid}, {1, lookup_grid}, {2, lookup_grid}, {3, lookup_grid},
+    {0, lookup_grid, true}, {1, lookup_grid, true}, {2, lookup_grid, true}, {3, lookup_grid, true}, {4, lookup_grid, true},
     {4, lookup_air},
 }};
-// The group of a visible face of a box of `material`.
+constexpr int texel_group_first = 10, ground_group = 15;
+// The group of a visible face of a box of `material` (texel_lit only when the view has texel light).
 int draw_group(int face, int material) {
-    if (face == face_top_index) return material == int(Material::ground) ? 10 : material == int(Material::wall) ? 0 : 1;
+    if (material == int(Material::texel_lit)) return texel_group_first + face;
+    if (face == face_top_index)
+        return material == int(Material::ground) ? ground_group : material == int(Material::wall) ? 0 : 1;
     return (material == int(Material::wall) ? 2 : 6) + face;
 }
 constexpr std::uint32_t binding_frame = 0, binding_walls = 1, binding_first_texture = 2;
 constexpr int gi_texture_count = 16; // GI_DIRECT ... GI_WALL_UPPER + 3 (shading.glsl ids)
 constexpr std::uint32_t binding_boxes = binding_first_texture + gi_texture_count; // the faces' boxes
 constexpr std::uint32_t binding_view = binding_boxes + 1;                           // the GI view's texture
+constexpr std::uint32_t binding_texel_lit = binding_view + 1;      // the per-texel light (storage)
+constexpr std::uint32_t binding_texel_surfaces = binding_view + 2; // its texels' world positions
+constexpr std::uint32_t binding_texel_albedo = binding_view + 3;   // its texels' albedo
 constexpr VkDeviceSize initial_box_capacity = 4096;
 
 // Shading-library texture ids (shading.glsl GI_*) in binding order.
@@ -145,7 +154,7 @@ std::optional<ViewSource> view_source(GiDebugView v, const gi::FrameInputs& in) 
 }
 
 gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int face, bool gi, bool art, int lookup,
-                                        int view, bool xray = false) {
+                                        int view, bool xray = false, bool texel = false) {
     gpu::GraphicsPipelineDesc p;
     p.vertex_spirv = lantern_game_shaders_spirv("game_world.vert");
     p.fragment_spirv = lantern_game_shaders_spirv("game_world.frag");
@@ -156,12 +165,15 @@ gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int 
     p.push_constant_size = sizeof(std::int32_t);            // WorldSlot
     for (std::uint32_t i = binding_walls; i <= binding_view; ++i)
         p.bindings.push_back(gpu::BindingType::uniform_texel_buffer);
+    for (std::uint32_t i = binding_texel_lit; i <= binding_texel_albedo; ++i)
+        p.bindings.push_back(gpu::BindingType::storage_buffer);
     p.specialization = {{0, std::uint32_t(face)},
                         {1, gi ? 1u : 0u},
                         {2, art ? 1u : 0u},
                         {3, std::uint32_t(lookup)},
                         {4, std::uint32_t(view)},
-                        {5, xray ? 1u : 0u}};
+                        {5, xray ? 1u : 0u},
+                        {6, texel ? 1u : 0u}};
     p.cull = VK_CULL_MODE_NONE; // faces turned away are never listed
     // The x-ray pass draws where the depth buffer holds something nearer, and keeps it.
     p.depth = xray ? gpu::DepthState{true, false, VK_COMPARE_OP_GREATER} : gpu::DepthState{true, true, VK_COMPARE_OP_LESS};
@@ -239,7 +251,7 @@ struct WorldRenderer::Impl {
     render::RenderTarget target;
     // By face, wall lookup, GI on, art on, GI view mode (specialisation constants), created on
     // first use.
-    std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4 * view_modes> pipelines;
+    std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4 * view_modes * 2> pipelines;
     std::array<gpu::GraphicsPipeline, face_count> xray_pipelines; // by face, created on first use
     std::array<std::vector<BoxInstance>, face_count> xray_faces;   // this frame's (reused)
     render::StreamBuffer instances;
@@ -248,6 +260,7 @@ struct WorldRenderer::Impl {
     gpu::Buffer dummy;             // absent GI textures and walls read this (never, in fact)
     gpu::BufferView dummy_texels;  // RGBA16F
     gpu::BufferView dummy_walls;   // R8_UINT
+    gpu::Buffer dummy_storage;     // the texel bindings without texel light
     // This frame's faces by draw group (reused).
     std::array<std::vector<BoxInstance>, draw_groups.size()> faces;
     std::vector<BoxInstance> upload;
@@ -261,13 +274,13 @@ struct WorldRenderer::Impl {
                                                      VK_WHOLE_SIZE, "game world box texels");
     }
 
-    const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art, ViewMode view) {
+    const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art, ViewMode view, bool texel) {
         if (!gi || view != view_off) lookup = lookup_grid; // compiled out anyway
-        if (view != view_off) art = false;
-        const int key =
-            face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0) + 4 * int(view)));
+        if (view != view_off) art = false, texel = false;  // GI views show the GI texture only
+        const int key = face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0) +
+                                                                           4 * (int(view) + view_modes * (texel ? 1 : 0))));
         gpu::GraphicsPipeline& p = pipelines[std::size_t(key)];
-        if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, gi, art, lookup, view));
+        if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, gi, art, lookup, view, false, texel));
         return p;
     }
     const gpu::GraphicsPipeline& xray_pipeline(int face) {
@@ -304,7 +317,8 @@ Result<std::unique_ptr<WorldRenderer>> WorldRenderer::create(gpu::Device& device
     impl->target = render::RenderTarget::create(
         device, {std::uint32_t(size.x), std::uint32_t(size.y), VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_D32_SFLOAT,
                  "game world"});
-    for (const DrawGroup& g : draw_groups) impl->pipeline(g.face, g.lookup, true, false, view_off); // the usual frame
+    for (const DrawGroup& g : draw_groups)
+        if (!g.texel) impl->pipeline(g.face, g.lookup, true, false, view_off, false); // the usual frame
     impl->create_instances(initial_box_capacity * sizeof(BoxInstance));
     impl->frame = render::StreamBuffer::create(device, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, 2 * sizeof(WorldFrame),
                                                "game world frame");
@@ -316,6 +330,9 @@ Result<std::unique_ptr<WorldRenderer>> WorldRenderer::create(gpu::Device& device
         device.create_buffer_view(impl->dummy, VK_FORMAT_R8_UINT, 0, VK_WHOLE_SIZE, "game world dummy walls");
     const std::array<std::byte, 16> zeros{};
     device.upload(impl->dummy, zeros); // host-visible: a memcpy, no submission
+    impl->dummy_storage =
+        device.create_buffer({16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::upload, "game world dummy storage"});
+    device.upload(impl->dummy_storage, zeros);
     return std::unique_ptr<WorldRenderer>(new WorldRenderer(std::move(impl)));
 }
 
@@ -344,8 +361,15 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     // the others are listed by draw group (one pipeline each).
     const glm::mat4 view_projection_matrix = view_projection(view.camera);
     const std::array<glm::vec4, 6> planes = frustum_planes(view_projection_matrix);
+    const bool texel_on = view.texel_lit && view.texel_surfaces && view.texel_albedo && !view.texel_records.empty() &&
+                          (!view.gi || view.gi_view == GiDebugView::lit);
     for (auto& f : m.faces) f.clear();
-    for (const BoxInstance& b : list.boxes) {
+    for (BoxInstance b : list.boxes) {
+        if (int(b.material) == int(Material::texel_lit) &&
+            (!texel_on || b.emissive < 0.0f || std::size_t(b.emissive) >= view.texel_records.size())) {
+            b.material = float(int(Material::prop)); // no texel light for it: a plain prop
+            b.emissive = 0.0f;
+        }
         const glm::vec3 half = glm::max(b.half, glm::vec3(0.0f));
         if (outside(planes, b.center - half, b.center + half)) continue;
         const int mask = int(b.face_mask + 0.5f);
@@ -375,6 +399,18 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
         BoxInstance two[2];
         std::memcpy(static_cast<void*>(two), &r, sizeof(r));
         m.upload.insert(m.upload.end(), two, two + 2);
+    }
+    // The texel records after the probe records, the same way; a texel_lit face points at its
+    // record's first texel (its index was checked above).
+    if (texel_on) {
+        const std::size_t records_first = m.upload.size();
+        for (BoxInstance& b : m.upload)
+            if (int(b.material) == int(Material::texel_lit)) b.emissive = float(3 * (records_first + 2 * std::size_t(b.emissive)));
+        for (const TexelRecord& r : view.texel_records) {
+            BoxInstance two[2];
+            std::memcpy(static_cast<void*>(two), &r, sizeof(r));
+            m.upload.insert(m.upload.end(), two, two + 2);
+        }
     }
     // The x-ray faces last, by face (one pipeline each), as glow (the vertex stage reads no
     // probe record for them).
@@ -471,6 +507,9 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     f.art_params = glm::vec4(amplitude, 0.0f, 0.0f, 0.0f);
     m.frame.write(cmd, std::as_bytes(std::span<const WorldFrame>(&f, 1)));
     writes.uniform_texel_buffer(binding_boxes, m.instance_texels);
+    writes.storage_buffer(binding_texel_lit, texel_on ? *view.texel_lit : m.dummy_storage);
+    writes.storage_buffer(binding_texel_surfaces, texel_on ? *view.texel_surfaces : m.dummy_storage);
+    writes.storage_buffer(binding_texel_albedo, texel_on ? *view.texel_albedo : m.dummy_storage);
 
     const bool art_on = levels || art.dither || colors;
     m.view_drawn = view_mode == view_off ? GiDebugView::lit : view.gi_view;
@@ -480,7 +519,7 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     for (std::size_t d = 0; d < m.faces.size(); ++d) {
         const auto count = std::uint32_t(m.faces[d].size());
         if (count) {
-            cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on, view_mode));
+            cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on, view_mode, draw_groups[d].texel));
             // Descriptors once: every pipeline here has the same layout, so
             // they stay bound across the binds. (Each push cost lavapipe about 1 ms with the
             // GI texel buffers in it, 10 ms a frame for the 10 groups.)

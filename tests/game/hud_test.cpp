@@ -5,6 +5,7 @@
 // the vertices ImGui emits and the window's measured content width, for every gi.method's
 // settings panel.
 #include "app/draw_list.hpp"
+#include "app/texel_world.hpp"
 #include "app/hud.hpp"
 
 #include "lantern/game/gameplay.hpp"
@@ -213,6 +214,99 @@ TEST_F(ImGuiFixture, HiddenHudDrawsNothingAndAsksForNothing) {
     EXPECT_FALSE(a.export_trace || a.save || a.load || a.toggle_vsync);
     EXPECT_EQ(hud_window(), nullptr);
     EXPECT_EQ(graph_extent().vertices, 0);
+}
+
+// The draw list is a resource reused every frame: its x-ray list was never emptied, so the
+// player's silhouette was drawn (behind walls) at every place it had stood, and the list grew
+// by two boxes a frame.
+TEST(DrawList, EachFrameStartsFromAnEmptyList) {
+    scene::WallGrid grid;
+    grid.width = 20;
+    grid.height = 20;
+    grid.cells.assign(std::size_t(grid.width * grid.height), 0);
+    systems::Streaming streaming(std::make_shared<systems::GridSource>(grid));
+    ecs::World world;
+    jobs::JobSystem::Config no_workers;
+    no_workers.worker_threads = 0;
+    jobs::JobSystem jobs(no_workers);
+    streaming.load_all(world, jobs, {0.0f, 0.0f, 20.0f, 20.0f});
+    spawn_player(world, {10.5f, 10.5f}, true);
+    DrawContext ctx;
+    ctx.camera = follow_camera({10.5f, 0.0f, 10.5f}, CameraRig{});
+    DrawList list;
+    build_draw_list(world, streaming, ctx, list);
+    const std::size_t boxes = list.boxes.size(), xray = list.xray.size();
+    EXPECT_EQ(xray, 2u); // body and head
+    for (int frame = 0; frame < 3; ++frame) {
+        world.view<Player, Transform>().each([&](const Player&, Transform& t) { t.position.x += 0.25f; });
+        build_draw_list(world, streaming, ctx, list);
+        EXPECT_EQ(list.xray.size(), xray);
+        EXPECT_EQ(list.boxes.size(), boxes);
+    }
+    // The silhouette follows the player: its body box is where the player is now.
+    EXPECT_NEAR(list.xray[0].center.x, 11.25f, 1e-5f);
+}
+
+// Texel lighting (docs/texel.md, "In the game"): the same boxes, but the player's, the tree's
+// and the torch's are texel_lit boxes, each naming its part (model and centre: the box is the
+// model's); the lights reach the texel passes at their heights, the crystal's without shadows.
+TEST(DrawList, TexelLightingMakesModelsTexelLitParts) {
+    scene::WallGrid grid;
+    grid.width = 20;
+    grid.height = 20;
+    grid.cells.assign(std::size_t(grid.width * grid.height), 0);
+    systems::Streaming streaming(std::make_shared<systems::GridSource>(grid));
+    ecs::World world;
+    jobs::JobSystem::Config no_workers;
+    no_workers.worker_threads = 0;
+    jobs::JobSystem jobs(no_workers);
+    streaming.load_all(world, jobs, {0.0f, 0.0f, 20.0f, 20.0f});
+    spawn_player(world, {10.5f, 10.5f}, true);
+    spawn_torch(world, {8.5f, 9.5f}, 0.0f);
+    spawn_prop(world, PropKind::tree, {12.5f, 9.5f});
+    spawn_prop(world, PropKind::crystal, {9.5f, 11.5f});
+    DrawContext ctx;
+    ctx.camera = follow_camera({10.5f, 0.0f, 10.5f}, CameraRig{});
+    DrawList plain, texel;
+    build_draw_list(world, streaming, ctx, plain);
+    std::vector<texel::TexelLight> none;
+    gather_texel_lights(world, ctx, none);
+    EXPECT_TRUE(none.empty());
+    EXPECT_TRUE(plain.texel_parts.empty());
+    ctx.texel_lighting = true;
+    build_draw_list(world, streaming, ctx, texel);
+    ASSERT_EQ(texel.boxes.size(), plain.boxes.size());
+    EXPECT_EQ(texel.texel_parts.size(), 6u); // body, head, backpack, trunk, crown, torch stick
+    int texel_boxes = 0;
+    for (std::size_t i = 0; i < texel.boxes.size(); ++i) {
+        const BoxInstance& b = texel.boxes[i];
+        if (int(b.material) != int(Material::texel_lit)) continue;
+        ++texel_boxes;
+        ASSERT_LT(std::size_t(b.emissive), texel.texel_parts.size());
+        const TexelPart& part = texel.texel_parts[std::size_t(b.emissive)];
+        EXPECT_EQ(part.center, b.center);
+        EXPECT_EQ(texel_model_half(TexelModel(part.model)), b.half);
+        EXPECT_EQ(plain.boxes[i].center, b.center); // where the plain box was, the same size
+        EXPECT_EQ(plain.boxes[i].half, b.half);
+    }
+    EXPECT_EQ(texel_boxes, 6);
+    std::vector<texel::TexelLight> lights;
+    gather_texel_lights(world, ctx, lights);
+    ASSERT_EQ(lights.size(), 3u); // the player's lantern, the torch, the crystal
+    int unshadowed = 0;
+    for (const texel::TexelLight& l : lights) {
+        EXPECT_GT(l.position_range.y, 0.0f); // at a height
+        unshadowed += int(l.color_type.w) == int(texel::ShadowType::none);
+    }
+    EXPECT_EQ(unshadowed, 1);
+    // The models' textures are painted: every face texel has a colour.
+    for (int m = 0; m < int(TexelModel::count); ++m) {
+        const texel::Model& model = texel_model(TexelModel(m));
+        for (const glm::ivec4& f : model.faces)
+            for (int j = 0; j < f.w; ++j)
+                for (int i = 0; i < f.z; ++i)
+                    EXPECT_GT(model.albedo[std::size_t(f.y + j) * std::size_t(model.size) + std::size_t(f.x + i)].a, 0.0f);
+    }
 }
 
 // Issue 19: a scene file's lights were invisible (no light or shadow may come from nothing).

@@ -14,6 +14,8 @@
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gi/window.hpp"
 #include "lantern/gpu/device.hpp"
+#include "lantern/gpu/buffer.hpp"
+#include "lantern/texel/texel.hpp"
 #include "render/render_test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -534,6 +536,74 @@ TEST_F(WorldRendererTest, XraySilhouetteShowsOnlyWhereTheBoxIsHidden) {
     // Out in the open (two tiles west of the wall) the x-ray adds nothing.
     const glm::vec3 open = player - glm::vec3(2.0f, 0.0f, 0.0f);
     EXPECT_EQ(render(true, true, open).pixels, render(true, false, open).pixels);
+}
+
+// ---- per-texel light (docs/texel.md): a texel_lit box's faces take their texel's light
+
+// A box lit per texel by a checkerboard of light (bright and dim texels): every texel's centre
+// shows its own light x albedo (no GI here), neighbours differ, so the raster picks texels by
+// the model's layout with nearest filtering. Without texel light the box is a plain prop.
+TEST_F(WorldRendererTest, TexelLitFacesTakeTheLightOfTheirTexels) {
+    const scene::PerspectiveCamera camera = follow({10.5f, 10.0f});
+    WorldView view;
+    view.camera = camera;
+    const glm::vec3 center{10.5f, 1.0f, 8.5f}, half{0.5f, 1.0f, 0.5f};
+    const texel::Model model = texel::box_model(center - half, center + half, 4);
+    const std::size_t texels = std::size_t(model.size) * std::size_t(model.size);
+    std::vector<glm::vec4> lit(texels), albedo(texels, glm::vec4(0.9f, 0.7f, 0.5f, 1.0f)), surfaces(3 * texels, glm::vec4(0.0f));
+    for (std::size_t i = 0; i < texels; ++i) {
+        const int x = int(i % std::size_t(model.size)), y = int(i / std::size_t(model.size));
+        lit[i] = ((x + y) & 1) ? glm::vec4(1.0f) : glm::vec4(0.2f);
+    }
+    const auto buffer = [&](const std::vector<glm::vec4>& values, const char* name) {
+        gpu::Buffer b = device().create_buffer(
+            {values.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::upload, name});
+        device().upload(b, std::as_bytes(std::span<const glm::vec4>(values)));
+        return b;
+    };
+    const gpu::Buffer lit_buffer = buffer(lit, "test texel lit"), albedo_buffer = buffer(albedo, "test texel albedo"),
+                      surface_buffer = buffer(surfaces, "test texel surfaces");
+    game::TexelRecord record;
+    record.texture = glm::vec4(0.0f, float(model.size), 0.0f, 0.0f);
+    for (std::size_t f = 0; f < 5; ++f) record.faces[f] = glm::vec4(model.faces[f]);
+    DrawList list = flat_floor({0, 0, 1});
+    BoxInstance b;
+    b.center = center;
+    b.half = half;
+    b.material = float(int(Material::texel_lit));
+    b.color = glm::vec3(1.0f);
+    b.emissive = 0.0f; // record 0
+    list.boxes.push_back(b);
+    WorldView lit_view = view;
+    lit_view.texel_lit = &lit_buffer;
+    lit_view.texel_albedo = &albedo_buffer;
+    lit_view.texel_surfaces = &surface_buffer;
+    lit_view.texel_records = std::span<const game::TexelRecord>(&record, 1);
+    const auto image = draw(lit_view, list, nullptr);
+    maybe_write_png(image, "texel_lit");
+    const scene::GiSettings defaults;
+    // The +z face (towards the camera) is 4 x 8 texels; its texel (i, j) counts i along +x and
+    // j down from the top.
+    const glm::ivec4 face = model.faces[2];
+    ASSERT_EQ(face.z, 4);
+    ASSERT_EQ(face.w, 8);
+    int checked = 0;
+    for (int j = 0; j < face.w; ++j)
+        for (int i = 0; i < face.z; ++i) {
+            const glm::vec3 at(center.x - half.x + (float(i) + 0.5f) / float(face.z) * 2.0f * half.x,
+                               center.y + half.y - (float(j) + 0.5f) / float(face.w) * 2.0f * half.y, center.z + half.z);
+            const glm::ivec2 px = project_pixel(camera, at);
+            const std::size_t texel = std::size_t(face.y + j) * std::size_t(model.size) + std::size_t(face.x + i);
+            const auto want = srgb8(gi::tone_map(glm::vec3(albedo[texel]) * glm::vec3(lit[texel]), defaults.tone_map,
+                                                 defaults.white_point));
+            EXPECT_LE(max_diff(pixel(image, px.x, px.y), want), 1) << "texel " << i << ", " << j;
+            ++checked;
+        }
+    EXPECT_EQ(checked, 32);
+    // No texel light in the view: a plain prop (black without GI), never a texel lookup.
+    const auto plain = draw(view, list, nullptr);
+    const glm::ivec2 mid = project_pixel(camera, center + glm::vec3(0.0f, 0.0f, half.z));
+    EXPECT_EQ(pixel(plain, mid.x, mid.y), (std::array<int, 3>{0, 0, 0}));
 }
 
 TEST_F(WorldRendererTest, FaceMaskDropsFaces) {

@@ -56,6 +56,11 @@ Result<void> Game::init(bool windowed) {
     auto wr = WorldRenderer::create(*device_, internal_);
     if (!wr) return Error{"lantern: " + wr.error().message, 1};
     world_renderer_ = std::move(*wr);
+    if (options_.texel_lighting) {
+        auto tw = TexelWorld::create(*device_);
+        if (!tw) return Error{"lantern: " + tw.error().message, 1};
+        texel_world_ = std::move(*tw);
+    }
     if (device_->capabilities().timestamps) {
         auto timer = render::PassTimer::create(*device_);
         if (timer) timer_.emplace(std::move(*timer));
@@ -192,11 +197,9 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
 }
 
 void Game::add_systems(ecs::Schedule& schedule, Session& s) {
-    schedule.add("draw_list", [](ecs::SystemContext& ctx) {
+    schedule.add("draw_list", [texel_lighting = options_.texel_lighting](ecs::SystemContext& ctx) {
         ecs::World& w = ctx.world;
         DrawListResource& r = w.resource<DrawListResource>();
-        r.list.boxes.clear();
-        r.list.probes.clear();
         r.context = {};
         w.view<Camera>().each([&](const Camera& c) {
             if (auto* p = std::get_if<scene::PerspectiveCamera>(&c.view)) r.context.camera = *p;
@@ -214,7 +217,9 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
                 r.context.cursor_on_wall = target->second;
             }
         });
+        r.context.texel_lighting = texel_lighting;
         build_draw_list(w, streaming, r.context, r.list);
+        gather_texel_lights(w, r.context, r.texel_lights);
     })
         .reads<Player, Transform, Prop, Torch, PointLight, EmissiveLight, Camera>()
         .reads_resource<Controls, GameClock, systems::GiConfig, systems::Streaming, BakedChunks, BakeStatus>()

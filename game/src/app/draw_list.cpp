@@ -1,5 +1,7 @@
 #include "app/draw_list.hpp"
 
+#include "app/texel_world.hpp"
+
 #include "lantern/gi/window.hpp"
 
 #include <glm/geometric.hpp>
@@ -35,6 +37,12 @@ std::optional<std::pair<glm::ivec2, bool>> cursor_target(const Controls& c, cons
 }
 
 void build_draw_list(ecs::World& world, const systems::Streaming& streaming, const DrawContext& ctx, DrawList& out) {
+    // Every list starts empty (the frame's resource is reused: a list left to grow drew the
+    // player's silhouette at every place it had been).
+    out.boxes.clear();
+    out.probes.clear();
+    out.xray.clear();
+    out.texel_parts.clear();
     // The tiles in view: the camera's ground footprint, widened by the walls' height (a
     // wall top is seen nearer the camera than its foot).
     const auto area = gi::visible_area(scene::ViewSpec{ctx.camera});
@@ -76,12 +84,25 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     // Things that move or stand in the open are lit by the baked light's probes too (with
     // baked light in use): one record per object, a lit_probes box per part.
     auto probe_lit = [&](glm::vec2 at) -> std::pair<Material, float> {
-        if (!ctx.probes) return {Material::prop, 0.0f};
+        if (!ctx.probes || ctx.texel_lighting) return {Material::prop, 0.0f}; // texel lit: no record needed
         const bake::CircularHarmonics probes = ctx.probes->probes_at(at);
         ProbeRecord r;
         for (int k = 0; k < 5; ++k) r.c[k] = glm::vec4(probes.c[std::size_t(k)], 0.0f);
         out.probes.push_back(r);
         return {Material::lit_probes, float(out.probes.size() - 1)};
+    };
+
+    // A part of a model that is lit per texel with texel lighting on (its model's box, white:
+    // the texture has the colours), else the box it always was.
+    auto part = [&](ecs::Entity e, int index, TexelModel model, glm::vec3 center, glm::vec3 color,
+                    std::pair<Material, float> lit) {
+        const glm::vec3 extent = texel_model_half(model);
+        if (!ctx.texel_lighting) {
+            out.boxes.push_back(box(center, extent, color, lit.first, lit.second));
+            return;
+        }
+        out.texel_parts.push_back({e.bits() * 8u + std::uint64_t(index), int(model), center});
+        out.boxes.push_back(box(center, extent, glm::vec3(1.0f), Material::texel_lit, float(out.texel_parts.size() - 1)));
     };
 
     // Props.
@@ -97,14 +118,13 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
             break;
         }
         case PropKind::tree: {
-            const auto [lit, record] = probe_lit(p.position);
-            out.boxes.push_back(box(at + glm::vec3(0, 0.45f, 0), {0.1f, 0.45f, 0.1f}, {0.36f, 0.23f, 0.12f}, lit, record));
-            out.boxes.push_back(box(at + glm::vec3(0, 1.25f, 0), {0.42f, 0.38f, 0.42f}, {0.2f, 0.42f, 0.16f}, lit, record));
+            const auto lit = probe_lit(p.position);
+            part(e, 0, TexelModel::tree_trunk, at + glm::vec3(0, 0.45f, 0), {0.36f, 0.23f, 0.12f}, lit);
+            part(e, 1, TexelModel::tree_crown, at + glm::vec3(0, 1.25f, 0), {0.2f, 0.42f, 0.16f}, lit);
             break;
         }
         case PropKind::lamp_post: {
-            const auto [lit, record] = probe_lit(p.position);
-            out.boxes.push_back(box(at + glm::vec3(0, 0.7f, 0), {0.06f, 0.7f, 0.06f}, {0.2f, 0.2f, 0.23f}, lit, record));
+            part(e, 0, TexelModel::lamp_post, at + glm::vec3(0, 0.7f, 0), {0.2f, 0.2f, 0.23f}, probe_lit(p.position));
             out.boxes.push_back(box(at + glm::vec3(0, 1.5f, 0), {0.14f, 0.12f, 0.14f}, {1.0f, 0.9f, 0.7f}, Material::glow, 2.0f));
             break;
         }
@@ -112,11 +132,11 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     });
 
     // Torches: a stick and a flame that flickers with the light.
-    world.view<Torch, PointLight>().each([&](const Torch& t, const PointLight& l) {
+    world.view<Torch, PointLight>().each([&](ecs::Entity e, const Torch& t, const PointLight& l) {
         if (!in_rect(l.position, lo, hi)) return;
         const glm::vec3 at(l.position.x, 0.0f, l.position.y);
         const float f = l.intensity / std::max(t.base_intensity, 1e-3f);
-        out.boxes.push_back(box(at + glm::vec3(0, 0.25f, 0), {0.04f, 0.25f, 0.04f}, {0.35f, 0.22f, 0.1f}, Material::prop));
+        part(e, 0, TexelModel::torch_stick, at + glm::vec3(0, 0.25f, 0), {0.35f, 0.22f, 0.1f}, {Material::prop, 0.0f});
         out.boxes.push_back(box(at + glm::vec3(0, 0.58f, 0), glm::vec3(0.08f, 0.1f * f, 0.08f), {1.0f, 0.6f, 0.25f},
                                 Material::glow, 2.2f * f));
     });
@@ -143,18 +163,18 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     });
 
     // The player.
-    world.view<Player, Transform>().each([&](const Player& p, const Transform& t) {
+    world.view<Player, Transform>().each([&](ecs::Entity e, const Player& p, const Transform& t) {
         const glm::vec3 at(t.position.x, 0.0f, t.position.z);
-        const auto [lit, record] = probe_lit({t.position.x, t.position.z});
-        out.boxes.push_back(box(at + glm::vec3(0, 0.42f, 0), {0.26f, 0.42f, 0.2f}, {0.22f, 0.36f, 0.72f}, lit, record));
-        out.boxes.push_back(box(at + glm::vec3(0, 1.04f, 0), {0.22f, 0.2f, 0.22f}, {0.9f, 0.72f, 0.56f}, lit, record));
+        const auto lit = probe_lit({t.position.x, t.position.z});
+        part(e, 0, TexelModel::player_body, at + glm::vec3(0, 0.42f, 0), {0.22f, 0.36f, 0.72f}, lit);
+        part(e, 1, TexelModel::player_head, at + glm::vec3(0, 1.04f, 0), {0.9f, 0.72f, 0.56f}, lit);
         // Its silhouette where walls (or trees) hide it: body and head only (the backpack
         // behind the body would show through it).
         out.xray.push_back(box(at + glm::vec3(0, 0.42f, 0), {0.26f, 0.42f, 0.2f}, player_xray_colour, Material::glow));
         out.xray.push_back(box(at + glm::vec3(0, 1.04f, 0), {0.22f, 0.2f, 0.22f}, player_xray_colour, Material::glow));
         // Which way it faces: a small backpack on the other side.
         const glm::vec2 back = -p.facing * 0.2f;
-        out.boxes.push_back(box(at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.14f, 0.18f, 0.14f}, {0.45f, 0.3f, 0.15f}, lit, record));
+        part(e, 2, TexelModel::backpack, at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.45f, 0.3f, 0.15f}, lit);
     });
 
     // The cursor: a thin glowing frame on the tile (on the wall's top for a wall).
@@ -168,6 +188,42 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         out.boxes.push_back(box({c.x - 0.5f + w, y, c.y}, {w, 0.0f, 0.5f}, color, Material::glow, 0.9f, float(face_top)));
         out.boxes.push_back(box({c.x + 0.5f - w, y, c.y}, {w, 0.0f, 0.5f}, color, Material::glow, 0.9f, float(face_top)));
     }
+}
+
+} // namespace lantern::game
+
+namespace lantern::game {
+
+void gather_texel_lights(ecs::World& world, const DrawContext& ctx, std::vector<texel::TexelLight>& out) {
+    out.clear();
+    if (!ctx.texel_lighting) return;
+    const auto area = gi::visible_area(scene::ViewSpec{ctx.camera});
+    if (!area) return;
+    const glm::vec2 lo = area->min - 2.0f, hi = area->min + area->size + glm::vec2(2.0f, 2.0f + ctx.wall_height * 2.0f);
+    const glm::vec2 centre = (lo + hi) * 0.5f;
+    const auto reaches_view = [&](glm::vec2 p, float radius) { return glm::distance(p, glm::clamp(p, lo, hi)) <= radius; };
+    std::vector<std::pair<float, texel::TexelLight>> near;
+    world.view<PointLight>().each([&](ecs::Entity e, const PointLight& l) {
+        if (!reaches_view(l.position, l.radius)) return;
+        const Prop* prop = world.try_get<Prop>(e);
+        const bool lamp = prop && prop->kind == PropKind::lamp_post;
+        near.emplace_back(glm::distance(l.position, centre),
+                          texel::make_light({l.position.x, l.height, l.position.y}, l.color, l.intensity, l.radius,
+                                            lamp ? texel::ShadowType::blurred : texel::ShadowType::hard));
+    });
+    world.view<EmissiveLight>().each([&](const EmissiveLight& l) {
+        if (!reaches_view(l.position, l.radius)) return;
+        near.emplace_back(glm::distance(l.position, centre),
+                          texel::make_light({l.position.x, 0.3f, l.position.y}, l.color, l.intensity, l.radius,
+                                            texel::ShadowType::none));
+    });
+    constexpr std::size_t cap = 32;
+    if (near.size() > cap) {
+        std::nth_element(near.begin(), near.begin() + cap, near.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        near.resize(cap);
+    }
+    for (const auto& [d, l] : near) out.push_back(l);
 }
 
 } // namespace lantern::game

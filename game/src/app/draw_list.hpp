@@ -7,6 +7,7 @@
 #include "lantern/game/gameplay.hpp"
 #include "lantern/game/world_renderer.hpp"
 #include "lantern/systems/streaming.hpp"
+#include "lantern/texel/texel.hpp"
 
 namespace lantern::game {
 
@@ -22,10 +23,20 @@ struct DrawContext {
     // The tile under the cursor and whether the player can act on it (highlighted).
     std::optional<glm::ivec2> cursor_tile;
     bool cursor_on_wall = false;
+    // The player, trees, lamp posts and torch sticks as texel_lit boxes with a TexelPart each
+    // (app/texel_world.hpp); off: lit per pixel as before.
+    bool texel_lighting = false;
 };
 
-// Appends the world's boxes in view (walls from the streaming mirror) to `out`.
+// Fills `out` (emptied first: the frame's list is reused) with the world's boxes in view
+// (walls from the streaming mirror).
 void build_draw_list(ecs::World& world, const systems::Streaming& streaming, const DrawContext& context, DrawList& out);
+
+// The lights the texel passes light the models by this frame (nothing without
+// context.texel_lighting): point lights and emissive lights whose range reaches the view (the
+// 32 nearest the view's centre), at their height (emissive lights at 0.3, without shadows;
+// lamp posts' shadows blurred, the rest hard). The frame's suns are the GI's (record_world).
+void gather_texel_lights(ecs::World& world, const DrawContext& context, std::vector<texel::TexelLight>& out);
 
 // The tile the cursor points at, as interaction picks it (wall first, else ground), when
 // within the player's reach.

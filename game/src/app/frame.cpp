@@ -107,10 +107,26 @@ void Game::record_world(gpu::CommandList& cmd, Session& s) {
     view.gi_view = gi_view_;
     view.time = float(w.resource<GameClock>().time);
     std::uint32_t region = 0;
-    if (timer_) {
-        timer_->begin_frame(cmd, profile::frame_index());
-        region = timer_->begin(cmd, "world raster");
+    if (timer_) timer_->begin_frame(cmd, profile::frame_index());
+    if (texel_world_ && !draws.list.texel_parts.empty()) {
+        // The models' light per texel (docs/texel.md, "In the game"), under the gathered lights
+        // and the GI's suns, against the GI's view of the walls.
+        if (timer_) region = timer_->begin(cmd, "texel light");
+        std::vector<texel::TexelLight>& lights = texel_lights_;
+        lights.assign(draws.texel_lights.begin(), draws.texel_lights.end());
+        if (view.gi)
+            for (const gi::GpuDirectionalLight& sun : view.gi->directional_lights)
+                lights.push_back(texel::make_sun(glm::vec3(sun.direction_base), glm::vec3(sun.color_multiplier), 1.0f,
+                                                 texel::ShadowType::hard, 24.0f));
+        texel_world_->record(cmd, draws.list.texel_parts, lights, view.gi ? view.gi->walls : gi::WallView{},
+                             draws.context.wall_height);
+        if (timer_) timer_->end(cmd, region);
+        view.texel_lit = &texel_world_->lit();
+        view.texel_surfaces = &texel_world_->surfaces();
+        view.texel_albedo = &texel_world_->albedo();
+        view.texel_records = texel_world_->records();
     }
+    if (timer_) region = timer_->begin(cmd, "world raster");
     world_renderer_->record(cmd, view, draws.list);
     if (timer_) timer_->end(cmd, region);
 }

@@ -10,6 +10,7 @@
 
 #include "app/draw_list.hpp"
 #include "app/hud.hpp"
+#include "app/texel_world.hpp"
 #include "lantern/core/clock.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/json.hpp"
@@ -56,6 +57,7 @@ struct MemorySample {
 struct DrawListResource {
     DrawList list;
     DrawContext context;
+    std::vector<texel::TexelLight> texel_lights; // gather_texel_lights (the suns are added in record_world)
 };
 
 struct Session {
@@ -93,6 +95,7 @@ class Game {
         overlay_.reset();
         swapchain_.reset();
         timer_.reset();
+        texel_world_.reset();
         world_renderer_.reset();
         gi_renderer_.reset();
         device_.reset();
@@ -143,6 +146,8 @@ class Game {
     std::optional<render::PassTimer> timer_;
     std::unique_ptr<gi::vk::Renderer> gi_renderer_;
     std::unique_ptr<WorldRenderer> world_renderer_;
+    std::unique_ptr<TexelWorld> texel_world_; // nullptr with --no-texel-lighting
+    std::vector<texel::TexelLight> texel_lights_; // this frame's (reused)
     std::unique_ptr<Session> session_;
     std::uint32_t raster_lane_ = 0;
     ArtSettings art_;

@@ -28,6 +28,9 @@ layout(constant_id = 4) const int GI_VIEW = 0;
 // (depth test GREATER, no depth write), as a flat checkerboard of their colour, so the player
 // stays visible behind walls.
 layout(constant_id = 5) const bool XRAY = false;
+// The texel_lit boxes' draws (Material texel_lit, docs/texel.md): their faces take the light of
+// the per-texel passes at the texel under the pixel (bindings 20..22).
+layout(constant_id = 6) const bool TEXEL = false;
 
 // The frame constants (WorldFrame in game/src/world_renderer.cpp), read as frames[slot] with
 // `slot` a push constant that is always 0. Why the indirection: lavapipe specialises a shader
@@ -82,6 +85,11 @@ layout(set = 0, binding = 16) uniform samplerBuffer u_wall_upper_pz;
 layout(set = 0, binding = 17) uniform samplerBuffer u_wall_upper_nz;
 // binding 18: the boxes (game_world.vert.glsl)
 layout(set = 0, binding = 19) uniform samplerBuffer u_view; // GI_VIEW's texture (RGBA16F or RGBA8 words)
+// The per-texel light (texel::vk::TexelPasses): lit() and surfaces() (three vec4 per texel:
+// the world position first), and each atlas texel's albedo. Dummies unless TEXEL draws run.
+layout(std430, set = 0, binding = 20) readonly buffer TexelLit { vec4 texel_lit[]; };
+layout(std430, set = 0, binding = 21) readonly buffer TexelSurfaces { vec4 texel_surfaces[]; };
+layout(std430, set = 0, binding = 22) readonly buffer TexelAlbedo { vec4 texel_albedo[]; };
 
 #include "lantern/gi_walls.glsl"
 #include "lantern/shading.glsl"

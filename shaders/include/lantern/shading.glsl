@@ -134,6 +134,22 @@ vec3 surface_light(vec3 pos, vec3 n) {
     return combined;
 }
 
+// The ground route's indirect light alone (surface_light without GI_DIRECT): the GI's bounce
+// light at a point in the open, which per-texel lit models add to their own direct light
+// (docs/texel.md). Only the game's raster draws such models; the lit image has none, so the
+// C++ twin has no counterpart.
+vec3 ground_indirect_light(vec3 pos) {
+    ivec2 t = gi_texel_at(pos.xz);
+    vec3 indirect = gi_fetch_rgb(GI_INDIRECT, t);
+    float sun_visibility = gi_has(GI_SHADOW) ? gi_fetch(GI_SHADOW, t).g : 0.0;
+    for (int i = 0; i < gi_sun_count(); ++i) {
+        GpuDirectionalLight sun = gi_sun(i);
+        indirect += sun.color_multiplier.rgb * gi_sun_angle(sun) * sun.bounce.x * (1.0 - sun_visibility);
+    }
+    if (gi_has(GI_AO)) indirect *= gi_fetch(GI_AO, t).r;
+    return gi_wall_at(pos.xz) ? vec3(0.0) : indirect;
+}
+
 vec3 shade(vec3 pos, vec3 n) {
     return tone_map(surface_light(pos, n), int(gi_shading.config.y), gi_shading.config.z);
 }

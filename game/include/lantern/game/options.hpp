@@ -51,6 +51,8 @@ struct GameOptions {
     std::vector<std::string> gi_overrides; // the --set assignments (applied again to a scene's own settings)
     bool player_light = true;        // --no-player-light
     bool bake = true;                // --no-bake: no baked light (docs/baked.md, "In the game")
+    bool texel_lighting = true;      // --no-texel-lighting: props and the player lit per pixel by
+                                     // the GI, not per texel (docs/texel.md, "In the game")
     std::string bake_dir;            // --bake-dir DIR (default: lantern-bake beside the save file; headless: in --out)
     int workers = -1;                // --workers N (-1: hardware threads - 1)
     bool fixed_step = false;         // --fixed-step: dt = 1/60 whatever the frame took (headless always)

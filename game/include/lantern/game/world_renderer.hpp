@@ -40,6 +40,7 @@
 #include <vector>
 
 namespace lantern::gpu {
+class Buffer;
 class CommandList;
 class Device;
 } // namespace lantern::gpu
@@ -58,6 +59,11 @@ enum class Material : int {
     // lit as prop, and by the baked light from the direction it comes from: `emissive` is
     // the index of its record in DrawList::probes (the player, trees, lamp posts)
     lit_probes = 4,
+    // lit per texel (docs/texel.md): each face takes the per-texel light of the texel under the
+    // pixel (WorldView::texel_lit) plus the GI's indirect light at that texel's centre, times
+    // the texel's albedo (WorldView::texel_albedo) and `color`; `emissive` is the index of its
+    // record in WorldView::texel_records. Drawn as prop when the view has no texel light.
+    texel_lit = 5,
 };
 
 // One box of the world (48 bytes: three vec4s, which game_world.vert.glsl reads as three
@@ -91,9 +97,29 @@ static_assert(sizeof(ProbeRecord) == 2 * sizeof(BoxInstance), "probe records rid
 // phi = atan2(n.z, n.x) (the vertex stage's formula, for tests and the CPU).
 glm::vec3 probe_face_light(const ProbeRecord& r, float phi);
 
+// Where a texel_lit box's texture lies in the per-texel atlas (96 bytes: two BoxInstances):
+// `texture` x the atlas index of its texel (0, 0), y its size (texels per side); face f's
+// rectangle of texels (x, y, width, height) as texel::box_model lays the box's faces out
+// (texel::Model::faces: +x, -x, +z, -z, top).
+struct TexelRecord {
+    glm::vec4 texture{0.0f};
+    glm::vec4 faces[5]{};
+};
+static_assert(sizeof(TexelRecord) == 2 * sizeof(BoxInstance), "texel records ride in the box buffer");
+
+// A texel_lit box's model: which one (the application's table) and where it stands.
+struct TexelPart {
+    std::uint64_t key = 0; // the same while the part exists (entity and part), for caching
+    int model = 0;
+    glm::vec3 center{0.0f}; // the box's centre (its half extents are the model's)
+};
+
 struct DrawList {
     std::vector<BoxInstance> boxes;
     std::vector<ProbeRecord> probes; // lit_probes boxes' records
+    // texel_lit boxes' models, indexed by the boxes' `emissive` (the application lights them
+    // and hands their records to WorldView::texel_records in the same order).
+    std::vector<TexelPart> texel_parts;
     // Drawn again after the boxes, only where something nearer hides them, as a checkerboard
     // of their colour (the player's silhouette behind walls). Material and emission unused.
     std::vector<BoxInstance> xray;
@@ -148,6 +174,14 @@ struct WorldView {
     GiDebugView gi_view = GiDebugView::lit; // a texture this frame lacks (the method has no such
                                             // pass) draws the lit scene
     float time = 0.0f; // seconds; unused for now (no animated glow: output is a function of the view)
+    // The per-texel light (texel::vk::TexelPasses, recorded earlier in the same command list):
+    // its lit() and surfaces() buffers, the albedo of every atlas texel (vec4 each) and the
+    // texel_lit boxes' records (DrawList::texel_parts' order). Any missing: texel_lit boxes
+    // are drawn as props.
+    const gpu::Buffer* texel_lit = nullptr;
+    const gpu::Buffer* texel_surfaces = nullptr;
+    const gpu::Buffer* texel_albedo = nullptr;
+    std::span<const TexelRecord> texel_records;
 };
 
 class WorldRenderer {

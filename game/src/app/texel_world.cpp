@@ -1,0 +1,190 @@
+// The game's per-texel lit models: their boxes, pixel-art textures, and the passes per frame.
+#include "app/texel_world.hpp"
+
+#include "lantern/gpu/command_list.hpp"
+#include "lantern/gpu/device.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <mutex>
+
+namespace lantern::game {
+namespace {
+
+constexpr std::array<glm::vec3, std::size_t(TexelModel::count)> halves = {{
+    {0.26f, 0.42f, 0.2f},  // player body
+    {0.22f, 0.2f, 0.22f},  // player head
+    {0.14f, 0.18f, 0.14f}, // backpack
+    {0.1f, 0.45f, 0.1f},   // tree trunk
+    {0.42f, 0.38f, 0.42f}, // tree crown
+    {0.06f, 0.7f, 0.06f},  // lamp post
+    {0.04f, 0.25f, 0.04f}, // torch stick
+}};
+
+float noise(int model, int face, int i, int j) {
+    std::uint32_t h = std::uint32_t(i) * 73856093u ^ std::uint32_t(j) * 19349663u ^ std::uint32_t(face) * 83492791u ^
+                      std::uint32_t(model + 1) * 2654435761u;
+    h ^= h >> 13;
+    h *= 0x5bd1e995u;
+    h ^= h >> 15;
+    return float(h & 0xffffu) / 65535.0f;
+}
+
+// Face f's texel (i, j) of a w x h face (j = 0 the top row; faces +x, -x, +z, -z, top): its
+// linear albedo and its normal-map value (rgb in [0, 1], as a normal-map texture holds it).
+struct Texel {
+    glm::vec3 albedo;
+    glm::vec3 normal{0.5f, 0.5f, 1.0f};
+};
+
+Texel paint(TexelModel model, int f, int i, int j, int w, int h) {
+    const float n = noise(int(model), f, i, j);
+    const float vary = 0.94f + 0.12f * n;
+    const bool side = f < 4, top = f == 4;
+    switch (model) {
+    case TexelModel::player_body: {
+        if (side && j == (h * 11) / 20) { // the belt, a buckle on the front (+z, the camera's side)
+            const bool buckle = f == 2 && std::abs(2 * i - (w - 1)) <= 1;
+            return {buckle ? glm::vec3(0.8f, 0.68f, 0.3f) : glm::vec3(0.18f, 0.11f, 0.06f) * vary};
+        }
+        if (top || j == 0) return {glm::vec3(0.3f, 0.45f, 0.85f) * vary}; // collar and shoulders
+        return {glm::vec3(0.22f, 0.36f, 0.72f) * vary};
+    }
+    case TexelModel::player_head: {
+        const glm::vec3 hair = glm::vec3(0.28f, 0.16f, 0.08f) * vary;
+        if (top || j < std::max(1, h / 4) || (f == 3 && j < h / 2)) return {hair};
+        if (f == 2 && j == h / 2 && (i == w / 4 || i == w - 1 - w / 4)) return {glm::vec3(0.06f, 0.05f, 0.08f)}; // eyes
+        return {glm::vec3(0.9f, 0.72f, 0.56f) * vary};
+    }
+    case TexelModel::backpack: {
+        if (top || j < 2) return {glm::vec3(0.36f, 0.23f, 0.11f) * vary}; // the flap
+        if (side && (i == 0 || i == w - 1)) return {glm::vec3(0.3f, 0.19f, 0.09f)}; // straps
+        return {glm::vec3(0.45f, 0.3f, 0.15f) * vary};
+    }
+    case TexelModel::tree_trunk: {
+        // Bark: grooves every other column, their sides tilted towards them in the normal map.
+        const bool groove = side && (i & 1) == 1;
+        const glm::vec3 normal = side ? glm::vec3(groove ? 0.35f : 0.65f, 0.5f, 0.9f) : glm::vec3(0.5f, 0.5f, 1.0f);
+        return {glm::vec3(0.36f, 0.23f, 0.12f) * (groove ? 0.72f : 1.0f) * vary, normal};
+    }
+    case TexelModel::tree_crown: {
+        // Leaves: light and dark clumps, each leaf tilted its own way.
+        glm::vec3 c(0.2f, 0.42f, 0.16f);
+        if (n > 0.8f) c = glm::vec3(0.3f, 0.55f, 0.2f);
+        else if (n < 0.18f) c = glm::vec3(0.12f, 0.28f, 0.1f);
+        if (side && j >= h - 1) c *= 0.75f; // the underside's shade at the bottom edge
+        const float a = noise(int(model), f + 7, i, j), b = noise(int(model), f + 13, i, j);
+        return {c, glm::vec3(0.3f + 0.4f * a, 0.3f + 0.4f * b, 0.85f)};
+    }
+    case TexelModel::lamp_post:
+        return {side && j % 6 == 0 ? glm::vec3(0.35f, 0.35f, 0.4f) : glm::vec3(0.2f, 0.2f, 0.23f) * vary};
+    case TexelModel::torch_stick:
+    case TexelModel::count: break;
+    }
+    return {glm::vec3(0.35f, 0.22f, 0.1f) * vary};
+}
+
+texel::Model make_model(TexelModel model) {
+    const glm::vec3 half = halves[std::size_t(model)];
+    texel::Model m = texel::box_model(-half, half, texel_density);
+    const std::size_t texels = std::size_t(m.size) * std::size_t(m.size);
+    m.albedo.assign(texels, glm::vec4(0.0f));
+    m.normal_map.assign(texels, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));
+    for (int f = 0; f < int(m.faces.size()); ++f) {
+        const glm::ivec4 r = m.faces[std::size_t(f)];
+        for (int j = 0; j < r.w; ++j)
+            for (int i = 0; i < r.z; ++i) {
+                const Texel t = paint(model, f, i, j, r.z, r.w);
+                const std::size_t at = std::size_t(r.y + j) * std::size_t(m.size) + std::size_t(r.x + i);
+                m.albedo[at] = glm::vec4(t.albedo, 1.0f);
+                m.normal_map[at] = glm::vec4(t.normal, 0.0f);
+            }
+    }
+    return m;
+}
+
+bool same_walls(const texel::WallPatch& a, const texel::WallPatch& b) {
+    return a.origin == b.origin && a.width == b.width && a.height == b.height && a.words == b.words;
+}
+
+} // namespace
+
+glm::vec3 texel_model_half(TexelModel model) { return halves[std::size_t(model)]; }
+
+const texel::Model& texel_model(TexelModel model) {
+    static std::once_flag once;
+    static std::array<texel::Model, std::size_t(TexelModel::count)> models;
+    std::call_once(once, [] {
+        for (int k = 0; k < int(TexelModel::count); ++k) models[std::size_t(k)] = make_model(TexelModel(k));
+    });
+    return models[std::size_t(model)];
+}
+
+Result<std::unique_ptr<TexelWorld>> TexelWorld::create(gpu::Device& device) {
+    // Room for a crowded view from the start (about 40 trees with the player and torches:
+    // 64k texels, 7 MB), so walking allocates no device memory: the buffers only grow past it.
+    texel::vk::TexelPasses::Capacity reserve;
+    reserve.texels = 1u << 16;
+    reserve.placements = 256;
+    reserve.triangles = 256 * 10;
+    reserve.lights = 64;
+    reserve.wall_cells = 128 * 128;
+    auto passes = texel::vk::TexelPasses::create(device, reserve);
+    if (!passes) return passes.error();
+    return std::unique_ptr<TexelWorld>(new TexelWorld(std::move(*passes)));
+}
+
+void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts, std::span<const texel::TexelLight> lights,
+                        const gi::WallView& walls, float wall_height) {
+    std::vector<texel::Placement> placements;
+    placements.reserve(parts.size());
+    for (const TexelPart& p : parts) {
+        const int model = std::clamp(p.model, 0, int(TexelModel::count) - 1);
+        placements.push_back({&texel_model(TexelModel(model)), glm::translate(glm::mat4(1.0f), p.center)});
+    }
+    // Walls are copied as far as the longest light (or the sun's shadow search) reaches.
+    float reach = 1.0f;
+    for (const texel::TexelLight& l : lights) reach = std::max(reach, l.position_range.w);
+    texel::TexelScene scene = texel::build_scene(placements, walls, wall_height, reach);
+
+    const bool same_parts = parts.size() == last_parts_.size() &&
+                            std::equal(parts.begin(), parts.end(), last_parts_.begin(), [](const TexelPart& a, const TexelPart& b) {
+                                return a.key == b.key && a.model == b.model;
+                            });
+    if (!same_parts) {
+        // Parts came into view or left it: the atlas is laid out again.
+        passes_->upload_scene(cmd, scene);
+        albedo_.assign(scene.texel_count, glm::vec4(0.0f));
+        for (std::size_t k = 0; k < placements.size(); ++k) {
+            const texel::Model& m = *placements[k].model;
+            std::copy(m.albedo.begin(), m.albedo.end(), albedo_.begin() + scene.placements[k].ranges.z);
+        }
+        passes_->upload_albedo(cmd, albedo_);
+        passes_->record_uv_to_world(cmd);
+        ++rebuilds_;
+    } else {
+        if (!same_walls(scene.walls, scene_.walls)) passes_->upload_walls(cmd, scene);
+        bool moved = false;
+        for (std::size_t k = 0; k < parts.size() && !moved; ++k) moved = parts[k].center != last_parts_[k].center;
+        if (moved) { // the player walked: its texels are carried into the world again
+            passes_->upload_triangles(cmd, scene);
+            passes_->record_uv_to_world(cmd);
+        }
+    }
+    passes_->record_light(cmd, lights, texel::vk::TexelPasses::Mode::realtime);
+
+    records_.resize(parts.size());
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        const texel::Model& m = *placements[k].model;
+        TexelRecord& r = records_[k];
+        r.texture = glm::vec4(float(scene.placements[k].ranges.z), float(m.size), 0.0f, 0.0f);
+        for (std::size_t f = 0; f < 5; ++f) r.faces[f] = glm::vec4(m.faces[f]);
+    }
+    scene_ = std::move(scene);
+    last_parts_.assign(parts.begin(), parts.end());
+}
+
+} // namespace lantern::game
