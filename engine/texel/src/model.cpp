@@ -88,10 +88,11 @@ Model box_model(glm::vec3 min, glm::vec3 max, int texels_per_unit) {
     for (std::size_t f = 0; f < faces.size(); ++f)
         texels[f] = glm::ivec2(std::max(1, int(std::lround(faces[f].width * float(density)))),
                                std::max(1, int(std::lround(faces[f].height * float(density)))));
-    // Shelf packing with a one-texel gutter, into the smallest power of two that holds it.
+    // Shelf packing with a one-texel gutter, into the smallest square texture that holds it
+    // (any size: nothing here needs powers of two, and they left half the atlas empty).
     std::array<glm::ivec2, 5> origin{};
     int tex = 1;
-    for (;; tex *= 2) {
+    for (;; ++tex) {
         int x = 1, y = 1, row = 0;
         bool fits = true;
         for (std::size_t f = 0; f < faces.size() && fits; ++f) {

@@ -68,7 +68,7 @@ struct Model {
 // An axis-aligned box standing on its footprint: the four sides and the top (the bottom is
 // on the ground and never seen), each face a rectangle of the texture `texels_per_unit`
 // texels per world unit (at least one texel), packed in rows with a one-texel gutter into
-// the smallest power-of-two texture that holds them. Two triangles per face; the faces
+// the smallest square texture that holds them. Two triangles per face; the faces
 // wind counter-clockwise seen from outside (normals point out).
 Model box_model(glm::vec3 min, glm::vec3 max, int texels_per_unit);
 // Appends `b`'s triangles to `a` with their UVs scaled into the texture rectangle
