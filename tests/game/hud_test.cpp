@@ -219,17 +219,29 @@ TEST_F(ImGuiFixture, HiddenHudDrawsNothingAndAsksForNothing) {
 // The draw list is a resource reused every frame: its x-ray list was never emptied, so the
 // player's silhouette was drawn (behind walls) at every place it had stood, and the list grew
 // by two boxes a frame.
-TEST(DrawList, EachFrameStartsFromAnEmptyList) {
+// An open world of `size` tiles, streamed in whole (no workers), for draw list tests; walls
+// where `wall` says.
+struct StreamedWorld {
     scene::WallGrid grid;
-    grid.width = 20;
-    grid.height = 20;
-    grid.cells.assign(std::size_t(grid.width * grid.height), 0);
-    systems::Streaming streaming(std::make_shared<systems::GridSource>(grid));
+    std::unique_ptr<systems::Streaming> streaming;
     ecs::World world;
-    jobs::JobSystem::Config no_workers;
-    no_workers.worker_threads = 0;
-    jobs::JobSystem jobs(no_workers);
-    streaming.load_all(world, jobs, {0.0f, 0.0f, 20.0f, 20.0f});
+    explicit StreamedWorld(glm::ivec2 size, std::vector<glm::ivec2> walls = {}) {
+        grid.width = size.x;
+        grid.height = size.y;
+        grid.cells.assign(std::size_t(grid.width * grid.height), 0);
+        for (const glm::ivec2 w : walls) grid.cells[std::size_t(w.x + w.y * grid.width)] = 1;
+        streaming = std::make_unique<systems::Streaming>(std::make_shared<systems::GridSource>(grid));
+        jobs::JobSystem::Config no_workers;
+        no_workers.worker_threads = 0;
+        jobs::JobSystem jobs(no_workers);
+        streaming->load_all(world, jobs, {0.0f, 0.0f, float(size.x), float(size.y)});
+    }
+};
+
+TEST(DrawList, EachFrameStartsFromAnEmptyList) {
+    StreamedWorld open({20, 20});
+    ecs::World& world = open.world;
+    const systems::Streaming& streaming = *open.streaming;
     spawn_player(world, {10.5f, 10.5f}, true);
     DrawContext ctx;
     ctx.camera = follow_camera({10.5f, 0.0f, 10.5f}, CameraRig{});
@@ -251,16 +263,9 @@ TEST(DrawList, EachFrameStartsFromAnEmptyList) {
 // and the torch's are texel_lit boxes, each naming its part (model and centre: the box is the
 // model's); the lights reach the texel passes at their heights, the crystal's without shadows.
 TEST(DrawList, TexelLightingMakesModelsTexelLitParts) {
-    scene::WallGrid grid;
-    grid.width = 20;
-    grid.height = 20;
-    grid.cells.assign(std::size_t(grid.width * grid.height), 0);
-    systems::Streaming streaming(std::make_shared<systems::GridSource>(grid));
-    ecs::World world;
-    jobs::JobSystem::Config no_workers;
-    no_workers.worker_threads = 0;
-    jobs::JobSystem jobs(no_workers);
-    streaming.load_all(world, jobs, {0.0f, 0.0f, 20.0f, 20.0f});
+    StreamedWorld open({20, 20});
+    ecs::World& world = open.world;
+    const systems::Streaming& streaming = *open.streaming;
     spawn_player(world, {10.5f, 10.5f}, true);
     spawn_torch(world, {8.5f, 9.5f}, 0.0f);
     spawn_prop(world, PropKind::tree, {12.5f, 9.5f});
@@ -315,17 +320,9 @@ TEST(DrawList, TexelLightingMakesModelsTexelLitParts) {
 // torches, props and the player's lantern keep their models only; lights inside walls and
 // out of view are not drawn.
 TEST(DrawList, SceneLightsAreDrawnAndTheGamesOwnAreNotDrawnTwice) {
-    scene::WallGrid grid;
-    grid.width = 40;
-    grid.height = 30;
-    grid.cells.assign(std::size_t(grid.width * grid.height), 0);
-    grid.cells[std::size_t(12 + 10 * grid.width)] = 1; // a wall tile at (12, 10)
-    systems::Streaming streaming(std::make_shared<systems::GridSource>(grid));
-    ecs::World world;
-    jobs::JobSystem::Config no_workers;
-    no_workers.worker_threads = 0;
-    jobs::JobSystem jobs(no_workers);
-    streaming.load_all(world, jobs, {0.0f, 0.0f, 40.0f, 30.0f});
+    StreamedWorld walled({40, 30}, {{12, 10}}); // a wall tile at (12, 10)
+    ecs::World& world = walled.world;
+    const systems::Streaming& streaming = *walled.streaming;
     const glm::vec2 player(10.5f, 10.5f);
     spawn_player(world, player, true); // carries a lantern (a PointLight)
     spawn_torch(world, {8.5f, 9.5f}, 0.0f);
