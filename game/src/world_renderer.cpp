@@ -261,8 +261,9 @@ struct WorldRenderer::Impl {
     gpu::BufferView dummy_texels;  // RGBA16F
     gpu::BufferView dummy_walls;   // R8_UINT
     gpu::Buffer dummy_storage;     // the texel bindings without texel light
-    // This frame's faces by draw group (reused).
-    std::array<std::vector<BoxInstance>, draw_groups.size()> faces;
+    // This frame's faces by draw group (reused): DrawList::boxes', and DrawList::late's (drawn
+    // after the x-ray pass).
+    std::array<std::vector<BoxInstance>, draw_groups.size()> faces, late_faces;
     std::vector<BoxInstance> upload;
     std::size_t faces_drawn = 0;
     GiDebugView view_drawn = GiDebugView::lit;
@@ -363,25 +364,31 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     const std::array<glm::vec4, 6> planes = frustum_planes(view_projection_matrix);
     const bool texel_on = view.texel_lit && view.texel_surfaces && view.texel_albedo && !view.texel_records.empty() &&
                           (!view.gi || view.gi_view == GiDebugView::lit);
-    for (auto& f : m.faces) f.clear();
-    for (BoxInstance b : list.boxes) {
-        if (int(b.material) == int(Material::texel_lit) &&
-            (!texel_on || b.emissive < 0.0f || std::size_t(b.emissive) >= view.texel_records.size())) {
-            b.material = float(int(Material::prop)); // no texel light for it: a plain prop
-            b.emissive = 0.0f;
+    const auto list_faces = [&](const std::vector<BoxInstance>& boxes, auto& groups) {
+        for (auto& f : groups) f.clear();
+        for (BoxInstance b : boxes) {
+            if (int(b.material) == int(Material::texel_lit) &&
+                (!texel_on || b.emissive < 0.0f || std::size_t(b.emissive) >= view.texel_records.size())) {
+                b.material = float(int(Material::prop)); // no texel light for it: a plain prop
+                b.emissive = 0.0f;
+            }
+            const glm::vec3 half = glm::max(b.half, glm::vec3(0.0f));
+            if (outside(planes, b.center - half, b.center + half)) continue;
+            const int mask = int(b.face_mask + 0.5f);
+            for (int face = 0; face < face_count; ++face) {
+                if (!((mask >> face) & 1)) continue;
+                const glm::vec3 n = face_normal[face];
+                if (glm::dot(view.camera.position - (b.center + half * n), n) <= 0.0f) continue;
+                groups[std::size_t(draw_group(face, int(b.material)))].push_back(b);
+            }
         }
-        const glm::vec3 half = glm::max(b.half, glm::vec3(0.0f));
-        if (outside(planes, b.center - half, b.center + half)) continue;
-        const int mask = int(b.face_mask + 0.5f);
-        for (int face = 0; face < face_count; ++face) {
-            if (!((mask >> face) & 1)) continue;
-            const glm::vec3 n = face_normal[face];
-            if (glm::dot(view.camera.position - (b.center + half * n), n) <= 0.0f) continue;
-            m.faces[std::size_t(draw_group(face, int(b.material)))].push_back(b);
-        }
-    }
+    };
+    list_faces(list.boxes, m.faces);
+    list_faces(list.late, m.late_faces);
     m.upload.clear();
     for (const auto& f : m.faces) m.upload.insert(m.upload.end(), f.rbegin(), f.rend());
+    const auto late_first = std::uint32_t(m.upload.size());
+    for (const auto& f : m.late_faces) m.upload.insert(m.upload.end(), f.rbegin(), f.rend());
     m.faces_drawn = m.upload.size();
     // The probe records after the faces, two instances each; a lit_probes face points at its
     // record's first texel.
@@ -514,38 +521,40 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     const bool art_on = levels || art.dither || colors;
     m.view_drawn = view_mode == view_off ? GiDebugView::lit : view.gi_view;
     m.target.begin(cmd, {{0.0f, 0.0f, 0.0f, 1.0f}});
-    std::uint32_t first = 0;
     bool pushed = false;
-    for (std::size_t d = 0; d < m.faces.size(); ++d) {
-        const auto count = std::uint32_t(m.faces[d].size());
-        if (count) {
-            cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on, view_mode, draw_groups[d].texel));
-            // Descriptors once: every pipeline here has the same layout, so
-            // they stay bound across the binds. (Each push cost lavapipe about 1 ms with the
-            // GI texel buffers in it, 10 ms a frame for the 10 groups.)
-            if (!pushed) {
-                cmd.push_descriptors(writes);
-                cmd.push_constants(std::int32_t{0}); // WorldSlot: frames[0]
-                pushed = true;
+    // Descriptors once: every pipeline here has the same layout, so they stay bound across
+    // the binds. (Each push cost lavapipe about 1 ms with the GI texel buffers in it, 10 ms a
+    // frame for the 10 groups.)
+    const auto push_once = [&] {
+        if (pushed) return;
+        cmd.push_descriptors(writes);
+        cmd.push_constants(std::int32_t{0}); // WorldSlot: frames[0]
+        pushed = true;
+    };
+    const auto draw_groups_of = [&](const auto& groups, std::uint32_t first) {
+        for (std::size_t d = 0; d < groups.size(); ++d) {
+            const auto count = std::uint32_t(groups[d].size());
+            if (count) {
+                cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on, view_mode, draw_groups[d].texel));
+                push_once();
+                cmd.draw(6 * count, 1, 6 * first, 0);
             }
-            cmd.draw(6 * count, 1, 6 * first, 0);
+            first += count;
         }
-        first += count;
-    }
-    // The x-ray pass after everything else: the depth buffer is complete.
-    first = xray_first;
+    };
+    draw_groups_of(m.faces, 0);
+    // The x-ray pass after the world: its depth buffer is complete, and holds none of the
+    // late boxes (the player's own parts), which are drawn last.
+    std::uint32_t first = xray_first;
     for (int face = 0; face < face_count; ++face) {
         const auto count = std::uint32_t(m.xray_faces[std::size_t(face)].size());
         if (!count) continue;
         cmd.bind(m.xray_pipeline(face));
-        if (!pushed) {
-            cmd.push_descriptors(writes);
-            cmd.push_constants(std::int32_t{0});
-            pushed = true;
-        }
+        push_once();
         cmd.draw(6 * count, 1, 6 * first, 0);
         first += count;
     }
+    draw_groups_of(m.late_faces, late_first);
     m.target.end(cmd);
 
 }

@@ -249,11 +249,13 @@ TEST(DrawList, EachFrameStartsFromAnEmptyList) {
     build_draw_list(world, streaming, ctx, list);
     const std::size_t boxes = list.boxes.size(), xray = list.xray.size();
     EXPECT_EQ(xray, 2u); // body and head
+    EXPECT_EQ(list.late.size(), 3u); // the player's own parts: body, head, backpack
     for (int frame = 0; frame < 3; ++frame) {
         world.view<Player, Transform>().each([&](const Player&, Transform& t) { t.position.x += 0.25f; });
         build_draw_list(world, streaming, ctx, list);
         EXPECT_EQ(list.xray.size(), xray);
         EXPECT_EQ(list.boxes.size(), boxes);
+        EXPECT_EQ(list.late.size(), 3u);
     }
     // The silhouette follows the player: its body box is where the player is now.
     EXPECT_NEAR(list.xray[0].center.x, 11.25f, 1e-5f);
@@ -281,19 +283,21 @@ TEST(DrawList, TexelLightingMakesModelsTexelLitParts) {
     ctx.texel_lighting = true;
     build_draw_list(world, streaming, ctx, texel);
     ASSERT_EQ(texel.boxes.size(), plain.boxes.size());
+    ASSERT_EQ(texel.late.size(), plain.late.size());
     EXPECT_EQ(texel.texel_parts.size(), 6u); // body, head, backpack, trunk, crown, torch stick
     int texel_boxes = 0;
-    for (std::size_t i = 0; i < texel.boxes.size(); ++i) {
-        const BoxInstance& b = texel.boxes[i];
-        if (int(b.material) != int(Material::texel_lit)) continue;
-        ++texel_boxes;
-        ASSERT_LT(std::size_t(b.emissive), texel.texel_parts.size());
-        const TexelPart& part = texel.texel_parts[std::size_t(b.emissive)];
-        EXPECT_EQ(part.center, b.center);
-        EXPECT_EQ(texel_model_half(TexelModel(part.model)), b.half);
-        EXPECT_EQ(plain.boxes[i].center, b.center); // where the plain box was, the same size
-        EXPECT_EQ(plain.boxes[i].half, b.half);
-    }
+    for (const auto& [with, without] : {std::pair{&texel.boxes, &plain.boxes}, std::pair{&texel.late, &plain.late}})
+        for (std::size_t i = 0; i < with->size(); ++i) {
+            const BoxInstance& b = (*with)[i];
+            if (int(b.material) != int(Material::texel_lit)) continue;
+            ++texel_boxes;
+            ASSERT_LT(std::size_t(b.emissive), texel.texel_parts.size());
+            const TexelPart& part = texel.texel_parts[std::size_t(b.emissive)];
+            EXPECT_EQ(part.center, b.center);
+            EXPECT_EQ(texel_model_half(TexelModel(part.model)), b.half);
+            EXPECT_EQ((*without)[i].center, b.center); // where the plain box was, the same size
+            EXPECT_EQ((*without)[i].half, b.half);
+        }
     EXPECT_EQ(texel_boxes, 6);
     std::vector<texel::TexelLight> lights;
     gather_texel_lights(world, ctx, lights);

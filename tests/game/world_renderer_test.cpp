@@ -536,6 +536,16 @@ TEST_F(WorldRendererTest, XraySilhouetteShowsOnlyWhereTheBoxIsHidden) {
     // Out in the open (two tiles west of the wall) the x-ray adds nothing.
     const glm::vec3 open = player - glm::vec3(2.0f, 0.0f, 0.0f);
     EXPECT_EQ(render(true, true, open).pixels, render(true, false, open).pixels);
+    // A late box (the player's own backpack in front of its body) is drawn after the x-ray
+    // pass: it hides the body, yet no silhouette shows on it.
+    DrawList own = flat_floor({0, 0, 1});
+    own.boxes.push_back(glow_box(player, half, {1, 1, 0}));
+    own.late.push_back(glow_box(player + glm::vec3(0.0f, 0.1f, half.z + 0.06f), {0.3f, 0.5f, 0.05f}, {1, 0, 0}));
+    own.xray.push_back(glow_box(player, half, green));
+    const auto backpack = draw(view, own, nullptr);
+    maybe_write_png(backpack, "xray_backpack");
+    EXPECT_EQ(silhouette(backpack), 0);
+    EXPECT_EQ(pixel(backpack, front.x, front.y), red) << "the late box is not drawn in front";
 }
 
 // ---- per-texel light (docs/texel.md): a texel_lit box's faces take their texel's light

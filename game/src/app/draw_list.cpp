@@ -42,6 +42,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     out.boxes.clear();
     out.probes.clear();
     out.xray.clear();
+    out.late.clear();
     out.texel_parts.clear();
     // The tiles in view: the camera's ground footprint, widened by the walls' height (a
     // wall top is seen nearer the camera than its foot).
@@ -95,14 +96,14 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     // A part of a model that is lit per texel with texel lighting on (its model's box, white:
     // the texture has the colours), else the box it always was.
     auto part = [&](ecs::Entity e, int index, TexelModel model, glm::vec3 center, glm::vec3 color,
-                    std::pair<Material, float> lit) {
+                    std::pair<Material, float> lit, std::vector<BoxInstance>& into) {
         const glm::vec3 extent = texel_model_half(model);
         if (!ctx.texel_lighting) {
-            out.boxes.push_back(box(center, extent, color, lit.first, lit.second));
+            into.push_back(box(center, extent, color, lit.first, lit.second));
             return;
         }
         out.texel_parts.push_back({e.bits() * 8u + std::uint64_t(index), int(model), center});
-        out.boxes.push_back(box(center, extent, glm::vec3(1.0f), Material::texel_lit, float(out.texel_parts.size() - 1)));
+        into.push_back(box(center, extent, glm::vec3(1.0f), Material::texel_lit, float(out.texel_parts.size() - 1)));
     };
 
     // Props.
@@ -119,12 +120,13 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         }
         case PropKind::tree: {
             const auto lit = probe_lit(p.position);
-            part(e, 0, TexelModel::tree_trunk, at + glm::vec3(0, 0.45f, 0), {0.36f, 0.23f, 0.12f}, lit);
-            part(e, 1, TexelModel::tree_crown, at + glm::vec3(0, 1.25f, 0), {0.2f, 0.42f, 0.16f}, lit);
+            part(e, 0, TexelModel::tree_trunk, at + glm::vec3(0, 0.45f, 0), {0.36f, 0.23f, 0.12f}, lit, out.boxes);
+            part(e, 1, TexelModel::tree_crown, at + glm::vec3(0, 1.25f, 0), {0.2f, 0.42f, 0.16f}, lit, out.boxes);
             break;
         }
         case PropKind::lamp_post: {
-            part(e, 0, TexelModel::lamp_post, at + glm::vec3(0, 0.7f, 0), {0.2f, 0.2f, 0.23f}, probe_lit(p.position));
+            part(e, 0, TexelModel::lamp_post, at + glm::vec3(0, 0.7f, 0), {0.2f, 0.2f, 0.23f}, probe_lit(p.position),
+                 out.boxes);
             out.boxes.push_back(box(at + glm::vec3(0, 1.5f, 0), {0.14f, 0.12f, 0.14f}, {1.0f, 0.9f, 0.7f}, Material::glow, 2.0f));
             break;
         }
@@ -136,7 +138,8 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         if (!in_rect(l.position, lo, hi)) return;
         const glm::vec3 at(l.position.x, 0.0f, l.position.y);
         const float f = l.intensity / std::max(t.base_intensity, 1e-3f);
-        part(e, 0, TexelModel::torch_stick, at + glm::vec3(0, 0.25f, 0), {0.35f, 0.22f, 0.1f}, {Material::prop, 0.0f});
+        part(e, 0, TexelModel::torch_stick, at + glm::vec3(0, 0.25f, 0), {0.35f, 0.22f, 0.1f}, {Material::prop, 0.0f},
+             out.boxes);
         out.boxes.push_back(box(at + glm::vec3(0, 0.58f, 0), glm::vec3(0.08f, 0.1f * f, 0.08f), {1.0f, 0.6f, 0.25f},
                                 Material::glow, 2.2f * f));
     });
@@ -166,15 +169,17 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     world.view<Player, Transform>().each([&](ecs::Entity e, const Player& p, const Transform& t) {
         const glm::vec3 at(t.position.x, 0.0f, t.position.z);
         const auto lit = probe_lit({t.position.x, t.position.z});
-        part(e, 0, TexelModel::player_body, at + glm::vec3(0, 0.42f, 0), {0.22f, 0.36f, 0.72f}, lit);
-        part(e, 1, TexelModel::player_head, at + glm::vec3(0, 1.04f, 0), {0.9f, 0.72f, 0.56f}, lit);
+        // Its parts are drawn after the x-ray pass (DrawList::late): only the world hides it.
+        part(e, 0, TexelModel::player_body, at + glm::vec3(0, 0.42f, 0), {0.22f, 0.36f, 0.72f}, lit, out.late);
+        part(e, 1, TexelModel::player_head, at + glm::vec3(0, 1.04f, 0), {0.9f, 0.72f, 0.56f}, lit, out.late);
         // Its silhouette where walls (or trees) hide it: body and head only (the backpack
         // behind the body would show through it).
         out.xray.push_back(box(at + glm::vec3(0, 0.42f, 0), {0.26f, 0.42f, 0.2f}, player_xray_colour, Material::glow));
         out.xray.push_back(box(at + glm::vec3(0, 1.04f, 0), {0.22f, 0.2f, 0.22f}, player_xray_colour, Material::glow));
         // Which way it faces: a small backpack on the other side.
         const glm::vec2 back = -p.facing * 0.2f;
-        part(e, 2, TexelModel::backpack, at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.45f, 0.3f, 0.15f}, lit);
+        part(e, 2, TexelModel::backpack, at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.45f, 0.3f, 0.15f}, lit,
+             out.late);
     });
 
     // The cursor: a thin glowing frame on the tile (on the wall's top for a wall).

@@ -123,6 +123,9 @@ struct DrawList {
     // Drawn again after the boxes, only where something nearer hides them, as a checkerboard
     // of their colour (the player's silhouette behind walls). Material and emission unused.
     std::vector<BoxInstance> xray;
+    // Boxes drawn after the x-ray pass, as `boxes` are (records alike): the player's own
+    // parts, so that its backpack in front of its body does not make the silhouette show.
+    std::vector<BoxInstance> late;
 };
 
 // Building blocks for a DrawList.
