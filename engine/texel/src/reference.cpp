@@ -138,19 +138,6 @@ std::vector<TexelSurface> uv_to_world(const TexelScene& scene) {
     return out;
 }
 
-bool uv_near_boundary(const TexelScene& scene, std::uint32_t index, int texel, float margin) {
-    const GpuPlacement& p = scene.placements.at(index);
-    const int size = int(p.ranges.w);
-    const glm::vec2 uv = texel_uv(texel % size, texel / size, size);
-    for (std::uint32_t i = p.ranges.x; i < p.ranges.x + p.ranges.y; ++i) {
-        float v, w;
-        if (!uv_barycentric(scene.triangles[i], uv, v, w)) continue;
-        const float lo = -inside_eps, hi = 1.0f + inside_eps;
-        if (std::abs(v - lo) < margin || std::abs(w - lo) < margin || std::abs(v + w - hi) < margin) return true;
-    }
-    return false;
-}
-
 float wall_visibility(const WallPatch& walls, float wall_height, glm::vec3 light, glm::vec3 point) {
     const glm::vec2 ray(point.x - light.x, point.z - light.z);
     float ray_length = std::sqrt(ray.x * ray.x + ray.y * ray.y);

@@ -164,7 +164,6 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
         }
         passes_->upload_albedo(cmd, albedo_);
         passes_->record_uv_to_world(cmd);
-        ++rebuilds_;
     } else {
         if (!same_walls(scene.walls, scene_.walls)) passes_->upload_walls(cmd, scene);
         bool moved = false;

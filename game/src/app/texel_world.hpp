@@ -43,8 +43,6 @@ class TexelWorld {
     const gpu::Buffer& lit() const { return passes_->lit(); }
     const gpu::Buffer& surfaces() const { return passes_->surfaces(); }
     const gpu::Buffer& albedo() const { return passes_->albedo(); }
-    std::uint32_t texels() const { return passes_->texel_count(); }
-    int rebuilds() const { return rebuilds_; } // scenes rebuilt so far (the parts in view changed)
 
   private:
     explicit TexelWorld(std::unique_ptr<texel::vk::TexelPasses> passes) : passes_(std::move(passes)) {}
@@ -53,7 +51,6 @@ class TexelWorld {
     std::vector<TexelPart> last_parts_;
     std::vector<TexelRecord> records_;
     std::vector<glm::vec4> albedo_;
-    int rebuilds_ = 0;
 };
 
 } // namespace lantern::game

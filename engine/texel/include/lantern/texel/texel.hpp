@@ -170,9 +170,6 @@ std::vector<TexelSurface> uv_to_world_brute(const TexelScene& scene);
 std::vector<TexelSurface> uv_to_world(const TexelScene& scene);
 void uv_to_world_placement(const TexelScene& scene, std::uint32_t index, std::span<TexelSurface> surfaces);
 
-// Whether `texel` of placement `p` lies within `margin` (barycentric units) of the inside
-// test's boundary of some triangle of it (where float rounding may decide; tests skip those).
-bool uv_near_boundary(const TexelScene& scene, std::uint32_t p, int texel, float margin);
 
 // 1 when nothing of the wall grid stands between `light` and `point`, else 0: the DDA of the
 // seed-000 direct pass (gi::shadow_dda: its bias and corner rule) over the xz projection, a
