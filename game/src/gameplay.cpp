@@ -276,6 +276,9 @@ void interact(ecs::SystemContext& ctx) {
         return glm::distance(glm::vec2(tile) + 0.5f, glm::vec2(player->x, player->z)) <= interaction_range;
     };
     const auto gain = [&](Item item) { inventory[item] = std::min(inventory[item] + 1, Inventory::max_stack); };
+    const auto edited = [&] {
+        if (w.has_resource<WorldEdits>()) ++w.resource<WorldEdits>().count;
+    };
     if (c.mine) {
         // The wall under the cursor yields its block; on open ground, a torch or prop placed
         // on that tile is picked back up (the scene's own lights are not the player's).
@@ -283,6 +286,7 @@ void interact(ecs::SystemContext& ctx) {
             if (in_reach(*tile)) {
                 streaming.set_wall(w, *tile, false);
                 gain(Item::wall);
+                edited();
             }
             return;
         }
@@ -300,6 +304,7 @@ void interact(ecs::SystemContext& ctx) {
         if (found) {
             ctx.commands().destroy(found->first);
             gain(found->second);
+            edited();
         }
         return;
     }
@@ -333,6 +338,7 @@ void interact(ecs::SystemContext& ctx) {
         if (parts.light) cb.emplace<PointLight>(e, *parts.light);
     }
     --inventory[item];
+    edited();
 }
 
 } // namespace
@@ -346,7 +352,7 @@ void add_gameplay_systems(ecs::Schedule& schedule) {
         .main_thread() // edits the wall mirror
         .reads_resource<Controls, systems::GiConfig>()
         .reads<Player, Transform, Camera, Torch, PointLight, Prop>() // what it picks up
-        .writes_resource<systems::Streaming, Inventory>()
+        .writes_resource<systems::Streaming, Inventory, WorldEdits>()
         .writes<WallChunk>();
     schedule.add("torch_flicker", [](ecs::SystemContext& ctx) {
         const double t = ctx.world.resource<GameClock>().time;

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 namespace lantern::game {
 namespace {
@@ -88,7 +89,16 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
     p.custom("--scene", "FILE.json", "a Lantern scene file (its lights, proxies and GI settings)",
              world(WorldKind::scene));
     p.text("--load", "SAVE.json", "continue a saved game (its world, edits, lights, player)", o.load);
-    p.text("--save-file", "PATH", "where F5 saves and F9 loads (default lantern-save.json)", o.save_file);
+    p.text("--save-file", "PATH",
+           "save slot 1: where F5 saves and F9 loads (default lantern-save.json;\n"
+           "slots 2-3 and the autosaves sit beside it)",
+           o.save_file);
+    p.text("--settings", "PATH",
+           "the pause menu's settings (default lantern-settings.json beside\n"
+           "the save file); the options below win over it for this run",
+           o.settings_file);
+    p.integer("--autosave", "SECONDS", "autosave every SECONDS of play (0: never; default: the settings', 180)",
+              o.autosave_seconds, 0, 24 * 3600);
     p.section("mode (default: a window when a display can open, else the headless demo)");
     p.flag("--window", "a window or an error", [&] { o.mode = RunMode::window; });
     p.flag("--headless", "the scripted demo without a window: PNG screenshots, profiler report",
@@ -126,10 +136,19 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
                  if (!error) o.internal_fixed = true;
                  return error;
              });
-    p.choice("--vsync", "(default on)", vsync, {"on", "off"});
+    p.custom("--vsync", "on|off", "(default on)", [&](std::string_view v) -> std::optional<std::string> {
+        if (v != "on" && v != "off") return "must be one of on, off, got '" + printable(v) + "'";
+        vsync = std::string(v);
+        o.given.vsync = true;
+        return std::nullopt;
+    });
     p.flag("--no-hud", "start with the timer HUD hidden (F1 toggles)", [&] { o.hud = false; });
-    p.integer("--posterize", "N", "posterize to N levels per channel", o.posterize, 2, 64);
-    p.flag("--dither", "ordered 4x4 dithering", o.dither);
+    p.custom("--posterize", "N", "posterize to N levels per channel", [&](std::string_view v) -> std::optional<std::string> {
+        if (!parse_int(v, o.posterize, 2, 64)) return "must be an integer in [2, 64], got '" + printable(v) + "'";
+        o.given.posterize = true;
+        return std::nullopt;
+    });
+    p.flag("--dither", "ordered 4x4 dithering", [&] { o.dither = o.given.dither = true; });
     p.text("--palette", "NAME", "palette swap (names in docs/game.md)", o.palette);
     std::string view_list;
     for (const char* name : gi_debug_view_names()) view_list += std::string(view_list.empty() ? "" : ", ") + name;
@@ -148,6 +167,7 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
         [&](std::string_view v) -> std::optional<std::string> {
             if (auto ok = scene::apply_override(overrides, v); !ok) return ok.error().message;
             o.gi_overrides.emplace_back(v);
+            o.given.gi = true;
             return std::nullopt;
         },
         true);
@@ -163,7 +183,8 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
     p.flag("--validation", "enable the Vulkan validation layers", o.validation);
     p.epilog("controls: WASD/arrows walk, left mouse mines, right mouse places the selected item\n"
              "(1 wall, 2 torch, 3 crystal, 4 lamp post, 5 tree), N day/night cycle, F1 HUD,\n"
-             "F2 export a Chrome trace, F5 save, F9 load, Esc quit.\n"
+             "F2 export a Chrome trace, F5 save, F9 load, Esc the pause menu (settings,\n"
+             "key bindings, save slots, quit).\n"
              "exit status: 0 ok, 1 runtime failure (e.g. no Vulkan device), 2 bad input.");
     if (auto exit = p.parse(argc, argv)) return exit;
     o.vsync = vsync == "on";
@@ -181,7 +202,14 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
     if (o.watch && o.world.kind != WorldKind::scene) return refuse("--watch needs a --scene FILE to watch");
     if (!o.schedule_dot.empty())
         if (auto ok = check_output_file(o.schedule_dot); !ok) return refuse("--schedule " + ok.error().message);
+    if (!o.settings_file.empty())
+        if (auto ok = check_output_file(o.settings_file); !ok) return refuse("--settings " + ok.error().message);
     return std::nullopt;
+}
+
+std::string settings_path(const GameOptions& options) {
+    if (!options.settings_file.empty()) return options.settings_file;
+    return (std::filesystem::path(options.save_file).parent_path() / "lantern-settings.json").string();
 }
 
 } // namespace lantern::game

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <initializer_list>
 #include <sstream>
 
@@ -437,6 +438,39 @@ Result<SaveState> read_save(const std::string& path) {
         if (auto ok = check_input_file(save->world.path); !ok)
             return make_error(printable(path + ": world.path: " + ok.error().message, 1024), 2);
     return save;
+}
+
+namespace {
+
+// "DIR/stem<suffix>.ext" for the save file "DIR/stem.ext".
+std::string beside_save(const std::string& save_file, const std::string& suffix) {
+    const std::filesystem::path p(save_file);
+    std::filesystem::path out = p.parent_path() / (p.stem().string() + suffix);
+    out += p.has_extension() ? p.extension() : std::filesystem::path(".json");
+    return out.string();
+}
+
+} // namespace
+
+std::string save_slot_path(const std::string& save_file, int slot) {
+    LANTERN_ASSERT(slot >= 1 && slot <= save_slot_count, "save slot out of range");
+    return slot == 1 ? save_file : beside_save(save_file, "-" + std::to_string(slot));
+}
+
+std::string autosave_slot_path(const std::string& save_file, int slot) {
+    LANTERN_ASSERT(slot >= 1 && slot <= autosave_slot_count, "autosave slot out of range");
+    return beside_save(save_file, "-autosave-" + std::to_string(slot));
+}
+
+int next_autosave_slot(const std::string& save_file) {
+    int oldest = 1;
+    std::int64_t oldest_ns = 0;
+    for (int k = 1; k <= autosave_slot_count; ++k) {
+        const auto stamp = file_stamp(autosave_slot_path(save_file, k));
+        if (!stamp) return k;
+        if (k == 1 || stamp->modified_ns < oldest_ns) oldest = k, oldest_ns = stamp->modified_ns;
+    }
+    return oldest;
 }
 
 void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player) {

@@ -2,7 +2,9 @@
 //  - under Xvfb (started by the test): a real window on lavapipe; real X input (xdotool)
 //    places a torch, walks, mines; real captures (xwd) show the torch brightening its
 //    surroundings, the world moving as the player walks, the mined wall gone and light
-//    flowing through the gap; F5 saves what was done; Escape quits;
+//    flowing through the gap; F5 saves what was done; the pause menu (Escape) changes a
+//    setting, saves to a slot and quits after asking about unsaved changes; key bindings
+//    and autosaves;
 //  - headless: the scripted demo writes its screenshots, a well-formed report and its
 //    schedule (Graphviz DOT, the picture in docs/frame.md);
 //  - bad input: one clear message, exit status 2, nothing written.
@@ -11,6 +13,7 @@
 #include "lantern/core/json.hpp"
 #include "lantern/game/gameplay.hpp"
 #include "lantern/game/save.hpp"
+#include "lantern/game/settings.hpp"
 #include "lantern/scene/loader.hpp"
 #include "xvfb_support.hpp"
 
@@ -204,6 +207,82 @@ std::optional<GameStatus> wait_status(GameProcess& game, const std::string& path
     return std::nullopt;
 }
 
+// The pause menu's part of the status file (windowed): its page, the quit question's
+// "unsaved", counters, a setting's effect, and the buttons it drew (window pixels).
+struct MenuStatus {
+    std::string menu;
+    bool unsaved = false;
+    int saves = 0, autosaves = 0, settings_writes = 0, gi_resolution = 0;
+    glm::vec2 player{0.0f};
+    std::map<std::string, glm::vec4> buttons; // label -> x, y, width, height
+};
+
+std::optional<MenuStatus> read_menu_status(const std::string& path) {
+    auto doc = json::parse(test::read_file(path), path);
+    if (!doc || !doc->is_object()) return std::nullopt;
+    const json::Value *menu = doc->find("menu"), *unsaved = doc->find("unsaved"), *buttons = doc->find("buttons_drawn");
+    const json::Value *saves = doc->find("saves"), *autosaves = doc->find("autosaves");
+    const json::Value *writes = doc->find("settings_writes"), *res = doc->find("gi_resolution"), *player = doc->find("player");
+    if (!menu || !unsaved || !buttons || !saves || !autosaves || !writes || !res || !player) return std::nullopt;
+    MenuStatus st;
+    st.menu = menu->as_string();
+    st.unsaved = unsaved->as_bool();
+    st.saves = int(saves->as_number());
+    st.autosaves = int(autosaves->as_number());
+    st.settings_writes = int(writes->as_number());
+    st.gi_resolution = int(res->as_number());
+    st.player = {float(player->as_array()[0].as_number()), float(player->as_array()[1].as_number())};
+    for (const json::Member& m : buttons->as_object()) {
+        const auto& r = m.value.as_array();
+        st.buttons[m.key] = {float(r[0].as_number()), float(r[1].as_number()), float(r[2].as_number()),
+                             float(r[3].as_number())};
+    }
+    return st;
+}
+
+// Drives the pause menu through real X input: waits on its page, clicks its buttons by label
+// (the mouse to the button's centre, then a left click whose press and release the game saw).
+struct MenuDriver {
+    GameProcess& game;
+    std::uint64_t window;
+    std::string status;
+
+    std::optional<MenuStatus> until(const std::string& what, const std::function<bool(const MenuStatus&)>& done) {
+        const auto end = std::chrono::steady_clock::now() + 180s;
+        while (std::chrono::steady_clock::now() < end) {
+            if (auto st = read_menu_status(status); st && done(*st)) return st;
+            if (game.wait_exit(20ms)) break;
+        }
+        ADD_FAILURE() << "the game never reached: " << what << "; last status: " << test::read_file(status)
+                      << "\nlog:\n" << game.log();
+        return std::nullopt;
+    }
+    std::optional<MenuStatus> page(const std::string& name) {
+        return until("the menu page " + name, [&](const MenuStatus& st) { return st.menu == name && !st.buttons.empty(); });
+    }
+    std::optional<MenuStatus> key(const std::string& keysym) {
+        if (!test::x_key(window, keysym, true) || !test::x_key(window, keysym, false)) return std::nullopt;
+        return read_menu_status(status);
+    }
+    bool click(const std::string& label) {
+        const auto st = until("a button " + label, [&](const MenuStatus& s) { return s.buttons.count(label) != 0; });
+        if (!st) return false;
+        const glm::vec4 r = st->buttons.at(label);
+        const int x = int(r.x + r.z * 0.5f), y = int(r.y + r.w * 0.5f);
+        if (!test::x_mouse_move(window, x, y)) return false;
+        auto raw = [&](const char* what, const std::function<bool(const GameStatus&)>& done) {
+            const bool ok = wait_status(game, status, done).has_value();
+            if (!ok) ADD_FAILURE() << "the game never reached: " << what << "; log:\n" << game.log();
+            return ok;
+        };
+        if (!raw("the mouse on the button", [&](const GameStatus& s) { return glm::distance(s.mouse, glm::vec2(x, y)) < 1.5f; }))
+            return false;
+        if (!test::x_button(1, true) || !raw("button down", [](const GameStatus& s) { return s.left != 0; })) return false;
+
+        return test::x_button(1, false) && raw("button up", [](const GameStatus& s) { return s.left == 0; });
+    }
+};
+
 } // namespace
 
 TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
@@ -212,7 +291,7 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
     const std::string scene = dir.file("two_rooms.json"), save = dir.file("save.json"), status = dir.file("status.json");
     ASSERT_TRUE(write_file_atomic(scene, std::string(two_rooms)));
     GameProcess game({"--window", "--scene", scene, "--size", "960x540", "--no-hud", "--no-player-light", "--save-file",
-                      save, "--status-file", status},
+                      save, "--status-file", status, "--autosave", "0"},
                      dir.file("game.log"));
     ASSERT_TRUE(game.started());
     const auto window = find_window(game);
@@ -318,14 +397,56 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
     // Where the wall's top was, the floor of the east room shows now.
     EXPECT_GT(patch_difference(walked, mined, wall_px - 8, wall_px + 8), 20.0) << "the mined wall still looks the same";
 
-    // Save (F5), quit (Escape).
+    // Save (F5: slot 1).
     ASSERT_TRUE(test::x_key(*window, "F5", true));
     ASSERT_TRUE(test::x_key(*window, "F5", false));
     ASSERT_TRUE(until("a save", [](const GameStatus& st) { return st.saves >= 1; }));
-    ASSERT_TRUE(test::x_key(*window, "Escape", true));
-    ASSERT_TRUE(test::x_key(*window, "Escape", false));
+
+    // The pause menu (Escape), as a player uses it. Place the crystal again: unsaved.
+    ASSERT_TRUE(click(3));
+    ASSERT_TRUE(until("a crystal placed again", [&](const GameStatus& st) { return st.inventory[2] == carried[2] - 1; }));
+    MenuDriver menu{game, *window, status};
+    ASSERT_TRUE(menu.key("Escape"));
+    const auto paused = menu.page("main");
+    ASSERT_TRUE(paused);
+    EXPECT_TRUE(paused->unsaved) << "the crystal placed after the save is unsaved";
+    // Quitting asks first; Cancel goes back.
+    ASSERT_TRUE(menu.click("Quit"));
+    ASSERT_TRUE(menu.page("confirm_quit"));
+    ASSERT_TRUE(menu.click("Cancel"));
+    ASSERT_TRUE(menu.page("main"));
+    // Settings: the GI quality preset "low" takes effect at once and is written when the
+    // player leaves the page.
+    ASSERT_TRUE(menu.click("Settings"));
+    ASSERT_TRUE(menu.page("settings"));
+    ASSERT_TRUE(menu.click("low"));
+    ASSERT_TRUE(menu.until("GI resolution 2", [](const MenuStatus& st) { return st.gi_resolution == 2; }));
+    ASSERT_TRUE(menu.click("Back##settings"));
+    ASSERT_TRUE(menu.until("the settings written", [](const MenuStatus& st) { return st.menu == "main" && st.settings_writes >= 1; }));
+    auto settings = game::read_settings(dir.file("lantern-settings.json"));
+    ASSERT_TRUE(settings) << settings.error().message;
+    EXPECT_EQ(settings->gi_preset, game::GiPreset::low);
+    // Save to slot 2: nothing is unsaved then.
+    ASSERT_TRUE(menu.click("Save"));
+    ASSERT_TRUE(menu.page("save"));
+    ASSERT_TRUE(menu.click("Save to slot 2"));
+    ASSERT_TRUE(menu.until("slot 2 saved", [](const MenuStatus& st) { return st.saves >= 2 && !st.unsaved; }));
+    ASSERT_TRUE(menu.click("Back##save"));
+    ASSERT_TRUE(menu.page("main"));
+    // Back to the game (Escape closes the menu): pick the crystal up again, unsaved once more.
+    ASSERT_TRUE(menu.key("Escape"));
+    ASSERT_TRUE(menu.until("the menu closed", [](const MenuStatus& st) { return st.menu == "closed"; }));
+    ASSERT_TRUE(point_at(crystal_px));
+    ASSERT_TRUE(click(1));
+    ASSERT_TRUE(until("the crystal picked up again", [&](const GameStatus& st) { return st.inventory[2] == carried[2]; }));
+    // Quit: the question, answered "save to slot 1 and quit".
+    ASSERT_TRUE(menu.key("Escape"));
+    ASSERT_TRUE(menu.page("main"));
+    ASSERT_TRUE(menu.click("Quit"));
+    ASSERT_TRUE(menu.page("confirm_quit"));
+    ASSERT_TRUE(menu.click("Save to slot 1 and quit"));
     const auto status_code = game.wait_exit(180s);
-    ASSERT_TRUE(status_code) << "Escape did not quit; log:\n" << game.log();
+    ASSERT_TRUE(status_code) << "the game did not quit; log:\n" << game.log();
     EXPECT_EQ(*status_code, 0) << game.log();
 
     auto state = game::read_save(save);
@@ -341,6 +462,73 @@ TEST(GameWindow, WalkMinePlaceTorchAndSaveAsAPlayerWould) {
     for (const auto& c : state->edits)
         if (c.coord == glm::ivec2(0, 0)) gap = c.cells[4 * 32 + 12] == 0;
     EXPECT_TRUE(gap) << "the mined wall is not in the save";
+    // Slot 2 holds the world with the crystal placed.
+    auto slot2 = game::read_save(game::save_slot_path(save, 2));
+    ASSERT_TRUE(slot2) << slot2.error().message;
+    EXPECT_EQ(slot2->inventory.counts, (std::array<int, 5>{1, 7, 3, 2, 4}));
+}
+
+// The pause menu's key bindings and the autosaves: a settings file binds "walk right" to L;
+// L walks, and the autosave (every second of play, only after progress) rotates through its
+// slots; in the menu the player rebinds "walk right" to K, the settings file follows, and K
+// walks. Every step waits on the status file, never on time.
+TEST(GameWindow, KeyBindingsFromTheSettingsAndTheMenuAndAutosavesRotate) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string scene = dir.file("two_rooms.json"), save = dir.file("save.json"), status = dir.file("status.json");
+    const std::string settings_file = dir.file("settings.json");
+    ASSERT_TRUE(write_file_atomic(scene, std::string(two_rooms)));
+    ASSERT_TRUE(write_file_atomic(settings_file, std::string(R"({"lantern_settings": 1, "keys": {"walk_right": "l"}})")));
+    GameProcess game({"--window", "--scene", scene, "--size", "960x540", "--no-hud", "--no-player-light", "--save-file", save,
+                      "--status-file", status, "--settings", settings_file, "--autosave", "1"},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto window = find_window(game);
+    ASSERT_TRUE(window) << "no game window; log:\n" << game.log();
+    ASSERT_TRUE(test::x_focus(*window));
+    MenuDriver menu{game, *window, status};
+    const auto start = menu.until("the first frame", [](const MenuStatus& st) { return st.menu == "closed"; });
+    ASSERT_TRUE(start);
+    EXPECT_EQ(start->autosaves, 0);
+    // L walks right (the settings file's binding); after a second of play with progress, an autosave.
+    ASSERT_TRUE(test::x_key(*window, "l", true));
+    const auto walked = menu.until("two tiles east", [&](const MenuStatus& st) { return st.player.x > start->player.x + 2.0f; });
+    ASSERT_TRUE(test::x_key(*window, "l", false));
+    ASSERT_TRUE(walked);
+    const auto autosaved = menu.until("an autosave", [](const MenuStatus& st) { return st.autosaves >= 1; });
+    ASSERT_TRUE(autosaved);
+    auto first = game::read_save(game::autosave_slot_path(save, 1));
+    ASSERT_TRUE(first) << first.error().message;
+    EXPECT_GT(first->player.x, start->player.x + 1.0f);
+    EXPECT_TRUE(autosaved->unsaved) << "an autosave is not the player's own save";
+    EXPECT_FALSE(std::filesystem::exists(save)) << "an autosave wrote slot 1";
+
+    // Rebind walk right to K in the menu: Settings, Key bindings, the action's button, K.
+    ASSERT_TRUE(menu.key("Escape"));
+    ASSERT_TRUE(menu.page("main"));
+    ASSERT_TRUE(menu.click("Settings"));
+    ASSERT_TRUE(menu.click("Key bindings"));
+    ASSERT_TRUE(menu.page("keys"));
+    ASSERT_TRUE(menu.click("l##walk_right"));
+    ASSERT_TRUE(menu.until("waiting for a key", [](const MenuStatus& st) { return st.buttons.count("press a key...##walk_right") != 0; }));
+    ASSERT_TRUE(menu.key("k"));
+    ASSERT_TRUE(menu.until("K bound", [](const MenuStatus& st) { return st.buttons.count("k##walk_right") != 0; }));
+    ASSERT_TRUE(menu.click("Back##keys"));
+    ASSERT_TRUE(menu.click("Back##settings"));
+    ASSERT_TRUE(menu.until("the settings written", [](const MenuStatus& st) { return st.menu == "main" && st.settings_writes >= 1; }));
+    auto settings = game::read_settings(settings_file);
+    ASSERT_TRUE(settings) << settings.error().message;
+    EXPECT_EQ(settings->keys[std::size_t(game::Action::walk_right)], platform::Key::k);
+    ASSERT_TRUE(menu.click("Resume"));
+    const auto resumed = menu.until("the menu closed", [](const MenuStatus& st) { return st.menu == "closed"; });
+    ASSERT_TRUE(resumed);
+    // K walks now; the next autosave goes to the next slot.
+    ASSERT_TRUE(test::x_key(*window, "k", true));
+    const auto further = menu.until("two more tiles east", [&](const MenuStatus& st) { return st.player.x > resumed->player.x + 2.0f; });
+    ASSERT_TRUE(test::x_key(*window, "k", false));
+    ASSERT_TRUE(further);
+    ASSERT_TRUE(menu.until("a second autosave", [&](const MenuStatus& st) { return st.autosaves >= autosaved->autosaves + 1; }));
+    EXPECT_TRUE(std::filesystem::exists(game::autosave_slot_path(save, 2)));
 }
 
 // The status file's reload counters and light count (--watch; after the fields above).

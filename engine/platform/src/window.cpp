@@ -177,6 +177,9 @@ bool Window::should_close() const {
 void Window::request_close() {
     glfwSetWindowShouldClose(state_->window, GLFW_TRUE);
 }
+void Window::cancel_close() {
+    glfwSetWindowShouldClose(state_->window, GLFW_FALSE);
+}
 Extent Window::framebuffer_size() const {
     return framebuffer_extent(state_->window);
 }

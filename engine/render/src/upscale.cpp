@@ -44,7 +44,12 @@ platform::Extent fill_integer_scale(platform::Extent design, platform::Extent de
     if (design.empty() || destination.empty()) return {};
     const double ratio = std::min(double(destination.width) / double(design.width),
                                   double(destination.height) / double(design.height));
-    const auto scale = static_cast<std::uint32_t>(std::max(1.0, std::floor(ratio + 0.5)));
+    return fill_at_scale(design, destination, static_cast<std::uint32_t>(std::max(1.0, std::floor(ratio + 0.5))));
+}
+
+platform::Extent fill_at_scale(platform::Extent design, platform::Extent destination, std::uint32_t scale) {
+    if (design.empty() || destination.empty()) return {};
+    scale = std::max(scale, 1u);
     const auto axis = [scale](std::uint32_t dest, std::uint32_t des) {
         const std::uint64_t limit = std::uint64_t(des) * 4;
         return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(dest / scale, 1, limit));

@@ -106,14 +106,10 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     if (!created) return created.error();
     s->info = std::move(*created);
     systems::GiConfig config = s->info.config;
-    if (spec.kind == WorldKind::scene) {
-        // The scene's own settings, with the command line's overrides on top.
-        scene::Scene tmp;
-        tmp.gi = config.settings;
-        for (const std::string& o : options_.gi_overrides)
-            if (auto ok = scene::apply_override(tmp, o); !ok) return Error{"lantern: " + ok.error().message, 2};
-        config.settings = tmp.gi;
-    }
+    auto gi = session_gi(s->info);
+    if (!gi) return gi.error();
+    config.settings = *gi;
+    w.set_resource<WorldEdits>();
     for (const GameExtension& e : extensions_)
         if (e.setup) e.setup(w);
     if (save) {
@@ -151,6 +147,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
             .main_thread()
             .reads<Player, Transform, Camera>()
             .reads_resource<systems::Streaming>() // the demo script looks at the walls
+            .reads_resource<WorldEdits>()         // a close request asks when something is unsaved
             .writes_resource<Controls, GameClock>();
         add_gameplay_systems(schedule);
         for (const GameExtension& e : extensions_)
@@ -228,7 +225,9 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         .main_thread()
         .reads_resource<DrawListResource, systems::FramePasses, systems::GiView, systems::GatheredLights,
                         systems::GatheredProxies, GameClock, systems::Streaming, BakeStatus, Inventory>() // the HUD and hotbar show them
-        .writes_resource<systems::GiConfig, DayCycle>() // the HUD edits them live
+        .reads_resource<WorldEdits>() // the menu's quit question: anything unsaved?
+        .reads<Player, Transform>()
+        .writes_resource<systems::GiConfig, DayCycle>() // the HUD and the menu edit them live
         .after("day_cycle"); // both write DayCycle: the HUD's time of day takes effect next frame
 }
 
@@ -246,6 +245,18 @@ int Game::run() {
     else options_.mode = RunMode::headless;
     profile::set_enabled(true);
     profile::set_history_size(std::uint32_t(std::max(300, windowed ? 600 : options_.frames)));
+    if (windowed) {
+        // The pause menu's settings (a malformed file: its positioned error, exit 2).
+        auto settings = read_settings(settings_path(options_));
+        if (!settings) {
+            std::fprintf(stderr, "lantern: %s (fix it, or delete it for the defaults)\n",
+                         settings.error().message.c_str());
+            return 2;
+        }
+        settings_ = *settings;
+        if (!options_.given.vsync) options_.vsync = settings_.vsync;
+        apply_settings(nullptr, false);
+    }
     if (auto ok = init(windowed); !ok) {
         std::fprintf(stderr, "%s\n", ok.error().message.c_str());
         return ok.error().exit_code;
@@ -265,6 +276,7 @@ int Game::run() {
         return s.error().exit_code;
     }
     session_ = std::move(*s);
+    mark_saved(*session_, false); // the game as it starts has nothing unsaved
     if (options_.watch) {
         // The scene file and the files it reads (its world.map): an edit of either reloads.
         std::vector<std::string> files{options_.world.path};

@@ -32,14 +32,28 @@ void Game::input_system(Session& s) {
     window_->poll();
     const platform::InputState& in = window_->input();
     using platform::Key;
-    if (window_->should_close() || in.pressed(Key::escape)) quit_ = true;
+    // A close request (the window's close button, the window manager) asks first when
+    // something is unsaved; Escape opens the pause menu, and in it goes back a page.
+    if (window_->should_close()) quit_or_ask(s);
+    if (in.pressed(Key::escape)) {
+        if (menu_.is_open()) menu_.back();
+        else menu_.open();
+    }
+    if (menu_.is_open()) { // paused: no time passes, no input reaches the world
+        clock.time -= clock.dt;
+        clock.dt = 0.0f;
+        return;
+    }
     const bool keyboard_free = !overlay_ || !overlay_->wants_keyboard();
     const bool mouse_free = !overlay_ || !hud_.visible || !overlay_->wants_mouse();
+    const KeyBindings& keys = settings_.keys;
+    const auto key_pressed = [&](Action a) { return in.pressed(keys[std::size_t(a)]); };
+    const auto key_down = [&](Action a) { return in.down(keys[std::size_t(a)]); };
     if (keyboard_free) {
-        if (in.pressed(Key::f1)) hud_.visible = !hud_.visible;
-        if (in.pressed(Key::f2)) export_trace();
-        if (in.pressed(Key::f5)) save_requested_ = true; // after the frame: a save reads the whole world
-        if (in.pressed(Key::f9)) {
+        if (key_pressed(Action::toggle_hud)) hud_.visible = !hud_.visible;
+        if (key_pressed(Action::trace)) export_trace();
+        if (key_pressed(Action::quick_save)) save_slot_requested_ = 1; // after the frame: a save reads the whole world
+        if (key_pressed(Action::quick_load)) {
             if (auto state = read_save(options_.save_file)) {
                 pending_load_ = std::move(*state);
             } else {
@@ -50,12 +64,12 @@ void Game::input_system(Session& s) {
         for (int i = 0; i < 5; ++i)
             if (in.pressed(Key(int(Key::digit_1) + i))) selected_item_ = i;
         glm::vec2 move(0.0f);
-        if (in.down(Key::w) || in.down(Key::up)) move.y -= 1.0f; // screen up is -z
-        if (in.down(Key::s) || in.down(Key::down)) move.y += 1.0f;
-        if (in.down(Key::a) || in.down(Key::left)) move.x -= 1.0f;
-        if (in.down(Key::d) || in.down(Key::right)) move.x += 1.0f;
+        if (key_down(Action::walk_up) || in.down(Key::up)) move.y -= 1.0f; // screen up is -z
+        if (key_down(Action::walk_down) || in.down(Key::down)) move.y += 1.0f;
+        if (key_down(Action::walk_left) || in.down(Key::left)) move.x -= 1.0f;
+        if (key_down(Action::walk_right) || in.down(Key::right)) move.x += 1.0f;
         c.move = move;
-        c.toggle_day_cycle = in.pressed(Key::n);
+        c.toggle_day_cycle = key_pressed(Action::day_cycle);
     }
     if (mouse_free) {
         const platform::Extent source{std::uint32_t(internal_.x), std::uint32_t(internal_.y)};
@@ -77,10 +91,42 @@ void Game::input_system(Session& s) {
     }
 }
 
+void Game::quit_or_ask(Session& s) {
+    if (!unsaved(s)) {
+        quit_ = true;
+        return;
+    }
+    window_->cancel_close();
+    menu_.ask_quit();
+}
+
+void Game::apply_settings(Session* s, bool gi) {
+    if (swapchain_ && !options_.given.vsync && swapchain_->vsync() != settings_.vsync) swapchain_->set_vsync(settings_.vsync);
+    if (!options_.given.posterize) art_.posterize = settings_.posterize;
+    if (!options_.given.dither) art_.dither = settings_.dither;
+    if (gi && s) // the HUD's live GI edits are replaced
+        if (auto g = session_gi(s->info)) s->world.resource<systems::GiConfig>().settings = *g;
+}
+
+Result<scene::GiSettings> Game::session_gi(const GameWorld& info) const {
+    scene::Scene tmp;
+    tmp.gi = info.config.settings; // a scene's own; elsewhere the game's defaults, --set applied
+    if (info.spec.kind == WorldKind::scene) // the command line's overrides on top
+        for (const std::string& o : options_.gi_overrides)
+            if (auto ok = scene::apply_override(tmp, o); !ok) return Error{"lantern: " + ok.error().message, 2};
+    if (window_ && settings_.gi_preset != GiPreset::world) {
+        apply_gi_preset(settings_.gi_preset, tmp.gi);
+        for (const std::string& o : options_.gi_overrides) (void)scene::apply_override(tmp, o); // still the last word
+    }
+    return tmp.gi;
+}
+
 bool Game::fit_internal_to_window() {
     if (options_.internal_fixed || !window_) return false;
     const platform::Extent design{std::uint32_t(options_.internal.x), std::uint32_t(options_.internal.y)};
-    const platform::Extent fill = render::fill_integer_scale(design, window_->framebuffer_size());
+    const platform::Extent fill = settings_.pixel_scale > 0
+                                      ? render::fill_at_scale(design, window_->framebuffer_size(), std::uint32_t(settings_.pixel_scale))
+                                      : render::fill_integer_scale(design, window_->framebuffer_size());
     const glm::ivec2 size(int(fill.width), int(fill.height));
     if (fill.empty() || size == internal_) return false; // minimised, or unchanged
     internal_ = size;
@@ -186,6 +232,27 @@ void Game::render_system(Session& s) {
         actions = hud_.draw(in);
     }
     if (overlay_ && w.has_resource<Inventory>()) draw_hotbar(w.resource<Inventory>(), selected_item_);
+    MenuActions menu;
+    if (overlay_) {
+        const MenuPage page_before = menu_.page();
+        const PlayerSettings before = settings_;
+        MenuInputs mi;
+        mi.settings = &settings_;
+        mi.input = &window_->input();
+        mi.unsaved = unsaved(s);
+        if (menu_.page() == MenuPage::save) mi.save_slots = slot_views(false);
+        if (menu_.page() == MenuPage::load) mi.load_slots = slot_views(true);
+        mi.message = message_;
+        menu = menu_.draw(mi);
+        if (settings_ != before) {
+            apply_settings(&s, settings_.gi_preset != before.gi_preset);
+            settings_dirty_ = true;
+        }
+        // Written when the player leaves the settings pages (not at every slider step).
+        const bool on_settings = menu_.page() == MenuPage::settings || menu_.page() == MenuPage::keys;
+        if (settings_dirty_ && !on_settings && page_before != menu_.page()) write_settings_file();
+        if (settings_dirty_ && !menu_.is_open()) write_settings_file();
+    }
     gpu::CommandList cmd = device_->begin("raster frame");
     record_world(cmd, s);
     const VkExtent2D size = frame->image().extent();
@@ -197,12 +264,30 @@ void Game::render_system(Session& s) {
     swapchain_->present(std::move(*frame), std::move(cmd));
     collect_raster_timings();
     if (actions.export_trace) export_trace();
-    if (actions.save) save_requested_ = true;
+    if (actions.save) save_slot_requested_ = 1;
+    if (menu.save_slot) save_slot_requested_ = menu.save_slot;
+    if (menu.save_and_quit) {
+        save_slot_requested_ = 1;
+        quit_after_save_ = true;
+    }
+    if (menu.quit) quit_ = true;
+    if (!menu.load_path.empty()) {
+        if (auto state = read_save(menu.load_path)) {
+            pending_load_ = std::move(*state);
+            menu_.close();
+        } else {
+            message_ = state.error().message;
+        }
+    }
     if (actions.load) {
         if (auto state = read_save(options_.save_file)) pending_load_ = std::move(*state);
         else message_ = state.error().message;
     }
-    if (actions.toggle_vsync) swapchain_->set_vsync(!swapchain_->vsync());
+    if (actions.toggle_vsync) {
+        swapchain_->set_vsync(!swapchain_->vsync());
+        settings_.vsync = swapchain_->vsync();
+        settings_dirty_ = true;
+    }
 }
 
 

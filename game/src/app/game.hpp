@@ -10,6 +10,7 @@
 
 #include "app/draw_list.hpp"
 #include "app/hud.hpp"
+#include "app/menu.hpp"
 #include "app/texel_world.hpp"
 #include "lantern/core/clock.hpp"
 #include "lantern/core/file.hpp"
@@ -21,6 +22,7 @@
 #include "lantern/game/demo.hpp"
 #include "lantern/game/gameplay.hpp"
 #include "lantern/game/save.hpp"
+#include "lantern/game/settings.hpp"
 #include "lantern/game/world_renderer.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gpu/device.hpp"
@@ -123,7 +125,27 @@ class Game {
     void follow_window_size();
     void record_world(gpu::CommandList& cmd, Session& s);
     void collect_raster_timings();
-    void save(Session& s);
+    // Saves to `path` ("slot 1", "autosave 2" in messages); false when it failed (said in
+    // message_). `autosave`: the player's own saves keep their baseline (what the quit
+    // question compares with).
+    bool save(Session& s, const std::string& path, const std::string& name, bool autosave = false);
+    // Something changed since the last save or load (edits, or the player walked a tile).
+    bool unsaved(Session& s) const;
+    // What "unsaved" compares with: the world as it is now (after a save, a load, a start).
+    void mark_saved(Session& s, bool autosave);
+    // Counts play time; writes the next autosave slot when due and something changed.
+    void tick_autosave(Session& s);
+    // The settings file's values into the running game (vsync, art; `gi`: the GI preset
+    // too), the command line's own options winning. The pixel scale is read where the
+    // target is fitted to the window.
+    void apply_settings(Session* s, bool gi);
+    // The GI settings of a session of `info`'s world: the world's own (a scene's, or the
+    // game's defaults), the command line's --set over them, and in a window the menu's GI
+    // preset (--set still over it). An error only for a --set a scene's settings refuse.
+    Result<scene::GiSettings> session_gi(const GameWorld& info) const;
+    void write_settings_file();
+    std::vector<SlotView> slot_views(bool autosaves) const;
+    void quit_or_ask(Session& s);
     void export_trace();
     void write_status(Session& s);
     int run_window();
@@ -161,8 +183,18 @@ class Game {
     int headless_frame_ = 0;
     std::uint64_t window_frames_ = 0; // windowed frames stepped (--status-file)
     std::uint64_t hidden_waits_ = 0;  // waits for events while minimised or unmapped (--status-file)
-    int saves_done_ = 0;              // successful saves (--status-file)
-    bool save_requested_ = false;     // F5 or the HUD: saved between frames, outside the systems
+    int saves_done_ = 0;              // successful saves (--status-file), autosaves included
+    int autosaves_done_ = 0;          // of those, autosaves
+    int save_slot_requested_ = 0;     // F5, the HUD or the menu: saved between frames, outside the systems
+    bool quit_after_save_ = false;    // the quit question's "save and quit"
+    PauseMenu menu_;
+    PlayerSettings settings_;         // the settings file's (the menu edits them)
+    bool settings_dirty_ = false;     // changed in the menu, not yet written
+    int settings_writes_ = 0;         // (--status-file)
+    std::uint64_t saved_edits_ = 0, autosaved_edits_ = 0;   // WorldEdits at the last save / any save
+    glm::vec2 saved_player_{0.0f}, autosaved_player_{0.0f}; // the player there
+    double play_since_autosave_ = 0.0; // seconds of play
+    int next_autosave_ = 0;           // 0: ask the files (next_autosave_slot)
     bool status_failed_ = false;      // the status file could not be written (said once)
     bool quit_ = false;
     std::optional<SaveState> pending_load_;

@@ -25,7 +25,7 @@ int Game::run_window() {
             window_->poll_wait(0.25);
             ++hidden_waits_;
             last_frame_ns_ = 0; // the first frame back steps 1/60 s, not the time away
-            if (window_->should_close()) quit_ = true;
+            if (window_->should_close()) quit_or_ask(*session_); // the question shows once it is back
             if (!options_.status_file.empty()) write_status(*session_);
             continue;
         }
@@ -34,10 +34,14 @@ int Game::run_window() {
         report_refused(session_->frame->step());
         profile::end_frame();
         ++window_frames_;
-        if (save_requested_) {
-            save_requested_ = false;
-            save(*session_);
+        if (save_slot_requested_) {
+            const int slot = save_slot_requested_;
+            save_slot_requested_ = 0;
+            const bool saved = save(*session_, save_slot_path(options_.save_file, slot), "slot " + std::to_string(slot));
+            if (quit_after_save_ && saved) quit_ = true;
+            quit_after_save_ = false;
         }
+        tick_autosave(*session_);
         if (options_.watch) poll_watch();
         if (pending_scene_) {
             if (auto ok = reload_scene(); !ok) {
@@ -62,9 +66,11 @@ int Game::run_window() {
                 return s.error().exit_code;
             }
             session_ = std::move(*s);
-            message_ = "loaded " + options_.save_file;
+            mark_saved(*session_, false); // what was loaded is what "unsaved" compares with
+            message_ = "loaded " + state.file;
         }
     }
+    if (settings_dirty_) write_settings_file();
     return 0;
 }
 

@@ -4,20 +4,105 @@
 
 #include "lantern/core/json_writer.hpp"
 
+#include <ctime>
+
 namespace lantern::game::app {
 
-void Game::save(Session& s) {
+namespace {
+
+glm::vec2 player_xz(ecs::World& w) {
+    glm::vec2 player(0.0f);
+    w.view<Player, Transform>().each([&](const Player&, const Transform& t) { player = {t.position.x, t.position.z}; });
+    return player;
+}
+
+std::uint64_t edits_of(ecs::World& w) {
+    return w.has_resource<WorldEdits>() ? w.resource<WorldEdits>().count : 0;
+}
+
+// A walk of more than a tile counts as progress worth saving.
+constexpr float moved_tiles = 1.0f;
+
+} // namespace
+
+bool Game::save(Session& s, const std::string& path, const std::string& name, bool autosave) {
     SaveState state = capture_save(s.world, s.frame->streaming(), s.info.spec);
     state.extensions = capture_extensions(extensions_, s.world);
-    if (auto ok = write_save(options_.save_file, state); !ok) {
-        message_ = "save failed: " + ok.error().message;
+    if (auto ok = write_save(path, state); !ok) {
+        message_ = name + ": save failed: " + ok.error().message;
+        LANTERN_LOG_ERROR("%s", message_.c_str());
+        return false;
+    }
+    ++saves_done_;
+    if (autosave) ++autosaves_done_;
+    mark_saved(s, autosave);
+    message_ = (autosave ? "autosaved to " : "saved to ") + path + " (" + name + ": " +
+               std::to_string(state.entities.size()) + " lights and props, " + std::to_string(state.edits.size()) +
+               " edited chunks)";
+    LANTERN_LOG_INFO("%s", message_.c_str());
+    return true;
+}
+
+bool Game::unsaved(Session& s) const {
+    return edits_of(s.world) != saved_edits_ || glm::distance(player_xz(s.world), saved_player_) > moved_tiles;
+}
+
+void Game::mark_saved(Session& s, bool autosave) {
+    autosaved_edits_ = edits_of(s.world);
+    autosaved_player_ = player_xz(s.world);
+    play_since_autosave_ = 0.0;
+    if (autosave) return;
+    saved_edits_ = autosaved_edits_;
+    saved_player_ = autosaved_player_;
+}
+
+void Game::tick_autosave(Session& s) {
+    const int every = options_.autosave_seconds >= 0 ? options_.autosave_seconds : settings_.autosave_seconds;
+    if (every <= 0 || menu_.is_open()) return;
+    play_since_autosave_ += double(s.world.resource<GameClock>().dt);
+    if (play_since_autosave_ < double(every)) return;
+    play_since_autosave_ = 0.0;
+    const bool changed = edits_of(s.world) != autosaved_edits_ ||
+                         glm::distance(player_xz(s.world), autosaved_player_) > moved_tiles;
+    if (!changed) return; // nothing new: the last save holds it
+    if (next_autosave_ == 0) next_autosave_ = next_autosave_slot(options_.save_file);
+    const int slot = next_autosave_;
+    next_autosave_ = slot % autosave_slot_count + 1;
+    save(s, autosave_slot_path(options_.save_file, slot), "autosave " + std::to_string(slot), true);
+}
+
+void Game::write_settings_file() {
+    settings_dirty_ = false;
+    if (auto ok = write_settings(settings_path(options_), settings_); !ok) {
+        message_ = "settings not saved: " + ok.error().message;
         LANTERN_LOG_ERROR("%s", message_.c_str());
         return;
     }
-    ++saves_done_;
-    message_ = "saved to " + options_.save_file + " (" + std::to_string(state.entities.size()) + " lights and props, " +
-               std::to_string(state.edits.size()) + " edited chunks)";
-    LANTERN_LOG_INFO("%s", message_.c_str());
+    ++settings_writes_;
+}
+
+std::vector<SlotView> Game::slot_views(bool autosaves) const {
+    std::vector<SlotView> out;
+    const auto add = [&](std::string name, std::string path) {
+        SlotView v;
+        v.name = std::move(name);
+        v.path = std::move(path);
+        if (const auto stamp = file_stamp(v.path)) {
+            v.exists = true;
+            const std::time_t t = std::time_t(stamp->modified_ns / 1000000000);
+            std::tm local{};
+            localtime_r(&t, &local);
+            char when[32];
+            std::strftime(when, sizeof(when), "%Y-%m-%d %H:%M:%S", &local);
+            v.when = when;
+        }
+        out.push_back(std::move(v));
+    };
+    for (int k = 1; k <= save_slot_count; ++k) add("slot " + std::to_string(k), save_slot_path(options_.save_file, k));
+    if (autosaves)
+        for (int k = 1; k <= autosave_slot_count; ++k)
+            add("autosave " + std::to_string(k), autosave_slot_path(options_.save_file, k));
+    return out;
 }
 
 Result<void> Game::check_extension_data(const SaveState& state) const {
@@ -31,8 +116,7 @@ Result<void> Game::check_extension_data(const SaveState& state) const {
 // through real input waits on (the frame that saw its input, where the player is) instead of
 // sleeping for a guessed time.
 void Game::write_status(Session& s) {
-    glm::vec2 player(0.0f);
-    s.world.view<Player, Transform>().each([&](const Player&, const Transform& t) { player = {t.position.x, t.position.z}; });
+    const glm::vec2 player = player_xz(s.world);
     json::Writer w;
     w.begin_object(json::Layout::one_line).field("frame", window_ ? window_frames_ : std::uint64_t(headless_frame_ + 1));
     w.key("player").begin_array().value(double(player.x), 4).value(double(player.y), 4).end();
@@ -58,6 +142,18 @@ void Game::write_status(Session& s) {
         w.key("internal").begin_array().value(internal_.x).value(internal_.y).end();
         w.key("present").begin_array().value(present_rect_.x).value(present_rect_.y);
         w.value(present_rect_.width).value(present_rect_.height).value(present_rect_.scale).end();
+        // The pause menu: its page, what it would ask, and its buttons this frame (window
+        // pixels: x, y, width, height), so a script clicks them as a player would.
+        w.field("menu", menu_page_names[int(menu_.page())]).field("unsaved", unsaved(s));
+        w.field("autosaves", autosaves_done_).field("settings_writes", settings_writes_);
+        w.field("vsync", swapchain_ && swapchain_->vsync());
+        w.field("gi_resolution", s.world.resource<systems::GiConfig>().settings.resolution);
+        w.key("buttons_drawn").begin_object(json::Layout::one_line);
+        for (const MenuButton& b : menu_.settled_buttons()) {
+            w.key(b.label).begin_array().value(double(b.x), 1).value(double(b.y), 1);
+            w.value(double(b.width), 1).value(double(b.height), 1).end();
+        }
+        w.end();
     }
     w.end();
     if (auto ok = write_file_atomic(options_.status_file, w.take()); !ok && !status_failed_) {

@@ -84,6 +84,13 @@ struct Inventory {
     friend bool operator==(const Inventory&, const Inventory&) = default;
 };
 
+// Edits the player made to the world (a wall mined or placed, a light or prop placed or picked
+// up), counted by `interact`: the game compares the count with the one at the last save to
+// know whether anything is unsaved.
+struct WorldEdits {
+    std::uint64_t count = 0;
+};
+
 // Reach of the player's hands, tiles.
 inline constexpr float interaction_range = 5.0f;
 

@@ -20,7 +20,9 @@ enum class RunMode : std::uint8_t { automatic, window, headless };
 struct GameOptions {
     WorldSpec world;                 // --caves [SEED] (default), --map FILE, --scene FILE
     std::string load;                // --load SAVE: start from a save (its world)
-    std::string save_file = "lantern-save.json"; // where F5 saves and F9 loads
+    std::string save_file = "lantern-save.json"; // where F5 saves and F9 loads (slot 1; settings.hpp)
+    std::string settings_file;       // --settings FILE (default: lantern-settings.json beside the save file)
+    int autosave_seconds = -1;       // --autosave SECONDS (0: none; -1: the settings file's, 180 by default)
     RunMode mode = RunMode::automatic; // --window / --headless; automatic: window if a display can open
     std::string status_file;         // --status-file PATH: each frame's state, for scripted play
     std::string schedule_dot;        // --schedule FILE.dot: the frame schedule as Graphviz DOT
@@ -57,7 +59,15 @@ struct GameOptions {
     int workers = -1;                // --workers N (-1: hardware threads - 1)
     bool fixed_step = false;         // --fixed-step: dt = 1/60 whatever the frame took (headless always)
     bool validation = false;         // --validation: Vulkan validation layers
+
+    // Which of the settings file's values the command line gave (they win for this run).
+    struct Given {
+        bool vsync = false, posterize = false, dither = false, gi = false;
+    } given;
 };
+
+// The settings file a game with these options reads and writes.
+std::string settings_path(const GameOptions& options);
 
 // The GI settings the game plays with by default, chosen from the headless benchmark on a
 // 2-core machine with lavapipe (docs/game.md, "Performance").

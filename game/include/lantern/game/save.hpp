@@ -69,4 +69,15 @@ Result<SaveState> read_save(const std::string& path);
 // first frame.
 void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player);
 
+// Save slots (the pause menu): slot 1 is the --save-file itself (F5 and F9), slots 2 and 3
+// sit beside it ("lantern-save-2.json"), and the autosaves rotate through three more
+// ("lantern-save-autosave-1.json" ...).
+inline constexpr int save_slot_count = 3;
+inline constexpr int autosave_slot_count = 3;
+std::string save_slot_path(const std::string& save_file, int slot);   // slot in [1, save_slot_count]
+std::string autosave_slot_path(const std::string& save_file, int slot); // slot in [1, autosave_slot_count]
+// The autosave slot to write next: the first that does not exist, else the one written
+// longest ago (the lowest slot among equals).
+int next_autosave_slot(const std::string& save_file);
+
 } // namespace lantern::game

@@ -18,6 +18,8 @@
 
 #include <bitset>
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
 namespace lantern::platform {
 
@@ -144,6 +146,12 @@ enum class Key : std::uint16_t {
     right_super = 347,
     menu = 348,
 };
+
+// A key's name in settings files and menus: "a", "7", "space", "left_shift", "f5", "kp_0"
+// (the enumerator's name; digits are "0"-"9"). Every Key above has one; any other value
+// gives "". key_by_name is its inverse (exact, lower case).
+std::string_view key_name(Key key);
+std::optional<Key> key_by_name(std::string_view name);
 
 // GLFW's button numbers.
 enum class MouseButton : std::uint8_t {

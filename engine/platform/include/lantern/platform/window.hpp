@@ -134,6 +134,8 @@ class Window {
     // --- State --------------------------------------------------------------------------------
     bool should_close() const;
     void request_close();
+    // Takes a close request back (the game asks first when there is something unsaved).
+    void cancel_close();
     Extent framebuffer_size() const; // pixels; {0, 0} while minimised
     Extent window_size() const;      // screen coordinates
     bool minimised() const;

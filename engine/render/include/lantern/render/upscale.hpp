@@ -53,6 +53,9 @@ PresentRect fit_integer_scale(platform::Extent source, platform::Extent destinat
 //   fill_integer_scale({480, 270}, {1920, 1080}); // {480, 270}: scale 4
 // Empty when either is empty.
 platform::Extent fill_integer_scale(platform::Extent design, platform::Extent destination);
+// As fill_integer_scale, at a scale the player chose (>= 1): destination / scale rounded
+// down, each axis clamped to [1, 4 x the design's].
+platform::Extent fill_at_scale(platform::Extent design, platform::Extent destination, std::uint32_t scale);
 
 // The source pixel position under destination pixel position `p` (e.g. the mouse), or
 // nullopt when p is on a bar. Positions are continuous: pixel (i, j) covers [i, i+1).
