@@ -7,6 +7,7 @@
 #include "app/draw_list.hpp"
 #include "app/texel_world.hpp"
 #include "app/hud.hpp"
+#include "app/menu.hpp"
 
 #include "lantern/game/gameplay.hpp"
 #include "lantern/gi/pass_table.hpp"
@@ -237,6 +238,122 @@ struct StreamedWorld {
         streaming->load_all(world, jobs, {0.0f, 0.0f, float(size.x), float(size.y)});
     }
 };
+
+// The pause menu in a real ImGui context, clicked through ImGui's own mouse input: one frame
+// with the mouse over a button and pressed, one released (as the window feeds it).
+struct MenuFixture : ImGuiFixture {
+    PauseMenu menu;
+    PlayerSettings settings;
+    MenuInputs in;
+    void SetUp() override {
+        ImGuiFixture::SetUp();
+        in.settings = &settings;
+    }
+    MenuActions frame() {
+        ImGui::NewFrame();
+        MenuActions a = menu.draw(in);
+        ImGui::Render();
+        return a;
+    }
+    // Two frames to settle the page, then a press and a release on `label`; the actions of the
+    // release frame (empty when the button is not on the page).
+    std::optional<MenuActions> click(const std::string& label) {
+        frame();
+        frame();
+        const auto& b = menu.buttons();
+        const auto it = std::find_if(b.begin(), b.end(), [&](const MenuButton& m) { return m.label == label; });
+        if (it == b.end()) return std::nullopt;
+        ImGuiIO& io = ImGui::GetIO();
+        io.MousePos = ImVec2(it->x + it->width * 0.5f, it->y + it->height * 0.5f);
+        frame(); // hover
+        io.MouseDown[0] = true;
+        frame();
+        io.MouseDown[0] = false;
+        return frame();
+    }
+};
+
+TEST_F(MenuFixture, QuitAsksOnlyWhenSomethingIsUnsaved) {
+    menu.open();
+    in.unsaved = false;
+    auto a = click("Quit");
+    ASSERT_TRUE(a);
+    EXPECT_TRUE(a->quit) << "nothing unsaved: quit at once";
+    in.unsaved = true;
+    a = click("Quit");
+    ASSERT_TRUE(a);
+    EXPECT_FALSE(a->quit);
+    EXPECT_EQ(menu.page(), MenuPage::confirm_quit);
+    a = click("Cancel");
+    ASSERT_TRUE(a && !a->quit);
+    EXPECT_EQ(menu.page(), MenuPage::main);
+    ASSERT_TRUE(click("Quit"));
+    a = click("Save to slot 1 and quit");
+    ASSERT_TRUE(a);
+    EXPECT_TRUE(a->save_and_quit);
+    EXPECT_FALSE(a->quit) << "quits after the save, if it worked";
+    menu.open();
+    ASSERT_TRUE(click("Quit"));
+    a = click("Quit without saving");
+    ASSERT_TRUE(a && a->quit);
+}
+
+TEST_F(MenuFixture, BackWalksUpThePagesAndButtonsStayPut) {
+    menu.open();
+    ASSERT_TRUE(click("Settings"));
+    EXPECT_EQ(menu.page(), MenuPage::settings);
+    ASSERT_TRUE(click("Key bindings"));
+    EXPECT_EQ(menu.page(), MenuPage::keys);
+    menu.back();
+    EXPECT_EQ(menu.page(), MenuPage::settings);
+    menu.back();
+    EXPECT_EQ(menu.page(), MenuPage::main);
+    menu.back();
+    EXPECT_FALSE(menu.is_open());
+    EXPECT_TRUE(frame().load_path.empty());
+    EXPECT_TRUE(menu.buttons().empty()) << "a closed menu draws nothing";
+    // A page's buttons are where its first frame drew them (a script clicks what the status
+    // file listed), and settled_buttons() holds them back until the second.
+    menu.open();
+    frame();
+    EXPECT_TRUE(menu.settled_buttons().empty());
+    const std::vector<MenuButton> first = menu.buttons();
+    frame();
+    ASSERT_EQ(menu.settled_buttons().size(), first.size());
+    for (std::size_t i = 0; i < first.size(); ++i) {
+        EXPECT_EQ(menu.buttons()[i].label, first[i].label);
+        EXPECT_EQ(menu.buttons()[i].x, first[i].x) << first[i].label;
+        EXPECT_EQ(menu.buttons()[i].y, first[i].y) << first[i].label;
+        EXPECT_EQ(menu.buttons()[i].width, first[i].width) << first[i].label;
+    }
+}
+
+TEST_F(MenuFixture, SettingsPageEditsTheSettingsAndSlotsSaveAndLoad) {
+    menu.open();
+    ASSERT_TRUE(click("Settings"));
+    ASSERT_TRUE(click("high"));
+    EXPECT_EQ(settings.gi_preset, GiPreset::high);
+    ASSERT_TRUE(click("vsync: on"));
+    EXPECT_FALSE(settings.vsync);
+    ASSERT_TRUE(click("+##pixel_scale"));
+    ASSERT_TRUE(click("+##pixel_scale"));
+    EXPECT_EQ(settings.pixel_scale, 2);
+    ASSERT_TRUE(click("Back##settings"));
+    in.save_slots = {{"slot 1", "a.json", true, "2026-11-27 01:00:00"}, {"slot 2", "b.json", false, ""}, {"slot 3", "c.json", false, ""}};
+    in.load_slots = in.save_slots;
+    ASSERT_TRUE(click("Save"));
+    auto a = click("Save to slot 2");
+    ASSERT_TRUE(a);
+    EXPECT_EQ(a->save_slot, 2);
+    ASSERT_TRUE(click("Back##save"));
+    ASSERT_TRUE(click("Load"));
+    a = click("Load slot 2");
+    ASSERT_TRUE(a);
+    EXPECT_TRUE(a->load_path.empty()) << "an empty slot cannot be loaded";
+    a = click("Load slot 1");
+    ASSERT_TRUE(a);
+    EXPECT_EQ(a->load_path, "a.json");
+}
 
 TEST(DrawList, EachFrameStartsFromAnEmptyList) {
     StreamedWorld open({20, 20});
