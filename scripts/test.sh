@@ -41,11 +41,11 @@ if [ "${LANTERN_TEST_SANITIZERS:-1}" != "0" ]; then
     # C++ reference backend included) still runs under the sanitizers. See docs/testing.md.
     # Anchored: ctest matches labels as regular expressions ('game' alone would take in
     # game_gpu and game_app, which run the game executable). Only these suites are built.
-    labels='^(core|profile|jobs|ecs|scene|gpu_reflect|gi_reference|gi_gpu|texel|texel_gpu|systems|transport|bake|game)$'
+    labels='^(core|profile|jobs|ecs|scene|gpu_reflect|gi_reference|gi_gpu|texel|texel_gpu|systems|transport|bake|audio|game)$'
     export LANTERN_BUILD_TARGETS="lantern_core_tests lantern_profile_tests lantern_jobs_tests lantern_ecs_tests
         lantern_scene_tests lantern_gpu_reflect_tests lantern_gi_reference_tests lantern_gi_gpu_tests lantern_texel_tests
         lantern_texel_gpu_tests lantern_systems_tests
-        lantern_transport_tests lantern_bake_tests lantern_game_logic_tests"
+        lantern_transport_tests lantern_bake_tests lantern_audio_tests lantern_game_logic_tests"
     export VK_DRIVER_FILES=/nonexistent/lantern-sanitizer-run.json
     echo "== build + test: ASan+UBSan with clang (build-clang-asan/, labels $labels)"
     LANTERN_BUILD_TARGETS="$LANTERN_BUILD_TARGETS lantern-fuzz-scene lantern-fuzz-map lantern-fuzz-save lantern-fuzz-set lantern-fuzz-settings lantern-fuzz-bake" \

@@ -276,8 +276,9 @@ void interact(ecs::SystemContext& ctx) {
         return glm::distance(glm::vec2(tile) + 0.5f, glm::vec2(player->x, player->z)) <= interaction_range;
     };
     const auto gain = [&](Item item) { inventory[item] = std::min(inventory[item] + 1, Inventory::max_stack); };
-    const auto edited = [&] {
+    const auto edited = [&](SoundCue cue, glm::ivec2 tile) {
         if (w.has_resource<WorldEdits>()) ++w.resource<WorldEdits>().count;
+        if (w.has_resource<SoundCues>()) w.resource<SoundCues>().entries.push_back({cue, glm::vec2(tile) + 0.5f});
     };
     if (c.mine) {
         // The wall under the cursor yields its block; on open ground, a torch or prop placed
@@ -286,7 +287,7 @@ void interact(ecs::SystemContext& ctx) {
             if (in_reach(*tile)) {
                 streaming.set_wall(w, *tile, false);
                 gain(Item::wall);
-                edited();
+                edited(SoundCue::dig, *tile);
             }
             return;
         }
@@ -304,7 +305,7 @@ void interact(ecs::SystemContext& ctx) {
         if (found) {
             ctx.commands().destroy(found->first);
             gain(found->second);
-            edited();
+            edited(SoundCue::pick_up, *ground);
         }
         return;
     }
@@ -338,7 +339,7 @@ void interact(ecs::SystemContext& ctx) {
         if (parts.light) cb.emplace<PointLight>(e, *parts.light);
     }
     --inventory[item];
-    edited();
+    edited(SoundCue::place, *tile);
 }
 
 } // namespace
@@ -352,7 +353,7 @@ void add_gameplay_systems(ecs::Schedule& schedule) {
         .main_thread() // edits the wall mirror
         .reads_resource<Controls, systems::GiConfig>()
         .reads<Player, Transform, Camera, Torch, PointLight, Prop>() // what it picks up
-        .writes_resource<systems::Streaming, Inventory, WorldEdits>()
+        .writes_resource<systems::Streaming, Inventory, WorldEdits, SoundCues>()
         .writes<WallChunk>();
     schedule.add("torch_flicker", [](ecs::SystemContext& ctx) {
         const double t = ctx.world.resource<GameClock>().time;

@@ -172,6 +172,7 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
         },
         true);
     p.flag("--no-player-light", "the player carries no light", [&] { o.player_light = false; });
+    p.flag("--no-sound", "no sound (without an audio device the game runs silent anyway)", [&] { o.sound = false; });
     p.flag("--no-texel-lighting", "light props and the player per pixel by the GI, not per texel of their art",
            [&] { o.texel_lighting = false; });
     p.flag("--no-bake", "light everything live: no baked light (the modes of lights are ignored)", [&] { o.bake = false; });

@@ -77,6 +77,15 @@ Result<void> Game::init(bool windowed) {
     }
     raster_lane_ = profile::add_gpu_lane("GPU raster");
     hud_.visible = options_.hud;
+    if (windowed && options_.sound) {
+        // Sound is a pleasure, not a requirement: without an output device the game runs silent.
+        if (auto mixer = audio::Mixer::open_device()) {
+            LANTERN_LOG_INFO("sound: %s", (*mixer)->device_name().c_str());
+            sound_ = std::make_unique<GameSound>(std::move(*mixer));
+        } else {
+            LANTERN_LOG_WARN("%s: the game runs silent", mixer.error().message.c_str());
+        }
+    }
     return {};
 }
 
@@ -110,6 +119,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     if (!gi) return gi.error();
     config.settings = *gi;
     w.set_resource<WorldEdits>();
+    if (sound_) w.set_resource<SoundCues>();
     for (const GameExtension& e : extensions_)
         if (e.setup) e.setup(w);
     if (save) {
@@ -221,6 +231,12 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         .reads<Player, Transform, Prop, Torch, PointLight, EmissiveLight, Camera>()
         .reads_resource<Controls, GameClock, systems::GiConfig, systems::Streaming, BakedChunks, BakeStatus>()
         .writes_resource<DrawListResource>();
+    if (sound_)
+        schedule.add("sound", [this](ecs::SystemContext& ctx) { sound_->update(ctx.world); })
+            .main_thread() // OpenAL's context is the main thread's
+            .reads<Player, Transform, Torch, PointLight>()
+            .writes_resource<SoundCues>() // plays and empties them
+            .after("interact");           // which adds them
     schedule.add("render", [this, &s](ecs::SystemContext&) { render_system(s); })
         .main_thread()
         .reads_resource<DrawListResource, systems::FramePasses, systems::GiView, systems::GatheredLights,

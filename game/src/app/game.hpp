@@ -11,6 +11,7 @@
 #include "app/draw_list.hpp"
 #include "app/hud.hpp"
 #include "app/menu.hpp"
+#include "app/sound.hpp"
 #include "app/texel_world.hpp"
 #include "lantern/core/clock.hpp"
 #include "lantern/core/file.hpp"
@@ -98,6 +99,7 @@ class Game {
         swapchain_.reset();
         timer_.reset();
         texel_world_.reset();
+        sound_.reset();
         world_renderer_.reset();
         gi_renderer_.reset();
         device_.reset();
@@ -169,6 +171,7 @@ class Game {
     std::unique_ptr<gi::vk::Renderer> gi_renderer_;
     std::unique_ptr<WorldRenderer> world_renderer_;
     std::unique_ptr<TexelWorld> texel_world_; // nullptr with --no-texel-lighting
+    std::unique_ptr<GameSound> sound_;        // nullptr headless, with --no-sound, or without an audio device
     std::vector<texel::TexelLight> texel_lights_; // this frame's (reused)
     std::unique_ptr<Session> session_;
     std::uint32_t raster_lane_ = 0;

@@ -147,6 +147,8 @@ void Game::write_status(Session& s) {
         w.field("menu", menu_page_names[int(menu_.page())]).field("unsaved", unsaved(s));
         w.field("autosaves", autosaves_done_).field("settings_writes", settings_writes_);
         w.field("vsync", swapchain_ && swapchain_->vsync());
+        w.field("sound", sound_ ? sound_->mixer().device_name() : std::string("off"));
+        w.field("sounds_played", sound_ ? sound_->sounds_played() : std::uint64_t(0));
         w.field("gi_resolution", s.world.resource<systems::GiConfig>().settings.resolution);
         w.key("buttons_drawn").begin_object(json::Layout::one_line);
         for (const MenuButton& b : menu_.settled_buttons()) {

@@ -7,6 +7,7 @@
 #include <glm/vec2.hpp>
 
 #include <array>
+#include <vector>
 #include <cstdint>
 #include <string>
 
@@ -89,6 +90,17 @@ struct Inventory {
 // know whether anything is unsaved.
 struct WorldEdits {
     std::uint64_t count = 0;
+};
+
+// What the game's sound should play for this frame's edits (`interact` adds, the sound
+// system plays and clears). The resource exists only while the game has sound.
+enum class SoundCue : std::uint8_t { dig, place, pick_up };
+struct SoundCues {
+    struct Entry {
+        SoundCue cue = SoundCue::dig;
+        glm::vec2 at{0.0f};
+    };
+    std::vector<Entry> entries;
 };
 
 // Reach of the player's hands, tiles.
