@@ -142,8 +142,9 @@ void gather_proxies(ecs::SystemContext& ctx, ProxyGatherState& state) {
             offers.push_back({s.position, gi::proxy_reach(s), i});
         }
         const std::size_t cap = std::size_t(std::max(0, config.settings.max_shadow_proxies));
-        for (std::uint32_t i : gi::gather_offers(offers, *view.window, cap))
-            out.proxies.push_back(gi::pack_proxy(proxies[i].second->shape));
+        const gi::FadedOffers kept = gi::gather_offers_faded(offers, *view.window, cap, config.proxy_fade);
+        for (std::size_t k = 0; k < kept.ids.size(); ++k)
+            out.proxies.push_back(gi::pack_proxy(proxies[kept.ids[k]].second->shape, kept.fade[k]));
     }
     out.hash = hash_vector(Hasher(), out.proxies);
     w.resource<GatheredProxies>() = std::move(out);

@@ -21,12 +21,15 @@ class GiGpuCompare : public lantern::test::GpuTest {
     // and the lit image.
     // With `reference_by_dda`, the reference traces point lights' shadows by the DDA (the
     // specification) whatever gi.shadow_method says.
-    void compare_scene(const NamedScene& named, Pass through, bool lit, bool reference_by_dda = false) {
+    // With `proxy_strength` below 1, every other shadow proxy fades to it (the cap's fade).
+    void compare_scene(const NamedScene& named, Pass through, bool lit, bool reference_by_dda = false,
+                       float proxy_strength = 1.0f) {
         const lantern::scene::Scene& s = named.scene;
         std::string why;
         auto window = compute_window(s.view, s.gi, &why);
         ASSERT_TRUE(window) << why;
         FrameInputs in = gather_frame_inputs(s, *window);
+        for (std::size_t k = 0; k < in.proxies.size(); k += 2) in.proxies[k].fade.x = proxy_strength;
         PassPlan plan = plan_passes(in, lit, through);
         auto gpu = run_vulkan_frame(gi_test::shared_renderer(device()), in, plan);
         ASSERT_TRUE(gpu.ok()) << gpu.error().message;
@@ -70,6 +73,21 @@ TEST_P(GiGpuScenes, WholePipelineMatchesReference) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, GiGpuScenes, ::testing::ValuesIn(gi_test::comparison_scene_names()),
                          [](const auto& p) { return p.param; });
+
+// Shadow proxies fading near the cap (GpuShadowProxy::fade, issue 19): partial strengths on
+// the GPU equal the reference through the whole pipeline, on the comparison scenes with
+// proxies.
+TEST_F(GiGpuCompare, FadingProxiesMatchReference) {
+    int scenes = 0;
+    for (const std::string& name : gi_test::comparison_scene_names()) {
+        const NamedScene named = gi_test::comparison_scene(name);
+        if (named.scene.shadow_proxies.size() < 2 || scenes == 2) continue;
+        ++scenes;
+        SCOPED_TRACE(name);
+        compare_scene(named, Pass::lit, true, false, 0.35f);
+    }
+    EXPECT_EQ(scenes, 2) << "two comparison scenes with shadow proxies";
+}
 
 TEST_F(GiGpuCompare, RealMapDen312d) {
     auto s = gi_test::map_scene("den312d.map", {32.0f, 40.0f}, 1);

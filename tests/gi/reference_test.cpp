@@ -272,3 +272,28 @@ TEST(Reference, ParallelRowsEqualSerial) {
     for (int f = 0; f < 4; ++f) EXPECT_EQ(serial.wall_direct[f].texels, parallel.wall_direct[f].texels);
     EXPECT_EQ(reference_ao(in).texels, reference_ao(in, {&jobs}).texels);
 }
+
+// A proxy's strength (GpuShadowProxy::fade.x, the cap's fade) scales its occlusion: 1 is the
+// proxy's whole shadow bit for bit, 0 none, 0.5 half.
+TEST(ReferenceDirect, ProxyStrengthScalesItsOcclusion) {
+    lantern::scene::ShadowProxy shape;
+    shape.position = {0.0f, 0.0f};
+    shape.shape = lantern::scene::ProxyShape::circle;
+    shape.size = {0.5f, 0.5f};
+    const GpuShadowProxy whole = pack_proxy(shape), half = pack_proxy(shape, 0.5f), none = pack_proxy(shape, 0.0f);
+    EXPECT_EQ(whole.fade.x, 1.0f);
+    EXPECT_EQ(pack_proxy(shape, 7.0f).fade.x, 1.0f) << "clamped";
+    const glm::vec2 light(-3.0f, 0.0f);
+    int shaded = 0;
+    for (float x = 0.2f; x < 4.0f; x += 0.13f)
+        for (float z = -1.0f; z <= 1.0f; z += 0.11f) {
+            const glm::vec2 p(x, z);
+            const float s1 = point_proxy_shadow(std::span(&whole, 1), light, p);
+            const float s05 = point_proxy_shadow(std::span(&half, 1), light, p);
+            const float s0 = point_proxy_shadow(std::span(&none, 1), light, p);
+            EXPECT_EQ(s0, 1.0f);
+            EXPECT_NEAR(1.0f - s05, 0.5f * (1.0f - s1), 1e-6f) << x << ", " << z;
+            shaded += s1 < 0.5f ? 1 : 0;
+        }
+    EXPECT_GT(shaded, 20) << "the proxy shades something behind it";
+}

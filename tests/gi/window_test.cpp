@@ -1,9 +1,12 @@
+#include "lantern/gi/frame_inputs.hpp"
 #include "lantern/gi/window.hpp"
 #include <optional>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include <glm/geometric.hpp>
 
 using lantern::gi::compute_window;
 using lantern::scene::OrthoView;
@@ -134,4 +137,55 @@ TEST(GiWindow, TexelSnapOnATileBoundaryIsTheTileWindow) {
     // padding 1.4 around centre (21, 11.2) with size 30 x 16: min (0, 0), a tile corner.
     const OrthoView view{{21.0f, 11.2f}, {30.0f, 16.0f}};
     EXPECT_EQ(*compute_window(view, tile), *compute_window(view, texel));
+}
+
+// Shadow proxies beyond the cap fade instead of popping (issue 19; gather_offers_faded): as
+// the camera slides past a row of proxies, each proxy's strength (0 when not gathered) moves
+// by at most twice the window's own move over the fade band (a priority and the cut each
+// move by at most the window's move), so none appears or vanishes at once: the window
+// phase-locks to whole tiles, so with a band of 4 a proxy fades out over at least 2 window
+// steps. Nearer ones are whole; under the cap nothing fades.
+TEST(GatherOffers, ProxiesNearTheCapFadeContinuouslyAsTheWindowMoves) {
+    using namespace lantern::gi;
+    std::vector<Offer> offers;
+    for (std::uint32_t i = 0; i < 40; ++i) offers.push_back({{float(i) * 1.5f, 3.0f}, 2.0f, i, 0.0f});
+    constexpr float band = 4.0f;
+    constexpr std::size_t cap = 8;
+    std::vector<float> last(offers.size(), -1.0f);
+    glm::vec2 last_center(0.0f);
+    int steps = 0;
+    const float step = 1.0f / 16.0f; // the camera moves a sixteenth of a tile per frame
+    for (float x = 0.0f; x < 50.0f; x += step) {
+        auto w = compute_window(OrthoView{{x, 3.0f}, {30.0f, 16.875f}}, 1.25f, 4);
+        ASSERT_TRUE(w);
+        const FadedOffers kept = gather_offers_faded(offers, *w, cap, band);
+        ASSERT_LE(kept.ids.size(), cap);
+        ASSERT_EQ(kept.fade.size(), kept.ids.size());
+        std::vector<float> now(offers.size(), 0.0f);
+        for (std::size_t k = 0; k < kept.ids.size(); ++k) now[kept.ids[k]] = kept.fade[k];
+        EXPECT_EQ(kept.ids, gather_offers(offers, *w, cap)) << "the same set as without fading";
+        // The proxy nearest the window's centre is whole.
+        std::uint32_t nearest = 0;
+        for (std::uint32_t i = 1; i < offers.size(); ++i)
+            if (glm::distance(offers[i].position, w->center()) < glm::distance(offers[nearest].position, w->center()))
+                nearest = i;
+        EXPECT_FLOAT_EQ(now[nearest], 1.0f) << "x " << x;
+        if (last[0] >= 0.0f) {
+            const float moved = glm::distance(w->center(), last_center);
+            EXPECT_LE(moved, 1.0f + 1e-4f) << "the window steps a tile at a time";
+            steps += moved > 0.0f ? 1 : 0;
+            for (std::size_t i = 0; i < offers.size(); ++i)
+                EXPECT_LE(std::abs(now[i] - last[i]), 2.0f * moved / band + 1e-4f) << "proxy " << i << " popped at x " << x;
+        }
+        last = now;
+        last_center = w->center();
+    }
+    EXPECT_GT(steps, 40) << "the window moved";
+    // Under the cap: no fading at all.
+    auto w = compute_window(OrthoView{{0.0f, 3.0f}, {30.0f, 16.875f}}, 1.25f, 4);
+    const FadedOffers all = gather_offers_faded(offers, *w, 100, band);
+    for (float f : all.fade) EXPECT_EQ(f, 1.0f);
+    // band 0: the old cut, every kept proxy whole.
+    const FadedOffers hard = gather_offers_faded(offers, *w, cap, 0.0f);
+    for (float f : hard.fade) EXPECT_EQ(f, 1.0f);
 }

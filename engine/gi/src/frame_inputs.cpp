@@ -12,11 +12,12 @@ GpuPointLight pack_light(glm::vec2 position, glm::vec3 color, float intensity, f
     return GpuPointLight{glm::vec4(position, radius, 0.0f), glm::vec4(color * intensity, 0.0f)};
 }
 
-GpuShadowProxy pack_proxy(const scene::ShadowProxy& p) {
+GpuShadowProxy pack_proxy(const scene::ShadowProxy& p, float strength) {
     return GpuShadowProxy{
         glm::vec4(p.position, p.size),
         glm::vec4(p.max_length, p.end_cap_blend, p.penumbra_width, p.penumbra_length),
-        glm::vec4(p.penumbra_power, float(p.shape), float(p.width_mode), float(p.penumbra_mode))};
+        glm::vec4(p.penumbra_power, float(p.shape), float(p.width_mode), float(p.penumbra_mode)),
+        glm::vec4(std::clamp(strength, 0.0f, 1.0f), 0.0f, 0.0f, 0.0f)};
 }
 
 float proxy_reach(const scene::ShadowProxy& p) {
@@ -29,20 +30,32 @@ bool sun_adds_light(glm::vec3 color, float intensity) {
 }
 
 std::vector<std::uint32_t> gather_offers(const std::vector<Offer>& offers, const GiWindow& window, std::size_t cap) {
-    std::vector<std::uint32_t> ids;
+    return gather_offers_faded(offers, window, cap, 0.0f).ids;
+}
+
+FadedOffers gather_offers_faded(const std::vector<Offer>& offers, const GiWindow& window, std::size_t cap, float band) {
+    FadedOffers out;
+    std::vector<std::uint32_t>& ids = out.ids;
     for (std::uint32_t i = 0; i < offers.size(); ++i)
         if (distance_to_window(window, offers[i].position) <= offers[i].reach) ids.push_back(i);
-    if (ids.size() > cap) {
+    std::vector<float> priority;
+    float cut = 0.0f;
+    const bool capped = ids.size() > cap;
+    if (capped) {
         const glm::vec2 center = window.center();
-        std::vector<float> priority(offers.size());
+        priority.resize(offers.size());
         for (std::uint32_t i : ids) priority[i] = glm::distance(offers[i].position, center) - offers[i].bonus;
         std::sort(ids.begin(), ids.end(), [&](std::uint32_t a, std::uint32_t b) {
             return priority[a] != priority[b] ? priority[a] < priority[b] : offers[a].order < offers[b].order;
         });
+        cut = priority[ids[cap]]; // the first offer left out
         ids.resize(cap);
     }
     std::sort(ids.begin(), ids.end(), [&](std::uint32_t a, std::uint32_t b) { return offers[a].order < offers[b].order; });
-    return ids;
+    out.fade.assign(ids.size(), 1.0f);
+    if (capped && band > 0.0f)
+        for (std::size_t k = 0; k < ids.size(); ++k) out.fade[k] = std::clamp((cut - priority[ids[k]]) / band, 0.0f, 1.0f);
+    return out;
 }
 
 float distance_to_window(const GiWindow& w, glm::vec2 p) {

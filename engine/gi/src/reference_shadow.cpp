@@ -157,7 +157,7 @@ float proxy_occlusion(const GpuShadowProxy& p, glm::vec2 pixel, glm::vec2 dir_sh
     const int mode = int(p.modes.w + 0.5f);
     const float edge = penumbra_factor(perp_dist, proxy_width(p, perp), pen_width, power, mode);
     const float len = penumbra_factor(along, max_length, pen_length, power, mode);
-    return edge * len;
+    return edge * len * p.fade.x; // a strength of 1 changes nothing, bit for bit
 }
 
 } // namespace

@@ -118,6 +118,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     auto gi = session_gi(s->info);
     if (!gi) return gi.error();
     config.settings = *gi;
+    config.proxy_fade = 6.0f; // proxies past the cap fade out, not pop (docs/frame.md, "Light gathering")
     w.set_resource<WorldEdits>();
     if (sound_) w.set_resource<SoundCues>();
     for (const GameExtension& e : extensions_)

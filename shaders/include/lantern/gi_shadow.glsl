@@ -171,7 +171,7 @@ float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
     int mode = int(p.modes.w + 0.5);
     float edge = penumbra_factor(perp_dist, proxy_width(p, perp), pen_width, power, mode);
     float len = penumbra_factor(along, max_length, pen_length, power, mode);
-    return edge * len;
+    return edge * len * p.fade.x; // a strength of 1 changes nothing, bit for bit
 }
 
 // The shadow proxies a point light's loops visit: all of them, unless the including shader

@@ -18,6 +18,7 @@ struct GpuShadowProxy {
     vec4 position_size; // xy: position; zw: half extents (box) / radius in z (circle)
     vec4 lengths;       // max length, end-cap blend, penumbra width, penumbra length
     vec4 modes;         // penumbra power, shape (0 box, 1 circle), width mode, penumbra mode
+    vec4 fade;          // x: strength in [0, 1] multiplying the occlusion (frame_inputs.hpp)
 };
 
 // Beyond this distance from its position proxy p occludes nothing (reference_shadow.cpp

@@ -47,6 +47,11 @@ struct GiConfig {
     float wall_height = 2.0f;
     bool lit_image = false; // run the lit-image pass (tools); the game shades in its raster pass
     float light_hysteresis = 2.0f; // world units of priority bonus for lights kept last frame
+    // Shadow proxies beyond gi.max_shadow_proxies: the last kept fade out over this many world
+    // units of distance before the cut instead of popping (gi::gather_offers_faded). 0 (the
+    // default): the hard cut, as the scene path (gi::gather_frame_inputs) gathers; the game
+    // fades over 6.
+    float proxy_fade = 0.0f;
     // The wall materials: cell value 2 + k is materials[k] (docs/scenes.md, "Materials").
     std::vector<scene::Material> materials;
 };

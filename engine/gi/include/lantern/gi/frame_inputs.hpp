@@ -35,8 +35,12 @@ struct alignas(16) GpuShadowProxy {
     glm::vec4 position_size; // xy: world x, z; zw: half extents (box) or radius in z (circle)
     glm::vec4 lengths;       // x: max length, y: end-cap blend, z: penumbra width, w: penumbra length
     glm::vec4 modes;         // x: penumbra power, y: shape (0 box, 1 circle), z: width mode, w: penumbra mode
+    // x: strength in [0, 1], multiplying the proxy's occlusion (1: its whole shadow; 1 leaves
+    // every result bit for bit as without it). The game's gathering fades proxies near its
+    // cap (gather_offers_faded). yzw: 0.
+    glm::vec4 fade{1.0f, 0.0f, 0.0f, 0.0f};
 };
-static_assert(sizeof(GpuShadowProxy) == 48);
+static_assert(sizeof(GpuShadowProxy) == 64);
 
 // A wall material as the passes read it (scene::Material, docs/scenes.md "materials").
 struct alignas(16) GpuMaterial {
@@ -134,11 +138,23 @@ struct Offer {
 // indices into `offers`, by order (so sums on the GPU do not depend on priorities).
 std::vector<std::uint32_t> gather_offers(const std::vector<Offer>& offers, const GiWindow& window, std::size_t cap);
 
+// As gather_offers, with a fade in [0, 1] per kept offer (same order as `ids`): 1 while no
+// more than `cap` offers reach the window; otherwise (p_cut - p) / band, clamped, where p is
+// an offer's priority (distance to the window centre - bonus) and p_cut the priority of the
+// first offer cut. An offer nearing the cut fades out over the last `band` world units of
+// priority, so it leaves the set (or enters it) at strength 0 instead of popping; p_cut moves
+// continuously as the window does. band <= 0: every fade is 1.
+struct FadedOffers {
+    std::vector<std::uint32_t> ids;
+    std::vector<float> fade;
+};
+FadedOffers gather_offers_faded(const std::vector<Offer>& offers, const GiWindow& window, std::size_t cap, float band);
+
 // How far a proxy's shadow reaches: max(size) + max_length + max(penumbra_width,
 // penumbra_length).
 float proxy_reach(const scene::ShadowProxy& proxy);
 GpuPointLight pack_light(glm::vec2 position, glm::vec3 color, float intensity, float radius);
-GpuShadowProxy pack_proxy(const scene::ShadowProxy& proxy);
+GpuShadowProxy pack_proxy(const scene::ShadowProxy& proxy, float strength = 1.0f);
 // The sun's bounce fill (bounce_intensity, seed 000's stylised light in its own shadows) is
 // left out (0) under a method whose bounce light is physical (gi.method = gather): it
 // carries the sun's bounces itself.
