@@ -47,27 +47,24 @@ void bind(KeyBindings& keys, Action action, Key key) {
 }
 
 void apply_gi_preset(GiPreset preset, scene::GiSettings& gi) {
-    switch (preset) {
-    case GiPreset::world: return;
-    case GiPreset::low:
-        gi.resolution = 2;
-        gi.heat_scale = scene::HeatScale::half;
-        gi.heat_rounds = 12;
-        gi.max_lights = 64;
-        return;
-    case GiPreset::medium:
-        gi.resolution = 4;
-        gi.heat_scale = scene::HeatScale::half;
-        gi.heat_rounds = 20;
-        gi.max_lights = 256;
-        return;
-    case GiPreset::high:
-        gi.resolution = 8;
-        gi.heat_scale = scene::HeatScale::quarter;
-        gi.heat_rounds = 20;
-        gi.max_lights = 256;
-        return;
-    }
+    struct Quality {
+        int resolution;
+        scene::HeatScale heat_scale;
+        int heat_rounds;
+        int max_lights;
+    };
+    // In GiPreset order after `world` (which changes nothing).
+    constexpr Quality presets[] = {
+        {2, scene::HeatScale::half, 12, 64},     // low
+        {4, scene::HeatScale::half, 20, 256},    // medium: the game's defaults (default_game_gi)
+        {8, scene::HeatScale::quarter, 20, 256}, // high: the seed's look
+    };
+    if (preset == GiPreset::world) return;
+    const Quality& q = presets[int(preset) - 1];
+    gi.resolution = q.resolution;
+    gi.heat_scale = q.heat_scale;
+    gi.heat_rounds = q.heat_rounds;
+    gi.max_lights = q.max_lights;
 }
 
 std::string format_settings(const PlayerSettings& s) {
