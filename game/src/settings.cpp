@@ -74,7 +74,7 @@ std::string format_settings(const PlayerSettings& s) {
     w.field("gi_preset", gi_preset_names[int(s.gi_preset)]);
     w.field("vsync", s.vsync).field("pixel_scale", s.pixel_scale);
     w.field("posterize", s.posterize).field("dither", s.dither);
-    w.field("autosave_seconds", s.autosave_seconds);
+    w.field("autosave_seconds", s.autosave_seconds).field("volume", s.volume);
     w.key("keys").begin_object();
     for (int i = 0; i < action_count; ++i) w.field(action_keys[i], platform::key_name(s.keys[std::size_t(i)]));
     w.end();
@@ -88,7 +88,8 @@ Result<PlayerSettings> parse_settings(std::string_view text, const std::string& 
     Reader r("the settings");
     PlayerSettings s;
     Fields top(r, *doc, "",
-               {"lantern_settings", "gi_preset", "vsync", "pixel_scale", "posterize", "dither", "autosave_seconds", "keys"});
+               {"lantern_settings", "gi_preset", "vsync", "pixel_scale", "posterize", "dither", "autosave_seconds", "volume",
+                "keys"});
     int version = 0;
     top.required("lantern_settings", version, IntRange{1, 1 << 20});
     if (r.ok() && version != settings_format_version)
@@ -99,7 +100,8 @@ Result<PlayerSettings> parse_settings(std::string_view text, const std::string& 
         .optional("pixel_scale", s.pixel_scale, IntRange{0, max_pixel_scale})
         .optional("posterize", s.posterize, IntRange{0, 64})
         .optional("dither", s.dither)
-        .optional("autosave_seconds", s.autosave_seconds, IntRange{0, max_autosave_seconds});
+        .optional("autosave_seconds", s.autosave_seconds, IntRange{0, max_autosave_seconds})
+        .optional("volume", s.volume, IntRange{0, 100});
     if (r.ok() && s.posterize == 1) top.fail("posterize", "must be 0 (off) or in [2, 64], got 1");
     if (const json::Value* keys = top.find("keys")) {
         Fields f(r, *keys, "keys",

@@ -109,6 +109,30 @@ TEST(Mixer, OneShotsPlayOnceAndTheVoicePoolIsReused) {
     m.move(12345, {});
 }
 
+TEST(Mixer, TheVolumeScalesEverything) {
+    auto m = loopback();
+    ASSERT_TRUE(m);
+    m->set_listener({});
+    const Sound loop = crackle(4);
+    m->loop(m->add(loop), {0.0f, 0.0f, -1.0f});
+    // Each measure spans exactly one turn of the loop, so the same sound is compared.
+    const int turn = int(loop.samples.size());
+    const auto measure = [&] {
+        m->render(rate / 20); // the gain ramps over a few milliseconds
+        return rms(m->render(turn));
+    };
+    const double full = measure();
+    m->set_volume(0.5f);
+    const double half = measure();
+    m->set_volume(0.0f);
+    const double none = measure();
+    EXPECT_GT(full, 0.01);
+    EXPECT_NEAR(half / full, 0.5, 0.02);
+    EXPECT_LT(none, 1e-6);
+    m->set_volume(7.0f); // clamped to 1
+    EXPECT_NEAR(measure() / full, 1.0, 0.02);
+}
+
 TEST(Mixer, LoopsKeepPlayingAndMoveWithTheirSource) {
     auto m = loopback();
     ASSERT_TRUE(m);

@@ -214,6 +214,11 @@ void Mixer::set_listener(const Listener& l) {
     alListenerfv(AL_ORIENTATION, orientation);
 }
 
+void Mixer::set_volume(float volume) {
+    s_->current();
+    alListenerf(AL_GAIN, std::clamp(volume, 0.0f, 1.0f));
+}
+
 std::vector<float> Mixer::render(int frames) {
     std::vector<float> out(std::size_t(std::max(frames, 0)) * 2, 0.0f);
     if (!s_->loopback || frames <= 0) return out;

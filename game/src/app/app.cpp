@@ -82,6 +82,7 @@ Result<void> Game::init(bool windowed) {
         if (auto mixer = audio::Mixer::open_device()) {
             LANTERN_LOG_INFO("sound: %s", (*mixer)->device_name().c_str());
             sound_ = std::make_unique<GameSound>(std::move(*mixer));
+            sound_->mixer().set_volume(float(settings_.volume) / 100.0f);
         } else {
             LANTERN_LOG_WARN("%s: the game runs silent", mixer.error().message.c_str());
         }

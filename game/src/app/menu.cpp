@@ -119,6 +119,7 @@ void PauseMenu::draw_settings(const MenuInputs& in) {
     ImGui::TextUnformatted(scale);
     int posterize = s.posterize;
     if (ImGui::SliderInt("posterize (0 off)", &posterize, 0, 32)) s.posterize = posterize == 1 ? 2 : posterize;
+    ImGui::SliderInt("volume (%)", &s.volume, 0, 100);
     int minutes = s.autosave_seconds / 60;
     if (ImGui::SliderInt("autosave (minutes, 0 off)", &minutes, 0, 30)) s.autosave_seconds = minutes * 60;
     const float w = full_width();

@@ -1,5 +1,5 @@
 // The player's settings: what the pause menu changes and keeps between runs (GI quality
-// preset, vsync, pixel scale, art, autosave interval, key bindings), in a small JSON file
+// preset, vsync, pixel scale, art, autosave interval, volume, key bindings), in a small JSON file
 // (docs/game.md, "Settings").
 //
 // write_settings() replaces the file atomically; read_settings() gives the defaults for a
@@ -67,6 +67,7 @@ struct PlayerSettings {
     int posterize = 0;            // 0 off, else 2-64 levels per channel
     bool dither = false;
     int autosave_seconds = 180;   // of play (not paused, not minimised); 0: no autosave
+    int volume = 80;              // sound, percent (0: silent)
     KeyBindings keys = default_key_bindings();
     friend bool operator==(const PlayerSettings&, const PlayerSettings&) = default;
 };

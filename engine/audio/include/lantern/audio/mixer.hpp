@@ -67,6 +67,8 @@ class Mixer {
     void move(LoopId loop, glm::vec3 position);
     void stop(LoopId loop);
     void set_listener(const Listener& listener);
+    // The master volume, multiplying everything (1: as played; 0: silent). Clamped to [0, 1].
+    void set_volume(float volume);
 
     // Loopback only: mixes the next `frames` stereo frames (interleaved left, right, in
     // [-1, 1]). A stopped voice fades out over the first few milliseconds (no click).
