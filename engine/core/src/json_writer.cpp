@@ -1,6 +1,7 @@
 #include "lantern/core/json_writer.hpp"
 
 #include "lantern/core/assert.hpp"
+#include "lantern/core/json.hpp"
 #include "lantern/core/text.hpp"
 
 #include <charconv>
@@ -167,5 +168,38 @@ std::string Writer::take() {
     done_ = false;
     return out;
 }
+
+namespace {
+
+void write_at(Writer& w, const Value& v, LayoutRule layout, int depth) {
+    switch (v.type()) {
+    case Type::null: w.null(); return;
+    case Type::boolean: w.value(v.as_bool()); return;
+    case Type::number:
+        if (const double d = v.as_number(); v.is_integer_literal() && std::abs(d) <= 9007199254740992.0)
+            w.value(static_cast<long long>(d));
+        else
+            w.value(d);
+        return;
+    case Type::string: w.value(v.as_string()); return;
+    case Type::array:
+        w.begin_array(layout ? layout(v, depth) : Layout::lines);
+        for (const Value& e : v.as_array()) write_at(w, e, layout, depth + 1);
+        w.end();
+        return;
+    case Type::object:
+        w.begin_object(layout ? layout(v, depth) : Layout::lines);
+        for (const Member& m : v.as_object()) {
+            w.key(m.key);
+            write_at(w, m.value, layout, depth + 1);
+        }
+        w.end();
+        return;
+    }
+}
+
+} // namespace
+
+void write(Writer& w, const Value& v, LayoutRule layout) { write_at(w, v, layout, 0); }
 
 } // namespace lantern::json

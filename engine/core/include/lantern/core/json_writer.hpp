@@ -27,6 +27,8 @@
 
 namespace lantern::json {
 
+class Value;
+
 enum class Layout : std::uint8_t { lines, one_line };
 
 // `s` as a JSON string literal, quotes included.
@@ -84,5 +86,13 @@ class Writer {
     bool key_pending_ = false; // a key was written; its value comes next
     bool done_ = false;        // the top-level value is complete
 };
+
+// Writes a parsed document back (json::parse's DOM): members in their order, numbers
+// written as integers where the text had an integer literal (and it fits 2^53), else in the
+// shortest text of the double. `layout(container, depth)` picks each container's layout
+// (depth 0 is the top-level value); nullptr: Layout::lines everywhere. Inside a one-line
+// container everything is on that line.
+using LayoutRule = Layout (*)(const Value& container, int depth);
+void write(Writer& w, const Value& v, LayoutRule layout = nullptr);
 
 } // namespace lantern::json
