@@ -123,11 +123,17 @@ std::optional<glm::ivec2> pick_wall(const Ray& ray, float wall_height, const IsW
     return std::nullopt;
 }
 
-std::optional<glm::ivec2> pick_ground(const Ray& ray) {
+std::optional<glm::vec2> ground_point(const Ray& ray) {
     if (ray.direction.y >= -1e-4f) return std::nullopt;
     const float t = -ray.origin.y / ray.direction.y;
     const glm::vec3 p = ray.origin + ray.direction * t;
-    return glm::ivec2(int(std::floor(p.x)), int(std::floor(p.z)));
+    return glm::vec2(p.x, p.z);
+}
+
+std::optional<glm::ivec2> pick_ground(const Ray& ray) {
+    const auto p = ground_point(ray);
+    if (!p) return std::nullopt;
+    return glm::ivec2(int(std::floor(p->x)), int(std::floor(p->y)));
 }
 
 float flicker(double time, float phase) {

@@ -30,7 +30,7 @@ constexpr std::uint64_t max_settings_file_bytes = 64 * 1024;
 } // namespace
 
 KeyBindings default_key_bindings() {
-    return {Key::w, Key::s, Key::a, Key::d, Key::n, Key::f1, Key::f2, Key::f5, Key::f9};
+    return {Key::w, Key::s, Key::a, Key::d, Key::n, Key::f1, Key::f2, Key::f5, Key::f9, Key::f3};
 }
 
 bool bindable(Key key) {
@@ -106,8 +106,8 @@ Result<PlayerSettings> parse_settings(std::string_view text, const std::string& 
     if (const json::Value* keys = top.find("keys")) {
         Fields f(r, *keys, "keys",
                  {action_keys[0], action_keys[1], action_keys[2], action_keys[3], action_keys[4], action_keys[5],
-                  action_keys[6], action_keys[7], action_keys[8]});
-        static_assert(action_count == 9, "list every action's key above");
+                  action_keys[6], action_keys[7], action_keys[8], action_keys[9]});
+        static_assert(action_count == 10, "list every action's key above");
         for (int i = 0; i < action_count && r.ok(); ++i) {
             const json::Value* v = f.find(action_keys[i]);
             if (!v) continue;
@@ -123,6 +123,25 @@ Result<PlayerSettings> parse_settings(std::string_view text, const std::string& 
                 break;
             }
             s.keys[std::size_t(i)] = *key;
+        }
+        // An action added after version 1's first nine that the file does not name keeps its
+        // default key, unless the file gave that key to another action (a file written before
+        // the action existed): it then takes a free key. (The first nine stay strict: a file
+        // that takes W for another action without rebinding walk_up is refused, below.)
+        constexpr int first_added_action = int(Action::scene_editor);
+        for (int i = first_added_action; i < action_count && r.ok(); ++i) {
+            if (f.find(action_keys[i])) continue;
+            const auto taken = [&](Key k) {
+                for (int j = 0; j < action_count; ++j)
+                    if (j != i && s.keys[std::size_t(j)] == k) return true;
+                return false;
+            };
+            if (!taken(s.keys[std::size_t(i)])) continue;
+            for (int k = int(Key::f1); k <= int(Key::f12); ++k)
+                if (!taken(Key(k))) {
+                    s.keys[std::size_t(i)] = Key(k);
+                    break;
+                }
         }
         // Each key at most once: a key bound twice would do two things at once.
         for (int i = 0; i < action_count && r.ok(); ++i)

@@ -35,6 +35,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -656,6 +657,144 @@ TEST(GameWindow, WatchedScenesMapReloadsTheWorld) {
     EXPECT_NE(game.log().find("level.map"), std::string::npos) << game.log();
     ASSERT_TRUE(write_file_atomic(map, open_map));
     ASSERT_TRUE(until("the reload of the mended map", [](const WatchStatus& st) { return st.reloads == 2; }));
+}
+
+// The scene editor's part of the status file (windowed).
+struct EditorStatus {
+    bool open = false, unsaved = false;
+    std::string selected;
+    std::optional<glm::vec2> selected_at, cursor, mouse;
+    int saves = 0, rebuilds = 0, reloads = 0;
+    std::array<int, 3> entries{}; // point, emissive, proxies
+};
+
+std::optional<EditorStatus> read_editor_status(const std::string& path) {
+    auto doc = json::parse(test::read_file(path), path);
+    if (!doc || !doc->is_object()) return std::nullopt;
+    const json::Value *e = doc->find("editor"), *reloads = doc->find("reloads");
+    if (!e || !reloads) return std::nullopt;
+    const auto xz = [](const json::Value* v) -> std::optional<glm::vec2> {
+        if (!v) return std::nullopt;
+        return glm::vec2(float(v->as_array()[0].as_number()), float(v->as_array()[1].as_number()));
+    };
+    EditorStatus st;
+    st.open = e->find("open")->as_bool();
+    st.unsaved = e->find("unsaved")->as_bool();
+    st.selected = e->find("selected")->as_string();
+    st.selected_at = xz(e->find("selected_at"));
+    st.cursor = xz(doc->find("cursor_world"));
+    st.mouse = xz(doc->find("mouse"));
+    st.saves = int(e->find("saves")->as_number());
+    st.rebuilds = int(e->find("rebuilds")->as_number());
+    st.reloads = int(reloads->as_number());
+    for (int k = 0; k < 3; ++k) st.entries[std::size_t(k)] = int(e->find("entries")->as_array()[std::size_t(k)].as_number());
+    return st;
+}
+
+// Seed 001's improvements 5 and 6, issue 20's editor: a designer edits the running game's scene
+// (a window under Xvfb, real X input) and the file follows. F3 opens the editor; a list button
+// selects the light, a right click in the world moves it there (snapped to quarter tiles), a
+// swatch recolours it, a proxy is added and placed, a light added and removed again, Ctrl+S
+// writes the file atomically: it loads as the edited scene, with everything else as it was,
+// and --watch does not take the game's own write for an outside edit. An outside edit then
+// replaces the world and the editor's lists. Every step waits on the status file.
+TEST(GameWindow, SceneEditorEditsTheRunningWorldAndWritesTheFile) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string scene = dir.file("level.json"), status = dir.file("status.json");
+    ASSERT_TRUE(write_file_atomic(scene, std::string(two_rooms)));
+    GameProcess game({"--window", "--scene", scene, "--watch", "--size", "960x540", "--no-hud", "--no-player-light",
+                      "--no-bake", "--status-file", status, "--autosave", "0", "--save-file", dir.file("save.json")},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto window = find_window(game);
+    ASSERT_TRUE(window) << "no game window; log:\n" << game.log();
+    ASSERT_TRUE(test::x_focus(*window));
+    MenuDriver ui{game, *window, status};
+    const auto until = [&](const char* what, const std::function<bool(const EditorStatus&)>& done) {
+        const auto end = std::chrono::steady_clock::now() + 180s;
+        while (std::chrono::steady_clock::now() < end) {
+            if (auto st = read_editor_status(status); st && done(*st)) return st;
+            if (game.wait_exit(20ms)) break;
+        }
+        ADD_FAILURE() << "the game never reached: " << what << "; last status: " << test::read_file(status)
+                      << "\nlog:\n" << game.log();
+        return std::optional<EditorStatus>();
+    };
+    // A right click at window pixel (x, y): the ground point the game saw under the cursor.
+    const auto right_click = [&](int x, int y) -> std::optional<glm::vec2> {
+        if (!test::x_mouse_move(*window, x, y)) return std::nullopt;
+        // The frame that saw the mouse there, over the world (not the panel): a ground point.
+        const auto st = until("the mouse over the world", [&](const EditorStatus& s) {
+            return s.mouse && glm::distance(*s.mouse, glm::vec2(x, y)) < 1.5f && s.cursor;
+        });
+        if (!st) return std::nullopt;
+        if (!test::x_button(3, true) || !wait_status(game, status, [](const GameStatus& s) { return s.right != 0; })) return std::nullopt;
+        if (!test::x_button(3, false) || !wait_status(game, status, [](const GameStatus& s) { return s.right == 0; })) return std::nullopt;
+        return st->cursor;
+    };
+    const auto snap = [](glm::vec2 p) { return glm::round(p / 0.25f) * 0.25f; };
+
+    ASSERT_TRUE(until("its first frame", [](const EditorStatus& st) { return !st.open && st.reloads == 0; }));
+    ASSERT_TRUE(ui.key("F3"));
+    ASSERT_TRUE(until("the editor open", [](const EditorStatus& st) { return st.open && st.entries == std::array<int, 3>{1, 0, 0}; }));
+    ASSERT_TRUE(ui.click("point 0"));
+    ASSERT_TRUE(until("the light selected", [](const EditorStatus& st) { return st.selected == "point 0"; }));
+    const auto light_at = right_click(300, 330);
+    ASSERT_TRUE(light_at);
+    const glm::vec2 light_to = snap(*light_at);
+    ASSERT_TRUE(until("the light moved", [&](const EditorStatus& st) { return st.selected_at == light_to && st.unsaved; }));
+    ASSERT_TRUE(ui.click("colour red"));
+    ASSERT_TRUE(ui.click("Add proxy"));
+    const auto added = until("the proxy added", [](const EditorStatus& st) {
+        return st.entries == std::array<int, 3>{1, 0, 1} && st.selected == "proxy 0" && st.rebuilds >= 1;
+    });
+    ASSERT_TRUE(added);
+    const auto proxy_at = right_click(470, 400);
+    ASSERT_TRUE(proxy_at);
+    const glm::vec2 proxy_to = snap(*proxy_at);
+    ASSERT_TRUE(until("the proxy moved", [&](const EditorStatus& st) { return st.selected_at == proxy_to && st.rebuilds > added->rebuilds; }));
+    ASSERT_TRUE(ui.click("Add light"));
+    ASSERT_TRUE(until("a second light", [](const EditorStatus& st) { return st.entries[0] == 2 && st.selected == "point 1"; }));
+    ASSERT_TRUE(ui.click("Remove"));
+    ASSERT_TRUE(until("it removed", [](const EditorStatus& st) { return st.entries[0] == 1 && st.selected.empty(); }));
+    const std::string before = test::read_file(scene);
+    EXPECT_EQ(before, std::string(two_rooms)) << "nothing is written before Save";
+
+    ASSERT_TRUE(test::x_key(*window, "Control_L", true));
+    ASSERT_TRUE(ui.key("s"));
+    ASSERT_TRUE(test::x_key(*window, "Control_L", false));
+    const auto saved = until("the save", [](const EditorStatus& st) { return st.saves == 1 && !st.unsaved; });
+    ASSERT_TRUE(saved);
+    auto written = scene::load_scene(scene);
+    ASSERT_TRUE(written.ok()) << written.error().message;
+    auto original = scene::parse_scene(two_rooms, scene, dir.path().string());
+    ASSERT_TRUE(original.ok());
+    ASSERT_EQ(written->point_lights.size(), 1u);
+    EXPECT_EQ(written->point_lights[0].position, light_to);
+    EXPECT_EQ(written->point_lights[0].color, glm::vec3(1.0f, 0.15f, 0.1f));
+    EXPECT_EQ(written->point_lights[0].intensity, original->point_lights[0].intensity);
+    EXPECT_EQ(written->point_lights[0].radius, original->point_lights[0].radius);
+    ASSERT_EQ(written->shadow_proxies.size(), 1u);
+    EXPECT_EQ(written->shadow_proxies[0].position, proxy_to);
+    EXPECT_EQ(written->walls, original->walls);
+    EXPECT_EQ(written->view, original->view);
+    EXPECT_EQ(written->gi, original->gi);
+    std::vector<std::string> files;
+    for (const auto& f : std::filesystem::directory_iterator(dir.path())) files.push_back(f.path().filename().string());
+    std::sort(files.begin(), files.end());
+    EXPECT_EQ(files, (std::vector<std::string>{"game.log", "level.json", "status.json"})) << "no temporary file left";
+    // The game's own write is no outside edit: frames go on without a reload.
+    const auto frame_saved = read_status(status);
+    ASSERT_TRUE(frame_saved);
+    ASSERT_TRUE(wait_status(game, status, [&](const GameStatus& g) { return g.frame >= frame_saved->frame + 10; }));
+    EXPECT_EQ(read_editor_status(status)->reloads, 0);
+
+    // An outside edit (the designer's text editor) replaces the world and the editor's lists.
+    ASSERT_TRUE(write_file_atomic(scene, std::string(two_rooms)));
+    ASSERT_TRUE(until("the outside edit reloaded", [](const EditorStatus& st) {
+        return st.reloads == 1 && st.open && st.entries == std::array<int, 3>{1, 0, 0} && !st.unsaved;
+    }));
 }
 
 // Issue 19, bug 4: minimised or unmapped, the game stepped frames nobody saw (30-88 % of a

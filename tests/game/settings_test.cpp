@@ -85,6 +85,21 @@ TEST(Settings, BindingATakenKeySwapsTheTwoActions) {
     EXPECT_FALSE(bindable(Key(7))) << "not a key";
 }
 
+// A file written before an action existed may have given that action's default key to another
+// one: the new action then takes a free key instead of the file being refused.
+TEST(Settings, AnActionTheFileDoesNotNameGivesWayToTheFilesKeys) {
+    auto s = parse_settings(R"({"lantern_settings": 1, "keys": {"trace": "f3"}})", "s.json");
+    ASSERT_TRUE(s.ok()) << s.error().message;
+    EXPECT_EQ(s->keys[std::size_t(Action::trace)], Key::f3);
+    const Key editor = s->keys[std::size_t(Action::scene_editor)];
+    EXPECT_NE(editor, Key::f3);
+    EXPECT_TRUE(bindable(editor));
+    std::set<Key> distinct(s->keys.begin(), s->keys.end());
+    EXPECT_EQ(distinct.size(), s->keys.size());
+    // Named twice by the file itself is still an error.
+    EXPECT_FALSE(parse_settings(R"({"lantern_settings": 1, "keys": {"trace": "f3", "scene_editor": "f3"}})", "s.json").ok());
+}
+
 TEST(Settings, MalformedFilesAreRejectedWithPositions) {
     struct Case {
         const char* text;

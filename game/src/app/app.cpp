@@ -333,6 +333,7 @@ void Game::poll_watch() {
 Result<void> Game::reload_scene() {
     const scene::Scene scene = std::move(*pending_scene_);
     pending_scene_.reset();
+    const bool from_editor = std::exchange(pending_from_editor_, false);
     // The player stays where it stood, and the time of day with it.
     std::optional<glm::vec2> player;
     session_->world.view<Player, Transform>().each(
@@ -350,10 +351,29 @@ Result<void> Game::reload_scene() {
     }
     w.resource<DayCycle>().time_of_day = day.time_of_day;
     w.resource<DayCycle>().running = day.running;
+    if (from_editor) {
+        ++editor_rebuilds_;
+        return {};
+    }
     ++reloads_;
     message_ = "reloaded " + options_.world.path;
     LANTERN_LOG_INFO("scene reloaded (%d): %.1f ms from the change noticed to the new world", reloads_,
                      double(now_ns() - change_seen_ns_) * 1e-6);
+    // The file changed under the editor: it edits the new file (its unsaved edits are gone
+    // with the world they were made in).
+    if (editor_.is_open() || editor_.unsaved()) {
+        const bool had_edits = editor_.unsaved(), was_open = editor_.is_open();
+        if (auto ok = editor_.open(options_.world.path); !ok) {
+            editor_.close();
+            LANTERN_LOG_ERROR("scene editor: %s", ok.error().message.c_str());
+        } else if (!was_open) {
+            editor_.close();
+        }
+        if (had_edits) {
+            message_ = "the scene file changed on disk: the editor's unsaved edits were dropped for it";
+            LANTERN_LOG_WARN("%s", message_.c_str());
+        }
+    }
     return {};
 }
 

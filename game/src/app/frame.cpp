@@ -2,6 +2,8 @@
 // Controls) and render (the raster pass, the upscale, the HUD, present).
 #include "app/game.hpp"
 
+#include <imgui.h>
+
 namespace lantern::game::app {
 
 void Game::input_system(Session& s) {
@@ -22,6 +24,7 @@ void Game::input_system(Session& s) {
     w.view<Camera>().each([&](const Camera& cam) {
         if (auto* p = std::get_if<scene::PerspectiveCamera>(&cam.view)) camera = *p;
     });
+    input_camera_ = camera;
     if (s.demo) {
         systems::Streaming& streaming = s.frame->streaming();
         const IsWall is_wall = [&](int x, int z) { return streaming.is_wall({x, z}); };
@@ -45,7 +48,7 @@ void Game::input_system(Session& s) {
         return;
     }
     const bool keyboard_free = !overlay_ || !overlay_->wants_keyboard();
-    const bool mouse_free = !overlay_ || !hud_.visible || !overlay_->wants_mouse();
+    const bool mouse_free = !overlay_ || !(hud_.visible || editor_.is_open()) || !overlay_->wants_mouse();
     const KeyBindings& keys = settings_.keys;
     const auto key_pressed = [&](Action a) { return in.pressed(keys[std::size_t(a)]); };
     const auto key_down = [&](Action a) { return in.down(keys[std::size_t(a)]); };
@@ -70,12 +73,24 @@ void Game::input_system(Session& s) {
         if (key_down(Action::walk_right) || in.down(Key::right)) move.x += 1.0f;
         c.move = move;
         c.toggle_day_cycle = key_pressed(Action::day_cycle);
+        if (key_pressed(Action::scene_editor)) toggle_editor(s);
+        if (editor_.is_open()) {
+            if (in.pressed(Key::del)) apply_edit(editor_.remove_selected());
+            if ((in.down(Key::left_control) || in.down(Key::right_control)) && in.pressed(Key::s)) save_scene_edits();
+        }
     }
+    cursor_world_.reset();
     if (mouse_free) {
         const platform::Extent source{std::uint32_t(internal_.x), std::uint32_t(internal_.y)};
         if (auto p = render::destination_to_source(present_rect_, source, in.mouse_position())) {
             c.has_cursor = true;
             c.cursor_ndc = *p / glm::vec2(internal_);
+            cursor_world_ = ground_point(camera_ray(camera, c.cursor_ndc));
+        }
+        if (editor_.is_open()) { // the mouse edits the scene instead of the world
+            if (cursor_world_ && in.pressed(platform::MouseButton::left)) editor_.select_near(*cursor_world_);
+            if (cursor_world_ && in.pressed(platform::MouseButton::right)) apply_edit(editor_.move_selected(*cursor_world_));
+            return;
         }
         // Holding the left button keeps mining, a wall every 0.2 s.
         const bool mine_held = in.down(platform::MouseButton::left) && clock.time - last_mine_time_ > 0.2;
@@ -92,7 +107,7 @@ void Game::input_system(Session& s) {
 }
 
 void Game::quit_or_ask(Session& s) {
-    if (!unsaved(s)) {
+    if (!unsaved(s) && !editor_.unsaved()) {
         quit_ = true;
         return;
     }
@@ -233,6 +248,11 @@ void Game::render_system(Session& s) {
         actions = hud_.draw(in);
     }
     if (overlay_ && w.has_resource<Inventory>()) draw_hotbar(w.resource<Inventory>(), selected_item_);
+    EditResult edit;
+    if (overlay_ && editor_.is_open() && !menu_.is_open()) {
+        draw_editor_markers();
+        edit = editor_.draw(player_xz(w), message_);
+    }
     MenuActions menu;
     if (overlay_) {
         const MenuPage page_before = menu_.page();
@@ -240,7 +260,8 @@ void Game::render_system(Session& s) {
         MenuInputs mi;
         mi.settings = &settings_;
         mi.input = &window_->input();
-        mi.unsaved = unsaved(s);
+        mi.unsaved = unsaved(s) || editor_.unsaved();
+        if (editor_.unsaved()) mi.unsaved_scene = editor_.path();
         if (menu_.page() == MenuPage::save) mi.save_slots = slot_views(false);
         if (menu_.page() == MenuPage::load) mi.load_slots = slot_views(true);
         mi.message = message_;
@@ -264,12 +285,18 @@ void Game::render_system(Session& s) {
     if (overlay_) overlay_->record(cmd, frame->image());
     swapchain_->present(std::move(*frame), std::move(cmd));
     collect_raster_timings();
+    apply_edit(edit);
+    if (edit.save) save_scene_edits();
+    if (edit.close) toggle_editor(s);
     if (actions.export_trace) export_trace();
     if (actions.save) save_slot_requested_ = 1;
     if (menu.save_slot) save_slot_requested_ = menu.save_slot;
     if (menu.save_and_quit) {
-        save_slot_requested_ = 1;
-        quit_after_save_ = true;
+        // The scene editor's edits first: a failure stays in the game and says why.
+        if (!editor_.unsaved() || save_scene_edits()) {
+            save_slot_requested_ = 1;
+            quit_after_save_ = true;
+        }
     }
     if (menu.quit) quit_ = true;
     if (!menu.load_path.empty()) {
@@ -291,5 +318,118 @@ void Game::render_system(Session& s) {
     }
 }
 
+
+void Game::toggle_editor(Session& s) {
+    if (editor_.is_open()) {
+        editor_.close();
+        message_ = editor_.unsaved() ? "scene editor closed; its edits are live but not saved (F3 and Save, or Ctrl+S)"
+                                     : "scene editor closed";
+        return;
+    }
+    if (s.info.spec.kind != WorldKind::scene) {
+        message_ = "the scene editor edits scene files: start the game with --scene FILE";
+        return;
+    }
+    if (editor_.unsaved() && editor_.path() == s.info.spec.path) {
+        editor_.reopen(); // the unsaved edits are still the world's
+        return;
+    }
+    if (auto ok = editor_.open(s.info.spec.path); !ok) {
+        message_ = "scene editor: " + ok.error().message;
+        LANTERN_LOG_ERROR("%s", message_.c_str());
+        return;
+    }
+    message_ = "editing " + s.info.spec.path;
+}
+
+void Game::apply_edit(const EditResult& r) {
+    if (r.rebuild || r.changed.valid()) pending_edits_.push_back(r);
+}
+
+void Game::apply_pending_edits(Session& s) {
+    for (const EditResult& r : std::exchange(pending_edits_, {})) apply_edit_now(s, r);
+}
+
+void Game::apply_edit_now(Session& s, const EditResult& r) {
+    if (r.rebuild) {
+        pending_scene_ = editor_.scene();
+        pending_from_editor_ = true;
+        change_seen_ns_ = now_ns();
+        return;
+    }
+    const EditTarget t = r.changed;
+    if (!t.valid()) return;
+    ecs::World& w = s.world;
+    const auto entity = [&](const std::vector<ecs::Entity>& list) {
+        return std::size_t(t.index) < list.size() ? list[std::size_t(t.index)] : ecs::Entity{};
+    };
+    const scene::SceneLists& l = editor_.lists();
+    switch (t.kind) {
+    case EditKind::point_light:
+        if (PointLight* c = w.try_get<PointLight>(entity(s.info.scene_point_lights))) {
+            const scene::PointLight& v = l.point_lights[std::size_t(t.index)].value;
+            *c = PointLight{v.position, v.height, v.color, v.intensity, v.radius, v.mode};
+            return;
+        }
+        break;
+    case EditKind::emissive_light:
+        if (EmissiveLight* c = w.try_get<EmissiveLight>(entity(s.info.scene_emissive_lights))) {
+            const scene::EmissiveLight& v = l.emissive_lights[std::size_t(t.index)].value;
+            *c = EmissiveLight{v.position, v.color, v.intensity, v.radius, v.mode};
+            return;
+        }
+        break;
+    case EditKind::proxy:
+        if (ShadowProxy* c = w.try_get<ShadowProxy>(entity(s.info.scene_proxies))) {
+            c->shape = l.shadow_proxies[std::size_t(t.index)].value;
+            return;
+        }
+        break;
+    }
+    EditResult rebuild;
+    rebuild.rebuild = true;
+    apply_edit_now(s, rebuild); // no entity for it (yet): build the world again
+}
+
+bool Game::save_scene_edits() {
+    if (auto ok = editor_.save(); !ok) {
+        message_ = "scene not saved: " + ok.error().message;
+        LANTERN_LOG_ERROR("%s", message_.c_str());
+        return false;
+    }
+    // Our own write is not an outside edit: --watch takes the new stamps instead of reloading.
+    if (options_.watch) watched_.watch(watched_.paths());
+    message_ = "scene saved to " + editor_.path();
+    LANTERN_LOG_INFO("%s", message_.c_str());
+    return true;
+}
+
+void Game::draw_editor_markers() {
+    if (!input_camera_ || present_rect_.empty()) return;
+    const scene::PerspectiveCamera& camera = *input_camera_;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const scene::SceneLists& l = editor_.lists();
+    const auto ring = [&](EditTarget t, glm::vec3 at, ImU32 color) {
+        const auto ndc = project_to_ndc(camera, at);
+        if (!ndc) return;
+        const ImVec2 p(float(present_rect_.x) + ndc->x * float(present_rect_.width),
+                       float(present_rect_.y) + ndc->y * float(present_rect_.height));
+        const bool chosen = t == editor_.selected();
+        const float r = float(std::max(present_rect_.scale, 1u)) * (chosen ? 5.0f : 3.5f);
+        draw->AddCircle(p, r, chosen ? IM_COL32(255, 255, 255, 255) : color, 20, chosen ? 3.0f : 1.5f);
+    };
+    for (std::size_t i = 0; i < l.point_lights.size(); ++i) {
+        const auto& v = l.point_lights[i].value;
+        ring({EditKind::point_light, int(i)}, {v.position.x, v.height, v.position.y}, IM_COL32(255, 210, 80, 230));
+    }
+    for (std::size_t i = 0; i < l.emissive_lights.size(); ++i) {
+        const auto& v = l.emissive_lights[i].value;
+        ring({EditKind::emissive_light, int(i)}, {v.position.x, 0.05f, v.position.y}, IM_COL32(110, 255, 120, 230));
+    }
+    for (std::size_t i = 0; i < l.shadow_proxies.size(); ++i) {
+        const auto& v = l.shadow_proxies[i].value;
+        ring({EditKind::proxy, int(i)}, {v.position.x, 0.0f, v.position.y}, IM_COL32(140, 170, 255, 230));
+    }
+}
 
 } // namespace lantern::game::app

@@ -9,6 +9,7 @@
 #include "lantern/game/app.hpp"
 
 #include "app/draw_list.hpp"
+#include "app/editor.hpp"
 #include "app/hud.hpp"
 #include "app/menu.hpp"
 #include "app/sound.hpp"
@@ -76,6 +77,9 @@ struct Session {
     }
 };
 
+// Where the player stands (x, z); the origin without a player.
+glm::vec2 player_xz(ecs::World& w);
+
 inline jobs::JobSystem::Config job_config(const GameOptions& o) {
     jobs::JobSystem::Config c;
     if (o.workers >= 0) c.worker_threads = o.workers;
@@ -117,6 +121,18 @@ class Game {
     void poll_watch();
     // Replaces the session with one built from pending_scene_, the player where it stood.
     Result<void> reload_scene();
+    // The scene editor (F3): opens it on the scene file (scene worlds), or closes it.
+    void toggle_editor(Session& s);
+    // An edit into the running world, between frames (systems queue it: the world's
+    // components are not theirs to write): an entry changed in place updates its entity;
+    // entries added or removed rebuild the world from the editor's scene.
+    void apply_edit(const EditResult& r);
+    void apply_pending_edits(Session& s);
+    void apply_edit_now(Session& s, const EditResult& r);
+    // Writes the editor's edits to the scene file (false when it failed: said in message_).
+    bool save_scene_edits();
+    // The editor's entries as rings over the world (the selection brighter), in the overlay.
+    void draw_editor_markers();
     void add_systems(ecs::Schedule& schedule, Session& session);
     void input_system(Session& s);
     void render_system(Session& s);
@@ -204,6 +220,12 @@ class Game {
     FilesWatch watched_;                        // --watch: the scene file and the files it reads
     std::optional<scene::Scene> pending_scene_; // --watch: checked, applied between frames
     std::int64_t change_seen_ns_ = 0;           // when the pending change was noticed
+    bool pending_from_editor_ = false;          // pending_scene_ is the editor's (not a file change)
+    SceneEditor editor_;                        // F3 in a scene world
+    int editor_rebuilds_ = 0;                   // worlds rebuilt for the editor's edits (--status-file)
+    std::optional<glm::vec2> cursor_world_;     // the ground point under the cursor (windowed)
+    std::optional<scene::PerspectiveCamera> input_camera_; // the camera the input system saw (the markers)
+    std::vector<EditResult> pending_edits_;     // applied between frames
     int reloads_ = 0, reload_errors_ = 0;       // --watch (--status-file reports them)
     std::string message_;
     std::uint64_t raster_serials_[2] = {0, 0};

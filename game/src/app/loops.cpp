@@ -42,6 +42,7 @@ int Game::run_window() {
             quit_after_save_ = false;
         }
         tick_autosave(*session_);
+        apply_pending_edits(*session_);
         if (options_.watch) poll_watch();
         if (pending_scene_) {
             if (auto ok = reload_scene(); !ok) {

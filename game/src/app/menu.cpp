@@ -54,7 +54,9 @@ MenuActions PauseMenu::draw(const MenuInputs& in) {
     // A fixed place and width, the height fitting the page: a button stays where it was drawn
     // from one frame to the next (an auto-sized window settles over a frame or two).
     const ImGuiViewport* view = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(view->WorkPos.x + view->WorkSize.x * 0.5f, view->WorkPos.y + view->WorkSize.y * 0.18f),
+    // The key bindings (a row per action) start near the top, so the page fits a 540 px window.
+    const float top = page_ == MenuPage::keys ? 0.02f : 0.18f;
+    ImGui::SetNextWindowPos(ImVec2(view->WorkPos.x + view->WorkSize.x * 0.5f, view->WorkPos.y + view->WorkSize.y * top),
                             ImGuiCond_Always, ImVec2(0.5f, 0.0f));
     ImGui::SetNextWindowSize(ImVec2(menu_width, 0.0f), ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.92f);
@@ -72,7 +74,7 @@ MenuActions PauseMenu::draw(const MenuInputs& in) {
         case MenuPage::keys: draw_keys(in); break;
         case MenuPage::save: draw_slots(in, out, true); break;
         case MenuPage::load: draw_slots(in, out, false); break;
-        case MenuPage::confirm_quit: draw_confirm(out); break;
+        case MenuPage::confirm_quit: draw_confirm(in, out); break;
         }
         if (!in.message.empty() && page_ != MenuPage::closed) {
             ImGui::Separator();
@@ -179,10 +181,13 @@ void PauseMenu::draw_slots(const MenuInputs& in, MenuActions& out, bool saving) 
     if (button(saving ? "Back##save" : "Back##load", full_width())) page_ = MenuPage::main;
 }
 
-void PauseMenu::draw_confirm(MenuActions& out) {
+void PauseMenu::draw_confirm(const MenuInputs& in, MenuActions& out) {
     ImGui::TextWrapped("There are unsaved changes since the last save. Quit anyway?");
+    if (!in.unsaved_scene.empty())
+        ImGui::TextWrapped("The scene editor's edits of %s are not saved either.", in.unsaved_scene.c_str());
     const float w = full_width();
-    if (button("Save to slot 1 and quit", w)) out.save_and_quit = true;
+    if (button(in.unsaved_scene.empty() ? "Save to slot 1 and quit" : "Save the scene and slot 1, and quit", w))
+        out.save_and_quit = true;
     if (button("Quit without saving", w)) out.quit = true;
     if (button("Cancel", w)) page_ = MenuPage::main;
 }

@@ -28,6 +28,7 @@ struct MenuInputs {
     PlayerSettings* settings = nullptr;        // edited live
     const platform::InputState* input = nullptr; // a key binding waits for the next key
     bool unsaved = false;                      // changes since the last save or load
+    std::string unsaved_scene;                 // the scene file the editor has unsaved edits of
     std::vector<SlotView> save_slots;          // the slots the player saves to
     std::vector<SlotView> load_slots;          // those and the autosaves
     std::string message;                       // the last action's result
@@ -75,7 +76,7 @@ class PauseMenu {
     void draw_settings(const MenuInputs& in);
     void draw_keys(const MenuInputs& in);
     void draw_slots(const MenuInputs& in, MenuActions& out, bool saving);
-    void draw_confirm(MenuActions& out);
+    void draw_confirm(const MenuInputs& in, MenuActions& out);
 
     MenuPage page_ = MenuPage::closed;
     int capture_ = -1; // the action waiting for its new key

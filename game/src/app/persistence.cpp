@@ -8,13 +8,13 @@
 
 namespace lantern::game::app {
 
-namespace {
-
 glm::vec2 player_xz(ecs::World& w) {
     glm::vec2 player(0.0f);
     w.view<Player, Transform>().each([&](const Player&, const Transform& t) { player = {t.position.x, t.position.z}; });
     return player;
 }
+
+namespace {
 
 std::uint64_t edits_of(ecs::World& w) {
     return w.has_resource<WorldEdits>() ? w.resource<WorldEdits>().count : 0;
@@ -150,11 +150,25 @@ void Game::write_status(Session& s) {
         w.field("sound", sound_ ? sound_->mixer().device_name() : std::string("off"));
         w.field("sounds_played", sound_ ? sound_->sounds_played() : std::uint64_t(0));
         w.field("gi_resolution", s.world.resource<systems::GiConfig>().settings.resolution);
+        // The scene editor: whether it is open, its selection and where it stands, the file's
+        // state, and how many entries each list has; the ground point under the cursor.
+        w.key("editor").begin_object().field("open", editor_.is_open());
+        w.field("selected", target_name(editor_.selected()));
+        if (auto at = editor_.position_of(editor_.selected()))
+            w.key("selected_at").begin_array().value(double(at->x), 4).value(double(at->y), 4).end();
+        w.field("unsaved", editor_.unsaved()).field("saves", editor_.saves()).field("rebuilds", editor_rebuilds_);
+        const scene::SceneLists& lists = editor_.lists();
+        w.key("entries").begin_array().value(lists.point_lights.size()).value(lists.emissive_lights.size());
+        w.value(lists.shadow_proxies.size()).end().end();
+        if (cursor_world_)
+            w.key("cursor_world").begin_array().value(double(cursor_world_->x), 4).value(double(cursor_world_->y), 4).end();
+        // The menu's and the editor's buttons (labels are distinct: the editor's are not the menu's).
         w.key("buttons_drawn").begin_object(json::Layout::one_line);
-        for (const MenuButton& b : menu_.settled_buttons()) {
-            w.key(b.label).begin_array().value(double(b.x), 1).value(double(b.y), 1);
-            w.value(double(b.width), 1).value(double(b.height), 1).end();
-        }
+        for (std::span<const MenuButton> list : {menu_.settled_buttons(), editor_.settled_buttons()})
+            for (const MenuButton& b : list) {
+                w.key(b.label).begin_array().value(double(b.x), 1).value(double(b.y), 1);
+                w.value(double(b.width), 1).value(double(b.height), 1).end();
+            }
         w.end();
     }
     w.end();

@@ -33,7 +33,8 @@ Ray camera_ray(const scene::PerspectiveCamera& camera, glm::vec2 ndc);
 std::optional<glm::vec2> project_to_ndc(const scene::PerspectiveCamera& camera, glm::vec3 point);
 // The first wall the ray meets below `wall_height` (walls are boxes from the ground up).
 std::optional<glm::ivec2> pick_wall(const Ray& ray, float wall_height, const IsWall& is_wall, float max_distance = 200.0f);
-// Where the ray meets the ground (y = 0), as a tile.
+// Where the ray meets the ground (y = 0): the point (x, z), and its tile.
+std::optional<glm::vec2> ground_point(const Ray& ray);
 std::optional<glm::ivec2> pick_ground(const Ray& ray);
 
 // Torch flicker: a smooth deterministic factor in [0.8, 1.05].

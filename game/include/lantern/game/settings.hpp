@@ -31,19 +31,20 @@ enum class Action : std::uint8_t {
     trace,       // export a Chrome trace
     quick_save,  // save to slot 1
     quick_load,  // load slot 1
+    scene_editor, // the scene editor (scene worlds)
 };
-inline constexpr int action_count = 9;
+inline constexpr int action_count = 10;
 // Their keys in the settings file, and their labels in the menu, in Action order.
 inline constexpr const char* action_keys[action_count] = {"walk_up",   "walk_down", "walk_left",  "walk_right", "day_cycle",
-                                                          "toggle_hud", "trace",     "quick_save", "quick_load"};
+                                                          "toggle_hud", "trace",     "quick_save", "quick_load", "scene_editor"};
 inline constexpr const char* action_labels[action_count] = {
     "walk up", "walk down", "walk left", "walk right", "day/night cycle", "timer HUD", "export trace", "quick save",
-    "quick load"};
+    "quick load", "scene editor"};
 
 // One key per action, each key bound at most once. The arrow keys always walk as well, and
 // Escape (the menu) and the item keys 1-5 cannot be bound.
 using KeyBindings = std::array<platform::Key, action_count>;
-KeyBindings default_key_bindings(); // W S A D, N, F1, F2, F5, F9
+KeyBindings default_key_bindings(); // W S A D, N, F1, F2, F5, F9, F3
 // Whether `key` can be bound to an action (not Escape, not 1-5, not an arrow key).
 bool bindable(platform::Key key);
 // Binds `action` to `key`; an action that had `key` takes the action's old key (a swap), so

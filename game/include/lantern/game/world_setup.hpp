@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace lantern::game {
 
@@ -36,6 +37,9 @@ struct GameWorld {
     ecs::Entity camera;
     glm::vec2 spawn{0.0f};
     std::string description; // one line for logs and the HUD
+    // Scene worlds: the entity of each of the scene's point lights, emissive lights and shadow
+    // proxies, in the scene's order (the scene editor moves and recolours them in place).
+    std::vector<ecs::Entity> scene_point_lights, scene_emissive_lights, scene_proxies;
 };
 
 struct WorldOptions {
