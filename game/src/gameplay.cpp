@@ -164,49 +164,56 @@ glm::vec3 sun_light(float time_of_day) {
     return glm::mix(dusk, noon, std::clamp(elevation * 2.0f, 0.0f, 1.0f)) * (day * 0.6f);
 }
 
-PropParts prop_parts(PropKind kind, glm::vec2 position) {
+// A lamp post's light hangs from its arm, a little towards +z of the post.
+const glm::vec2 lamp_light_offset{0.0f, 0.4f};
+
+PropParts prop_parts(PropKind kind, glm::vec2 position, const GameTables& tables) {
     PropParts out;
     out.prop = Prop{kind, position};
     scene::ShadowProxy proxy;
     proxy.position = position;
     switch (kind) {
-    case PropKind::crystal:
+    case PropKind::crystal: {
         // Baked (with baked light in use): a crystal stays put.
-        out.emissive = EmissiveLight{position, {0.3f, 0.6f, 1.0f}, 0.9f, 4.0f, scene::LightMode::baked};
+        const ItemLight& l = tables.crystal;
+        out.emissive = EmissiveLight{position, l.color, l.intensity, l.radius, scene::LightMode::baked};
         break;
+    }
     case PropKind::tree:
         proxy.shape = scene::ProxyShape::circle;
         proxy.size = {0.45f, 0.45f};
         proxy.max_length = 3.0f;
         out.proxy = ShadowProxy{proxy};
         break;
-    case PropKind::lamp_post:
+    case PropKind::lamp_post: {
         proxy.shape = scene::ProxyShape::box;
         proxy.size = {0.15f, 0.15f};
         proxy.max_length = 2.0f;
         out.proxy = ShadowProxy{proxy};
         // Mixed: its direct light live, its bounce from the bake (with baked light in use).
-        out.light = PointLight{position + glm::vec2(0.0f, 0.4f), 2.5f, {1.0f, 0.9f, 0.7f}, 0.9f, 7.0f, scene::LightMode::mixed};
+        const ItemLight& l = tables.lamp_post;
+        out.light = PointLight{position + lamp_light_offset, l.height, l.color, l.intensity, l.radius, scene::LightMode::mixed};
         break;
+    }
     }
     return out;
 }
 
-TorchParts torch_parts(glm::vec2 position, float phase) {
-    constexpr float intensity = 1.0f;
-    return {PointLight{position, 1.2f, {1.0f, 0.62f, 0.28f}, intensity, 6.5f}, Torch{intensity, phase}};
+TorchParts torch_parts(glm::vec2 position, float phase, const GameTables& tables) {
+    const ItemLight& l = tables.torch;
+    return {PointLight{position, l.height, l.color, l.intensity, l.radius}, Torch{l.intensity, phase}};
 }
 
-ecs::Entity spawn_torch(ecs::World& world, glm::vec2 position, float phase) {
-    const TorchParts parts = torch_parts(position, phase);
+ecs::Entity spawn_torch(ecs::World& world, glm::vec2 position, float phase, const GameTables& tables) {
+    const TorchParts parts = torch_parts(position, phase, tables);
     ecs::Entity e = world.create();
     world.emplace<PointLight>(e, parts.light);
     world.emplace<Torch>(e, parts.torch);
     return e;
 }
 
-ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position) {
-    const PropParts parts = prop_parts(kind, position);
+ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position, const GameTables& tables) {
+    const PropParts parts = prop_parts(kind, position, tables);
     ecs::Entity e = world.create();
     world.emplace<Prop>(e, parts.prop);
     if (parts.emissive) world.emplace<EmissiveLight>(e, *parts.emissive);
@@ -215,12 +222,45 @@ ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position) {
     return e;
 }
 
-ecs::Entity spawn_player(ecs::World& world, glm::vec2 position, bool light) {
+ecs::Entity spawn_player(ecs::World& world, glm::vec2 position, bool light, const GameTables& tables) {
     ecs::Entity e = world.create();
     world.emplace<Transform>(e, Transform{glm::vec3(position.x, 0.0f, position.y)});
     world.emplace<Player>(e);
-    if (light) world.emplace<PointLight>(e, PointLight{position, 1.0f, {1.0f, 0.8f, 0.55f}, 0.35f, 4.0f});
+    const ItemLight& l = tables.player;
+    if (light) world.emplace<PointLight>(e, PointLight{position, l.height, l.color, l.intensity, l.radius});
     return e;
+}
+
+void apply_tables(ecs::World& world, const GameTables& tables, bool materials) {
+    const GameTables* before = world.try_resource<GameTables>();
+    const glm::vec3 old_crystal = before ? before->crystal.color : default_tables().crystal.color;
+    if (materials && world.has_resource<systems::GiConfig>()) world.resource<systems::GiConfig>().materials = tables.materials;
+    const auto point = [](PointLight& p, const ItemLight& l) {
+        p.color = l.color;
+        p.intensity = l.intensity;
+        p.radius = l.radius;
+        p.height = l.height;
+    };
+    // Written through patch(): the light gathering looks only at what changed.
+    std::vector<std::pair<ecs::Entity, const ItemLight*>> points;
+    std::vector<ecs::Entity> crystals;
+    world.view<Torch, PointLight>().each([&](ecs::Entity e, const Torch&, const PointLight&) { points.push_back({e, &tables.torch}); });
+    world.view<Player, PointLight>().each([&](ecs::Entity e, const Player&, const PointLight&) { points.push_back({e, &tables.player}); });
+    world.view<Prop>().each([&](ecs::Entity e, const Prop& prop) {
+        if (prop.kind == PropKind::crystal && world.try_get<EmissiveLight>(e)) crystals.push_back(e);
+        if (prop.kind == PropKind::lamp_post && world.try_get<PointLight>(e)) points.push_back({e, &tables.lamp_post});
+    });
+    for (const auto& [e, l] : points) {
+        point(world.patch<PointLight>(e), *l);
+        if (Torch* torch = world.try_get<Torch>(e)) torch->base_intensity = l->intensity; // the flicker scales it
+    }
+    for (ecs::Entity e : crystals) {
+        EmissiveLight& c = world.patch<EmissiveLight>(e);
+        if (c.color == old_crystal) c.color = tables.crystal.color; // the caves' own crystals keep their hues
+        c.intensity = tables.crystal.intensity;
+        c.radius = tables.crystal.radius;
+    }
+    world.set_resource<GameTables>(tables);
 }
 
 namespace {
@@ -324,19 +364,21 @@ void interact(ecs::SystemContext& ctx) {
     const auto tile = pick_ground(ray);
     if (!tile || !in_reach(*tile) || streaming.is_wall(*tile)) return;
     const glm::vec2 center = glm::vec2(*tile) + 0.5f;
+    const GameTables* world_tables = w.try_resource<GameTables>();
+    const GameTables& tables = world_tables ? *world_tables : default_tables();
     if (c.place_wall) {
         // Never wall the player in.
         if (glm::distance(center, glm::vec2(player->x, player->z)) <= 0.9f) return;
         streaming.set_wall(w, *tile, true);
     } else if (c.place_torch) {
-        const TorchParts parts = torch_parts(center, float(tile->x * 13 + tile->y * 7) * 0.37f);
+        const TorchParts parts = torch_parts(center, float(tile->x * 13 + tile->y * 7) * 0.37f, tables);
         auto& cb = ctx.commands();
         ecs::Entity e = cb.create();
         cb.emplace<PointLight>(e, parts.light);
         cb.emplace<Torch>(e, parts.torch);
     } else {
         const PropKind kind = c.place_crystal ? PropKind::crystal : c.place_tree ? PropKind::tree : PropKind::lamp_post;
-        const PropParts parts = prop_parts(kind, center);
+        const PropParts parts = prop_parts(kind, center, tables);
         auto& cb = ctx.commands();
         ecs::Entity e = cb.create();
         cb.emplace<Prop>(e, parts.prop);
@@ -358,6 +400,7 @@ void add_gameplay_systems(ecs::Schedule& schedule) {
     schedule.add("interact", [](ecs::SystemContext& ctx) { interact(ctx); })
         .main_thread() // edits the wall mirror
         .reads_resource<Controls, systems::GiConfig>()
+        .reads_resource<GameTables>() // what a placed torch or prop gives
         .reads<Player, Transform, Camera, Torch, PointLight, Prop>() // what it picks up
         .writes_resource<systems::Streaming, Inventory, WorldEdits, SoundCues>()
         .writes<WallChunk>();

@@ -97,6 +97,10 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
            "the pause menu's settings (default lantern-settings.json beside\n"
            "the save file); the options below win over it for this run",
            o.settings_file);
+    p.text("--tables", "FILE.json",
+           "the caves' materials and the lights of torches, crystals, lamp posts\n"
+           "and the player's lantern (docs/game.md, \"Game tables\"; default built in)",
+           o.tables_file);
     p.integer("--autosave", "SECONDS", "autosave every SECONDS of play (0: never; default: the settings', 180)",
               o.autosave_seconds, 0, 24 * 3600);
     p.section("mode (default: a window when a display can open, else the headless demo)");
@@ -119,8 +123,8 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
            "as one JSON line (for scripts and tests)",
            o.status_file);
     p.flag("--watch",
-           "reload the --scene file when it changes (a malformed edit is\n"
-           "reported and the last good scene keeps running)",
+           "reload the --scene file and the --tables file when they change (a\n"
+           "malformed edit is reported and the last good one keeps running)",
            o.watch);
     p.text("--schedule", "FILE.dot",
            "write the frame's system schedule as Graphviz DOT at start-up\n"
@@ -200,7 +204,8 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
         if (auto ok = check_output_folder(o.out_dir); !ok) return refuse("--out " + ok.error().message);
     if (!o.status_file.empty())
         if (auto ok = check_output_file(o.status_file); !ok) return refuse("--status-file " + ok.error().message);
-    if (o.watch && o.world.kind != WorldKind::scene) return refuse("--watch needs a --scene FILE to watch");
+    if (o.watch && o.world.kind != WorldKind::scene && o.tables_file.empty())
+        return refuse("--watch needs a --scene FILE or a --tables FILE to watch");
     if (!o.schedule_dot.empty())
         if (auto ok = check_output_file(o.schedule_dot); !ok) return refuse("--schedule " + ok.error().message);
     if (!o.settings_file.empty())

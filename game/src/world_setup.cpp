@@ -36,8 +36,9 @@ bool next_to_wall(const systems::WorldSource& source, glm::ivec2 t) {
 
 // Crystals grow in open tiles next to walls; one chance per `cell` x `cell` block.
 void scatter_crystals(const systems::WorldSource& source, ecs::World& world, std::uint32_t seed, glm::ivec2 min,
-                      glm::ivec2 max, int cell, float chance) {
-    static const glm::vec3 colors[] = {{0.3f, 0.6f, 1.0f}, {0.35f, 1.0f, 0.55f}, {0.85f, 0.4f, 1.0f}};
+                      glm::ivec2 max, int cell, float chance, const GameTables& tables) {
+    // The tables' crystal colour, and two hues of the caves' own.
+    const glm::vec3 colors[] = {tables.crystal.color, {0.35f, 1.0f, 0.55f}, {0.85f, 0.4f, 1.0f}};
     for (int cz = min.y / cell; cz < max.y / cell; ++cz)
         for (int cx = min.x / cell; cx < max.x / cell; ++cx) {
             const std::uint32_t h = mix(seed, cx, cz, 0xC0FFEEu);
@@ -46,7 +47,7 @@ void scatter_crystals(const systems::WorldSource& source, ecs::World& world, std
                 const std::uint32_t r = mix(seed, cx, cz, 0x51u + std::uint32_t(attempt));
                 const glm::ivec2 t(cx * cell + int(r % std::uint32_t(cell)), cz * cell + int((r >> 8) % std::uint32_t(cell)));
                 if (source.is_wall(t) || !next_to_wall(source, t)) continue;
-                const ecs::Entity e = spawn_prop(world, PropKind::crystal, glm::vec2(t) + 0.5f);
+                const ecs::Entity e = spawn_prop(world, PropKind::crystal, glm::vec2(t) + 0.5f, tables);
                 world.get<EmissiveLight>(e).color = colors[(r >> 20) % 3];
                 break;
             }
@@ -55,7 +56,7 @@ void scatter_crystals(const systems::WorldSource& source, ecs::World& world, std
 
 // Torches in open tiles, one chance per block.
 void scatter_torches(const systems::WorldSource& source, ecs::World& world, std::uint32_t seed, glm::ivec2 min,
-                     glm::ivec2 max, int cell, float chance) {
+                     glm::ivec2 max, int cell, float chance, const GameTables& tables) {
     for (int cz = min.y / cell; cz < max.y / cell; ++cz)
         for (int cx = min.x / cell; cx < max.x / cell; ++cx) {
             const std::uint32_t h = mix(seed, cx, cz, 0x70C4u);
@@ -64,7 +65,7 @@ void scatter_torches(const systems::WorldSource& source, ecs::World& world, std:
                 const std::uint32_t r = mix(seed, cx, cz, 0x99u + std::uint32_t(attempt));
                 const glm::ivec2 t(cx * cell + int(r % std::uint32_t(cell)), cz * cell + int((r >> 8) % std::uint32_t(cell)));
                 if (!open_around(source, t, 1)) continue;
-                spawn_torch(world, glm::vec2(t) + 0.5f, float(r % 1000u) * 0.01f);
+                spawn_torch(world, glm::vec2(t) + 0.5f, float(r % 1000u) * 0.01f, tables);
                 break;
             }
         }
@@ -72,7 +73,7 @@ void scatter_torches(const systems::WorldSource& source, ecs::World& world, std:
 
 // Lamp posts (a mixed light: its bounce baked) in open tiles with room around them.
 void scatter_lamps(const systems::WorldSource& source, ecs::World& world, std::uint32_t seed, glm::ivec2 min,
-                   glm::ivec2 max, int cell, float chance) {
+                   glm::ivec2 max, int cell, float chance, const GameTables& tables) {
     for (int cz = min.y / cell; cz < max.y / cell; ++cz)
         for (int cx = min.x / cell; cx < max.x / cell; ++cx) {
             const std::uint32_t h = mix(seed, cx, cz, 0x1A3Bu);
@@ -81,7 +82,7 @@ void scatter_lamps(const systems::WorldSource& source, ecs::World& world, std::u
                 const std::uint32_t r = mix(seed, cx, cz, 0x2C4u + std::uint32_t(attempt));
                 const glm::ivec2 t(cx * cell + int(r % std::uint32_t(cell)), cz * cell + int((r >> 8) % std::uint32_t(cell)));
                 if (!open_around(source, t, 1)) continue;
-                spawn_prop(world, PropKind::lamp_post, glm::vec2(t) + 0.5f);
+                spawn_prop(world, PropKind::lamp_post, glm::vec2(t) + 0.5f, tables);
                 break;
             }
         }
@@ -143,6 +144,8 @@ glm::ivec2 find_open_tile(const systems::WorldSource& source, glm::ivec2 from, i
 Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const WorldOptions& options) {
     GameWorld out;
     out.spec = spec;
+    const GameTables& tables = options.tables ? *options.tables : default_tables();
+    world.set_resource<GameTables>(tables);
     out.config.settings = options.gi;
     out.config.wall_height = options.wall_height;
     glm::ivec2 spawn_from(0);
@@ -151,17 +154,17 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
         // Lava and crystal veins in the rock: the caves' baked emitters (docs/baked.md).
         auto source = std::make_shared<systems::CaveSource>(scene::CaveParams{spec.seed, spec.cave_threshold, true});
         out.source = source;
-        out.config.materials = scene::cave_materials();
+        out.config.materials = tables.materials;
         spawn_from = find_open_tile(*source, {0, 0}, 2, 96);
         if (options.decorate) {
-            scatter_crystals(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 11, 0.55f);
+            scatter_crystals(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 11, 0.55f, tables);
             // A few torches around the start, more scattered through the caves.
             for (glm::ivec2 offset : {glm::ivec2(4, 3), glm::ivec2(-5, -2)}) {
                 const glm::ivec2 t = find_open_tile(*source, spawn_from + offset, 0, 4);
-                spawn_torch(world, glm::vec2(t) + 0.5f, float(offset.x * 7 + offset.y) * 0.31f);
+                spawn_torch(world, glm::vec2(t) + 0.5f, float(offset.x * 7 + offset.y) * 0.31f, tables);
             }
-            scatter_torches(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 23, 0.45f);
-            scatter_lamps(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 31, 0.35f);
+            scatter_torches(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 23, 0.45f, tables);
+            scatter_lamps(*source, world, spec.seed, spawn_from - 160, spawn_from + 160, 31, 0.35f, tables);
         }
         out.description = "procedural caves, seed " + std::to_string(spec.seed);
         break;
@@ -171,15 +174,15 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
         import.trees = scene::TreeMode::proxy;
         auto map = scene::import_moving_ai_map(spec.path, import);
         if (!map) return map.error();
-        for (glm::ivec2 t : map->trees) spawn_prop(world, PropKind::tree, glm::vec2(t) + 0.5f);
+        for (glm::ivec2 t : map->trees) spawn_prop(world, PropKind::tree, glm::vec2(t) + 0.5f, tables);
         const glm::ivec2 size(map->walls.width, map->walls.height);
         // Rock beyond the map's edge (the player cannot walk off it; the GI sees rock there too).
         auto source = std::make_shared<systems::GridSource>(std::move(map->walls), systems::GridSource::Outside::rock);
         out.source = source;
         spawn_from = find_open_tile(*source, size / 2, 1, std::max(size.x, size.y));
         if (options.decorate) {
-            scatter_torches(*source, world, spec.seed, {0, 0}, size, 19, 0.5f);
-            scatter_crystals(*source, world, spec.seed, {0, 0}, size, 29, 0.3f);
+            scatter_torches(*source, world, spec.seed, {0, 0}, size, 19, 0.5f, tables);
+            scatter_crystals(*source, world, spec.seed, {0, 0}, size, 29, 0.3f, tables);
         }
         out.description = "map " + spec.path + " (" + std::to_string(size.x) + "x" + std::to_string(size.y) + ", " +
                           std::to_string(map->trees.size()) + " trees)";
@@ -206,7 +209,7 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
     }
     }
     out.spawn = glm::vec2(spawn_from) + 0.5f;
-    out.player = spawn_player(world, out.spawn, options.player_light);
+    out.player = spawn_player(world, out.spawn, options.player_light, tables);
     if (out.camera.is_null())
         out.camera = spawn_camera(world, out.spawn);
     else

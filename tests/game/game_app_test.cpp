@@ -14,6 +14,7 @@
 #include "lantern/game/gameplay.hpp"
 #include "lantern/game/save.hpp"
 #include "lantern/game/settings.hpp"
+#include "lantern/game/tables.hpp"
 #include "lantern/scene/loader.hpp"
 #include "xvfb_support.hpp"
 
@@ -797,6 +798,61 @@ TEST(GameWindow, SceneEditorEditsTheRunningWorldAndWritesTheFile) {
     }));
 }
 
+// Issue 20: --watch with --tables reloads the game's tables in a running caves world (no
+// scene): an edit relights every torch in place, 20 random
+// corrupting edits in a row are reported and counted while the last good tables stay, and a
+// quick save (F5) then holds the edited lights. Every step waits on the status file.
+TEST(GameWindow, WatchedTablesRelightTheRunningWorld) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string tables = dir.file("tables.json"), save = dir.file("save.json"), status = dir.file("status.json");
+    ASSERT_TRUE(write_file_atomic(tables, std::string(R"({"lantern_tables": 1})")));
+    GameProcess game({"--window", "--caves", "7", "--tables", tables, "--watch", "--size", "480x270", "--no-hud", "--no-bake",
+                      "--save-file", save, "--status-file", status, "--autosave", "0", "--settings", dir.file("settings.json")},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto window = find_window(game);
+    ASSERT_TRUE(window) << "no game window; log:\n" << game.log();
+    ASSERT_TRUE(test::x_focus(*window));
+    const auto until = [&](const char* what, const std::function<bool(const WatchStatus&)>& done) {
+        return wait_watch_status(game, status, what, done);
+    };
+    ASSERT_TRUE(until("its first frame", [](const WatchStatus& st) { return st.frame >= 1 && st.reloads == 0; }));
+    const std::string good = R"({"lantern_tables": 1,
+  "materials": {"lava": {"emission": [1.5, 0.4, 0.05]}},
+  "lights": {"torch": {"color": [0.25, 0.5, 1], "radius": 8.5, "intensity": 1.25}, "player": {"color": [0.5, 1, 0.5], "radius": 5}}})";
+    auto parsed = game::parse_tables(good, "good.json");
+    ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+    ASSERT_TRUE(write_file_atomic(tables, good));
+    ASSERT_TRUE(until("the tables reloaded", [](const WatchStatus& st) { return st.reloads == 1; }));
+    std::uint64_t random = 20261127;
+    for (int k = 1; k <= 20; ++k) {
+        const std::string bad = test::corrupting_edit(good, random, [](const std::string& text) {
+            return !game::parse_tables(text, "bad.json");
+        });
+        ASSERT_TRUE(write_file_atomic(tables, bad));
+        ASSERT_TRUE(until("a reported bad edit", [k](const WatchStatus& st) { return st.reload_errors == k; })) << "edit " << k;
+    }
+    EXPECT_NE(game.log().find("tables not reloaded (the last good tables stay): " + tables + ":"), std::string::npos)
+        << game.log();
+    const auto now = read_status(status);
+    ASSERT_TRUE(now);
+    ASSERT_TRUE(test::x_key(*window, "F5", true) && test::x_key(*window, "F5", false));
+    ASSERT_TRUE(wait_status(game, status, [&](const GameStatus& st) { return st.saves == now->saves + 1; }));
+    auto state = game::read_save(save);
+    ASSERT_TRUE(state.ok()) << state.error().message;
+    int torches = 0;
+    for (const game::SavedEntity& e : state->entities) {
+        if (e.torch && e.point_light) {
+            ++torches;
+            EXPECT_EQ(e.point_light->color, parsed->torch.color);
+            EXPECT_EQ(e.point_light->radius, parsed->torch.radius);
+            EXPECT_EQ(e.torch->base_intensity, parsed->torch.intensity);
+        }
+    }
+    EXPECT_GE(torches, 2) << "the caves start with torches";
+}
+
 // Issue 19, bug 4: minimised or unmapped, the game stepped frames nobody saw (30-88 % of a
 // core). Unmapped (xdotool windowunmap: under Xvfb no window manager iconifies, and both
 // take one path), it steps no frame and sleeps on events, counting its waits in the status
@@ -1041,6 +1097,7 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         std::string expect;
     };
     ASSERT_TRUE(write_file_atomic(dir.file("bad.map"), std::string("type octile\nheight 1\nwidth 2\nmap\n.x\n")));
+    ASSERT_TRUE(write_file_atomic(dir.file("bad_tables.json"), std::string(R"({"lantern_tables": 1, "lights": {"lantern": {}}})")));
     ASSERT_TRUE(write_file_atomic(dir.file("bad_save.json"), std::string("{\"lantern_save\": 1, \"player\": [1, 2],\n \"world\": 3}")));
     const Case cases[] = {
         {{"--map", dir.file("bad.map")}, "bad.map:5:2: unknown map character 'x'"},
@@ -1052,7 +1109,8 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--gi-view", "heatmap"}, "--gi-view: must be one of lit, direct, indirect, light_image, radiosity, distance, "
                                    "direction, jump_flood, baked, bricks, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},
-        {{"--watch"}, "--watch needs a --scene FILE to watch"},
+        {{"--watch"}, "--watch needs a --scene FILE or a --tables FILE to watch"},
+        {{"--tables", dir.file("bad_tables.json")}, "bad_tables.json:1:34: lights.lantern: unknown key"},
         {{"--schedule", dir.path().string()}, "--schedule " + dir.path().string() + ": is a folder"},
         // Paths that are not regular files: refused before they are read or block.
         {{"--map", dir.path().string()}, "is a folder, not a regular file"},

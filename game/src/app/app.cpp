@@ -112,6 +112,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     wo.gi = options_.gi;
     wo.player_light = options_.player_light;
     wo.scene = scene;
+    wo.tables = &tables_;
     auto created = create_world(spec, w, wo);
     if (!created) return created.error();
     s->info = std::move(*created);
@@ -126,6 +127,8 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
         if (e.setup) e.setup(w);
     if (save) {
         apply_save(*save, w, s->info.player);
+        // Named tables win over the lights the save kept (the defaults leave them as saved).
+        if (!options_.tables_file.empty()) apply_tables(w, tables_, false);
         std::vector<std::string> ignored;
         if (auto ok = load_extensions(extensions_, save->extensions, w, save->file, &ignored); !ok) return ok.error();
         for (const std::string& name : ignored)
@@ -279,6 +282,15 @@ int Game::run() {
         std::fprintf(stderr, "%s\n", ok.error().message.c_str());
         return ok.error().exit_code;
     }
+    if (!options_.tables_file.empty()) {
+        auto tables = read_tables(options_.tables_file);
+        if (!tables) {
+            std::fprintf(stderr, "lantern: %s\n", tables.error().message.c_str());
+            return 2;
+        }
+        tables_ = std::move(*tables);
+        if (options_.watch) tables_watch_.watch({options_.tables_file});
+    }
     std::optional<SaveState> save;
     if (!options_.load.empty()) {
         auto state = read_save(options_.load);
@@ -295,7 +307,7 @@ int Game::run() {
     }
     session_ = std::move(*s);
     mark_saved(*session_, false); // the game as it starts has nothing unsaved
-    if (options_.watch) {
+    if (options_.watch && options_.world.kind == WorldKind::scene) {
         // The scene file and the files it reads (its world.map): an edit of either reloads.
         std::vector<std::string> files{options_.world.path};
         if (auto scene = scene::load_scene(options_.world.path))
@@ -309,7 +321,27 @@ int Game::run() {
 }
 
 
+void Game::poll_tables() {
+    if (options_.tables_file.empty() || !tables_watch_.changed()) return;
+    auto tables = read_tables(options_.tables_file);
+    if (!tables) {
+        ++reload_errors_;
+        message_ = "tables not reloaded (the last good tables stay): " + tables.error().message;
+        LANTERN_LOG_ERROR("%s", message_.c_str());
+        return;
+    }
+    if (*tables == tables_) return;
+    const std::int64_t start = now_ns();
+    tables_ = std::move(*tables);
+    apply_tables(session_->world, tables_, session_->info.spec.kind != WorldKind::scene);
+    ++reloads_;
+    message_ = "reloaded " + options_.tables_file;
+    LANTERN_LOG_INFO("tables reloaded (%d): %.2f ms to apply them to the world", reloads_, double(now_ns() - start) * 1e-6);
+}
+
 void Game::poll_watch() {
+    poll_tables();
+    if (options_.world.kind != WorldKind::scene) return;
     const std::string& path = options_.world.path;
     if (!watched_.changed()) return;
     const std::int64_t seen = now_ns();

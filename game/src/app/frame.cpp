@@ -366,22 +366,22 @@ void Game::apply_edit_now(Session& s, const EditResult& r) {
     const scene::SceneLists& l = editor_.lists();
     switch (t.kind) {
     case EditKind::point_light:
-        if (PointLight* c = w.try_get<PointLight>(entity(s.info.scene_point_lights))) {
+        if (const ecs::Entity e = entity(s.info.scene_point_lights); w.try_get<PointLight>(e)) {
             const scene::PointLight& v = l.point_lights[std::size_t(t.index)].value;
-            *c = PointLight{v.position, v.height, v.color, v.intensity, v.radius, v.mode};
+            w.patch<PointLight>(e) = PointLight{v.position, v.height, v.color, v.intensity, v.radius, v.mode};
             return;
         }
         break;
     case EditKind::emissive_light:
-        if (EmissiveLight* c = w.try_get<EmissiveLight>(entity(s.info.scene_emissive_lights))) {
+        if (const ecs::Entity e = entity(s.info.scene_emissive_lights); w.try_get<EmissiveLight>(e)) {
             const scene::EmissiveLight& v = l.emissive_lights[std::size_t(t.index)].value;
-            *c = EmissiveLight{v.position, v.color, v.intensity, v.radius, v.mode};
+            w.patch<EmissiveLight>(e) = EmissiveLight{v.position, v.color, v.intensity, v.radius, v.mode};
             return;
         }
         break;
     case EditKind::proxy:
-        if (ShadowProxy* c = w.try_get<ShadowProxy>(entity(s.info.scene_proxies))) {
-            c->shape = l.shadow_proxies[std::size_t(t.index)].value;
+        if (const ecs::Entity e = entity(s.info.scene_proxies); w.try_get<ShadowProxy>(e)) {
+            w.patch<ShadowProxy>(e).shape = l.shadow_proxies[std::size_t(t.index)].value;
             return;
         }
         break;

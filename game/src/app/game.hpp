@@ -119,6 +119,9 @@ class Game {
     // --watch: notices a change of the scene file (once a frame, by its FileStamp) and reads
     // it; a good scene waits in pending_scene_, a malformed one is reported and counted.
     void poll_watch();
+    // --watch with --tables: a changed tables file is read and applied to the world in place;
+    // a malformed one is reported and counted, the last good tables staying.
+    void poll_tables();
     // Replaces the session with one built from pending_scene_, the player where it stood.
     Result<void> reload_scene();
     // The scene editor (F3): opens it on the scene file (scene worlds), or closes it.
@@ -218,6 +221,8 @@ class Game {
     bool quit_ = false;
     std::optional<SaveState> pending_load_;
     FilesWatch watched_;                        // --watch: the scene file and the files it reads
+    GameTables tables_ = default_tables();      // --tables: the last good ones
+    FilesWatch tables_watch_;                   // --watch: the --tables file
     std::optional<scene::Scene> pending_scene_; // --watch: checked, applied between frames
     std::int64_t change_seen_ns_ = 0;           // when the pending change was noticed
     bool pending_from_editor_ = false;          // pending_scene_ is the editor's (not a file change)

@@ -5,6 +5,7 @@
 
 #include "lantern/ecs/schedule.hpp"
 #include "lantern/game/game_components.hpp"
+#include "lantern/game/tables.hpp"
 #include "lantern/systems/gi_frame.hpp"
 #include "lantern/systems/streaming.hpp"
 
@@ -56,17 +57,25 @@ struct PropParts {
     std::optional<ShadowProxy> proxy;
     std::optional<PointLight> light;
 };
-PropParts prop_parts(PropKind kind, glm::vec2 position);
+PropParts prop_parts(PropKind kind, glm::vec2 position, const GameTables& tables = default_tables());
 struct TorchParts {
     PointLight light;
     Torch torch;
 };
-TorchParts torch_parts(glm::vec2 position, float phase);
+TorchParts torch_parts(glm::vec2 position, float phase, const GameTables& tables = default_tables());
 
 // Entity factories (used by interaction, world set-up and save files).
-ecs::Entity spawn_torch(ecs::World& world, glm::vec2 position, float phase);
-ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position);
+ecs::Entity spawn_torch(ecs::World& world, glm::vec2 position, float phase, const GameTables& tables = default_tables());
+ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position,
+                       const GameTables& tables = default_tables());
 // The player; with `light`, it carries a small warm lantern (a PointLight that follows it).
-ecs::Entity spawn_player(ecs::World& world, glm::vec2 position, bool light = true);
+ecs::Entity spawn_player(ecs::World& world, glm::vec2 position, bool light = true,
+                         const GameTables& tables = default_tables());
+// The tables into a running world: the GameTables resource, the caves' materials
+// (`materials`: the world's are the tables', not a scene's) and the light of every torch,
+// lamp post and the player's lantern, and every crystal's intensity and radius (its colour
+// where it had the previous tables' colour: the caves' crystals keep their own hues);
+// docs/game.md, "Game tables".
+void apply_tables(ecs::World& world, const GameTables& tables, bool materials);
 
 } // namespace lantern::game

@@ -26,7 +26,8 @@ struct GameOptions {
     RunMode mode = RunMode::automatic; // --window / --headless; automatic: window if a display can open
     std::string status_file;         // --status-file PATH: each frame's state, for scripted play
     std::string schedule_dot;        // --schedule FILE.dot: the frame schedule as Graphviz DOT
-    bool watch = false;              // --watch: reload the --scene file when it changes
+    std::string tables_file;         // --tables FILE: the game's materials and lights (tables.hpp)
+    bool watch = false;              // --watch: reload the --scene file (and --tables) when it changes
 
     // Headless demo.
     int frames = 900;                // --frames N

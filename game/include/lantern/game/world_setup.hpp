@@ -6,6 +6,7 @@
 
 #include "lantern/core/result.hpp"
 #include "lantern/ecs/world.hpp"
+#include "lantern/game/tables.hpp"
 #include "lantern/systems/gi_frame.hpp"
 
 #include <cstdint>
@@ -50,6 +51,9 @@ struct WorldOptions {
     // Scenes: this parsed scene instead of reading spec.path (hot reload parses the file
     // once, checks it, and builds from what it checked).
     const scene::Scene* scene = nullptr;
+    // The game's tables (--tables; nullptr: the defaults): the caves' materials, the lights
+    // of what the world is decorated with and the player carries. Set as a world resource.
+    const GameTables* tables = nullptr;
 };
 
 // Builds the world in `world` (which must hold no game entities yet). Errors (a missing or
