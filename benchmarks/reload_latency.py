@@ -125,6 +125,47 @@ def game_case(build, folder, edits, edit_map, map_size):
     return walls, own
 
 
+def tables_case(build, folder, edits):
+    """The caves (no scene) with --tables: each edit retints the torches, applied in place."""
+    tables = os.path.join(folder, "tables.json")
+    status = os.path.join(folder, "status.json")
+    log_path = os.path.join(folder, "game.log")
+
+    def tables_text(k):
+        return ('{"lantern_tables": 1, "lights": {"torch": {"color": [1, %.3f, 0.3], "radius": %.2f}}}\n'
+                % (0.5 + 0.05 * (k % 8), 6.0 + 0.25 * (k % 5)))
+
+    atomic_write(tables, tables_text(0))
+    log = open(log_path, "w")
+    proc = subprocess.Popen([os.path.join(build, "game", "lantern"), "--headless", "--tables", tables, "--watch",
+                             "--frames", "10000000", "--screenshots", "0", "--no-bake", "--status-file", status,
+                             "--out", os.path.join(folder, "out")], stdout=log, stderr=subprocess.STDOUT)
+
+    def reloads():
+        try:
+            with open(status) as f:
+                m = re.search(r'"reloads": (\d+)', f.read())
+                return int(m.group(1)) if m else None
+        except OSError:
+            return None
+
+    try:
+        wait_for(lambda: reloads(), proc, "the game's first frame")
+        walls = []
+        for k in range(1, edits + 1):
+            start = time.monotonic()
+            atomic_write(tables, tables_text(k))
+            wait_for(lambda: True if (reloads() or 0) >= k else None, proc, f"reload {k}")
+            walls.append((time.monotonic() - start) * 1e3)
+    finally:
+        proc.terminate()
+        proc.wait()
+        log.close()
+    with open(log_path) as f:
+        own = [float(x) for x in re.findall(r"tables reloaded \(\d+\): ([0-9.]+) ms", f.read())]
+    return walls, own
+
+
 def render_case(build, folder, edits):
     scene = os.path.join(folder, "level.json")
     atomic_write(scene, scene_text(4.5, False))
@@ -169,6 +210,7 @@ def main():
         ("lantern --headless --watch: scene edit", lambda d: game_case(build, d, edits, False, 0)),
         ("lantern --headless --watch: map edit (16^2)", lambda d: game_case(build, d, edits, True, 16)),
         ("lantern --headless --watch: map edit (1024^2)", lambda d: game_case(build, d, edits, True, 1024)),
+        ("lantern --headless --watch: tables edit (caves)", lambda d: tables_case(build, d, edits)),
         ("lantern-render --watch (lavapipe): scene edit", lambda d: render_case(build, d, edits)),
     ]
     for name, run in cases:
