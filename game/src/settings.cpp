@@ -24,6 +24,10 @@ constexpr std::array<EnumName<GiPreset>, gi_preset_count> preset_names{{
     {"high", GiPreset::high},
 }};
 
+constexpr std::array<EnumName<int>, palette_count> palette_choices{{
+    {"off", 0}, {"cave", 1}, {"gameboy", 2}, {"pico", 3}, {"dusk", 4},
+}};
+
 // Settings files are a few hundred bytes: anything much larger is not one.
 constexpr std::uint64_t max_settings_file_bytes = 64 * 1024;
 
@@ -73,7 +77,7 @@ std::string format_settings(const PlayerSettings& s) {
     w.field("lantern_settings", settings_format_version);
     w.field("gi_preset", gi_preset_names[int(s.gi_preset)]);
     w.field("vsync", s.vsync).field("pixel_scale", s.pixel_scale);
-    w.field("posterize", s.posterize).field("dither", s.dither);
+    w.field("posterize", s.posterize).field("dither", s.dither).field("palette", palette_names[s.palette]);
     w.field("autosave_seconds", s.autosave_seconds).field("volume", s.volume);
     w.key("keys").begin_object();
     for (int i = 0; i < action_count; ++i) w.field(action_keys[i], platform::key_name(s.keys[std::size_t(i)]));
@@ -88,7 +92,7 @@ Result<PlayerSettings> parse_settings(std::string_view text, const std::string& 
     Reader r("the settings");
     PlayerSettings s;
     Fields top(r, *doc, "",
-               {"lantern_settings", "gi_preset", "vsync", "pixel_scale", "posterize", "dither", "autosave_seconds", "volume",
+               {"lantern_settings", "gi_preset", "vsync", "pixel_scale", "posterize", "dither", "palette", "autosave_seconds", "volume",
                 "keys"});
     int version = 0;
     top.required("lantern_settings", version, IntRange{1, 1 << 20});
@@ -100,6 +104,7 @@ Result<PlayerSettings> parse_settings(std::string_view text, const std::string& 
         .optional("pixel_scale", s.pixel_scale, IntRange{0, max_pixel_scale})
         .optional("posterize", s.posterize, IntRange{0, 64})
         .optional("dither", s.dither)
+        .optional("palette", s.palette, palette_choices)
         .optional("autosave_seconds", s.autosave_seconds, IntRange{0, max_autosave_seconds})
         .optional("volume", s.volume, IntRange{0, 100});
     if (r.ok() && s.posterize == 1) top.fail("posterize", "must be 0 (off) or in [2, 64], got 1");

@@ -1,6 +1,8 @@
 // The game's world renderer: box faces, frame constants, one draw per face group.
 #include "lantern/game/world_renderer.hpp"
 
+#include "lantern/game/settings.hpp"
+
 #include "lantern/gi/radiosity.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gpu/command_list.hpp"
@@ -107,14 +109,15 @@ std::vector<Palette> make_palettes() {
         for (std::uint32_t c : colors) p.colors.push_back(hex(c));
         return p;
     };
+    static_assert(palette_count == 5, "the palettes below are palette_names (settings.hpp), in order");
     return {
-        Palette{"off", {}},
-        of("cave", {0x0d0907, 0x1f1510, 0x3a261a, 0x5c3a24, 0x83552f, 0xb0773a, 0xd9a24e, 0xf5d58a, 0xfff3d0,
+        Palette{palette_names[0], {}},
+        of(palette_names[1], {0x0d0907, 0x1f1510, 0x3a261a, 0x5c3a24, 0x83552f, 0xb0773a, 0xd9a24e, 0xf5d58a, 0xfff3d0,
                     0x1b2a3a, 0x3d6480, 0x8fc3d9}),
-        of("gameboy", {0x0f380f, 0x306230, 0x8bac0f, 0x9bbc0f}),
-        of("pico", {0x000000, 0x1d2b53, 0x7e2553, 0x008751, 0xab5236, 0x5f574f, 0xc2c3c7, 0xfff1e8, 0xff004d,
+        of(palette_names[2], {0x0f380f, 0x306230, 0x8bac0f, 0x9bbc0f}),
+        of(palette_names[3], {0x000000, 0x1d2b53, 0x7e2553, 0x008751, 0xab5236, 0x5f574f, 0xc2c3c7, 0xfff1e8, 0xff004d,
                     0xffa300, 0xffec27, 0x00e436, 0x29adff, 0x83769c, 0xff77a8, 0xffccaa}),
-        of("dusk", {0x0b0b1a, 0x241a3d, 0x4a2c5e, 0x7d3c6b, 0xc0566b, 0xf08a5d, 0xf9c784, 0x3b5b8c}),
+        of(palette_names[4], {0x0b0b1a, 0x241a3d, 0x4a2c5e, 0x7d3c6b, 0xc0566b, 0xf08a5d, 0xf9c784, 0x3b5b8c}),
     };
 }
 

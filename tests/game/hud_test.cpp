@@ -338,6 +338,10 @@ TEST_F(MenuFixture, SettingsPageEditsTheSettingsAndSlotsSaveAndLoad) {
     ASSERT_TRUE(click("+##pixel_scale"));
     ASSERT_TRUE(click("+##pixel_scale"));
     EXPECT_EQ(settings.pixel_scale, 2);
+    ASSERT_TRUE(click("gameboy##palette"));
+    EXPECT_EQ(std::string(palette_names[settings.palette]), "gameboy");
+    ASSERT_TRUE(click("off##palette"));
+    EXPECT_EQ(settings.palette, 0);
     ASSERT_TRUE(click("Back##settings"));
     in.save_slots = {{"slot 1", "a.json", true, "2026-11-27 01:00:00"}, {"slot 2", "b.json", false, ""}, {"slot 3", "c.json", false, ""}};
     in.load_slots = in.save_slots;

@@ -50,6 +50,7 @@ TEST(Settings, RoundTripIsExactAndAMissingFileGivesTheDefaults) {
     s.pixel_scale = 3;
     s.posterize = 8;
     s.dither = true;
+    s.palette = 3; // pico
     s.autosave_seconds = 0;
     s.volume = 35;
     bind(s.keys, Action::walk_right, Key::l);
@@ -113,6 +114,7 @@ TEST(Settings, MalformedFilesAreRejectedWithPositions) {
         {R"({"lantern_settings": 1, "pixel_scale": 9})", "s.json:1:40: pixel_scale:"},
         {R"({"lantern_settings": 1, "posterize": 1})", "s.json:1:38: posterize: must be 0 (off) or in [2, 64], got 1"},
         {R"({"lantern_settings": 1, "volume": 101})", "s.json:1:35: volume:"},
+        {R"({"lantern_settings": 1, "palette": "neon"})", "s.json:1:36: palette: expected one of \"off\", \"cave\", \"gameboy\", \"pico\", \"dusk\", got \"neon\""},
         {R"({"lantern_settings": 1,
   "keys": {"walk_up": "w", "trace": "blorp"}})", "s.json:2:37: keys.trace: unknown key 'blorp'"},
         {R"({"lantern_settings": 1, "keys": {"trace": "escape"}})", "s.json:1:43: keys.trace: 'escape' cannot be bound"},

@@ -119,6 +119,7 @@ void Game::apply_settings(Session* s, bool gi) {
     if (swapchain_ && !options_.given.vsync && swapchain_->vsync() != settings_.vsync) swapchain_->set_vsync(settings_.vsync);
     if (!options_.given.posterize) art_.posterize = settings_.posterize;
     if (!options_.given.dither) art_.dither = settings_.dither;
+    if (options_.palette.empty()) art_.palette = settings_.palette; // --palette wins (init sets it)
     if (sound_) sound_->mixer().set_volume(float(settings_.volume) / 100.0f);
     if (gi && s) // the HUD's live GI edits are replaced
         if (auto g = session_gi(s->info)) s->world.resource<systems::GiConfig>().settings = *g;

@@ -119,6 +119,15 @@ void PauseMenu::draw_settings(const MenuInputs& in) {
     if (button("+##pixel_scale", 30.0f) && s.pixel_scale < max_pixel_scale) ++s.pixel_scale;
     ImGui::SameLine();
     ImGui::TextUnformatted(scale);
+    ImGui::TextUnformatted("palette");
+    for (int p = 0; p < palette_count; ++p) {
+        ImGui::SameLine();
+        push_chosen(s.palette == p);
+        char label[32];
+        std::snprintf(label, sizeof(label), "%s##palette", palette_names[p]);
+        if (button(label, 54.0f)) s.palette = p;
+        ImGui::PopStyleColor();
+    }
     int posterize = s.posterize;
     if (ImGui::SliderInt("posterize (0 off)", &posterize, 0, 32)) s.posterize = posterize == 1 ? 2 : posterize;
     ImGui::SliderInt("volume (%)", &s.volume, 0, 100);

@@ -61,12 +61,18 @@ inline constexpr int gi_preset_count = 4;
 // seed's look (resolution 8, heat at quarter, 20 rounds, 256 lights).
 void apply_gi_preset(GiPreset preset, scene::GiSettings& gi);
 
+// The built-in palette swaps, by index (game_render's builtin_palettes() has their colours):
+// 0 "off" keeps the colours.
+inline constexpr const char* palette_names[] = {"off", "cave", "gameboy", "pico", "dusk"};
+inline constexpr int palette_count = 5;
+
 struct PlayerSettings {
     GiPreset gi_preset = GiPreset::world;
     bool vsync = true;
     int pixel_scale = 0;          // the pixel-art scale in the window: 0 automatic (fills it), else 1-8
     int posterize = 0;            // 0 off, else 2-64 levels per channel
     bool dither = false;
+    int palette = 0;              // index into palette_names (0: off)
     int autosave_seconds = 180;   // of play (not paused, not minimised); 0: no autosave
     int volume = 80;              // sound, percent (0: silent)
     KeyBindings keys = default_key_bindings();
