@@ -24,10 +24,12 @@ ItemLight GameTables::*const light_members[] = {&GameTables::torch, &GameTables:
 GameTables make_defaults() {
     GameTables t;
     t.materials = scene::cave_materials();
-    t.torch = {{1.0f, 0.62f, 0.28f}, 1.0f, 6.5f, 1.2f};
-    t.crystal = {{0.3f, 0.6f, 1.0f}, 0.9f, 4.0f, 0.0f};
-    t.lamp_post = {{1.0f, 0.9f, 0.7f}, 0.9f, 7.0f, 2.5f};
-    t.player = {{1.0f, 0.8f, 0.55f}, 0.35f, 4.0f, 1.0f};
+    // Ambient: a dim fill in each light's hue, so a model's side away from a torch is not
+    // black but tinted by it (seed 001).
+    t.torch = {{1.0f, 0.62f, 0.28f}, 1.0f, 6.5f, 1.2f, {0.06f, 0.035f, 0.015f}};
+    t.crystal = {{0.3f, 0.6f, 1.0f}, 0.9f, 4.0f, 0.0f, {0.012f, 0.025f, 0.05f}};
+    t.lamp_post = {{1.0f, 0.9f, 0.7f}, 0.9f, 7.0f, 2.5f, {0.05f, 0.045f, 0.035f}};
+    t.player = {{1.0f, 0.8f, 0.55f}, 0.35f, 4.0f, 1.0f, {0.02f, 0.016f, 0.011f}};
     return t;
 }
 
@@ -60,6 +62,7 @@ std::string format_tables(const GameTables& t) {
         write_vec3(w, "color", l.color);
         w.field("intensity", l.intensity).field("radius", l.radius);
         if (light_members[i] != &GameTables::crystal) w.field("height", l.height);
+        write_vec3(w, "ambient", l.ambient);
         w.end();
     }
     w.end().end();
@@ -103,11 +106,12 @@ Result<GameTables> parse_tables(std::string_view text, const std::string& file_n
             if (!v) continue;
             ItemLight& l = t.*light_members[i];
             const bool point = light_members[i] != &GameTables::crystal;
-            Fields lf = point ? Fields(r, *v, f.path_of(light_keys[i]), {"color", "intensity", "radius", "height"})
-                              : Fields(r, *v, f.path_of(light_keys[i]), {"color", "intensity", "radius"});
+            Fields lf = point ? Fields(r, *v, f.path_of(light_keys[i]), {"color", "intensity", "radius", "height", "ambient"})
+                              : Fields(r, *v, f.path_of(light_keys[i]), {"color", "intensity", "radius", "ambient"});
             lf.optional("color", l.color, scene::reading::at_least(0.0))
                 .optional("intensity", l.intensity, scene::reading::at_least(0.0))
-                .optional("radius", l.radius, scene::reading::between(0.25, 120.0));
+                .optional("radius", l.radius, scene::reading::between(0.25, 120.0))
+                .optional("ambient", l.ambient, scene::reading::between(0.0, 16.0));
             if (point) lf.optional("height", l.height, scene::reading::between(0.0, 16.0));
         }
     }

@@ -429,6 +429,22 @@ TEST(DrawList, TexelLightingMakesModelsTexelLitParts) {
         unshadowed += int(l.color_type.w) == int(texel::ShadowType::none);
     }
     EXPECT_EQ(unshadowed, 1);
+    // Seed 001's ambient per light: the tables' colour for each game light, in its hue.
+    for (const texel::TexelLight& l : lights) {
+        const glm::vec3 fill(l.ambient);
+        EXPECT_GT(fill.r + fill.g + fill.b, 0.0f);
+        if (int(l.color_type.w) == int(texel::ShadowType::none)) {
+            EXPECT_EQ(fill, default_tables().crystal.ambient); // a crystal at the table's intensity
+        }
+    }
+    // A scene's own light (no torch, prop or player) has none.
+    const ecs::Entity own = world.create();
+    world.emplace<PointLight>(own, PointLight{{9.5f, 10.5f}, 1.0f, {1.0f, 1.0f, 1.0f}, 1.0f, 5.0f});
+    gather_texel_lights(world, ctx, lights);
+    ASSERT_EQ(lights.size(), 4u);
+    int without = 0;
+    for (const texel::TexelLight& l : lights) without += glm::vec3(l.ambient) == glm::vec3(0.0f);
+    EXPECT_EQ(without, 1);
     // The models' textures are painted: every face texel has a colour.
     for (int m = 0; m < int(TexelModel::count); ++m) {
         const texel::Model& model = texel_model(TexelModel(m));

@@ -235,6 +235,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
     })
         .reads<Player, Transform, Prop, Torch, PointLight, EmissiveLight, Camera>()
         .reads_resource<Controls, GameClock, systems::GiConfig, systems::Streaming, BakedChunks, BakeStatus>()
+        .reads_resource<GameTables>() // the lights' ambient colours
         .writes_resource<DrawListResource>();
     if (sound_)
         schedule.add("sound", [this](ecs::SystemContext& ctx) { sound_->update(ctx.world); })

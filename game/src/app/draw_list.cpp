@@ -207,20 +207,33 @@ void gather_texel_lights(ecs::World& world, const DrawContext& ctx, std::vector<
     const glm::vec2 lo = area->min - 2.0f, hi = area->min + area->size + glm::vec2(2.0f, 2.0f + ctx.wall_height * 2.0f);
     const glm::vec2 centre = (lo + hi) * 0.5f;
     const auto reaches_view = [&](glm::vec2 p, float radius) { return glm::distance(p, glm::clamp(p, lo, hi)) <= radius; };
+    // Each game light's ambient colour (the tables'), scaled with its intensity against the
+    // table's (a torch's flicker); a scene file's own lights have none.
+    const GameTables* world_tables = world.try_resource<GameTables>();
+    const GameTables& tables = world_tables ? *world_tables : default_tables();
+    const auto ambient = [](const ItemLight& item, float intensity) {
+        return item.intensity > 0.0f ? item.ambient * (intensity / item.intensity) : item.ambient;
+    };
     std::vector<std::pair<float, texel::TexelLight>> near;
     world.view<PointLight>().each([&](ecs::Entity e, const PointLight& l) {
         if (!reaches_view(l.position, l.radius)) return;
         const Prop* prop = world.try_get<Prop>(e);
         const bool lamp = prop && prop->kind == PropKind::lamp_post;
+        glm::vec3 fill(0.0f);
+        if (lamp) fill = ambient(tables.lamp_post, l.intensity);
+        else if (world.try_get<Torch>(e)) fill = ambient(tables.torch, l.intensity);
+        else if (world.try_get<Player>(e)) fill = ambient(tables.player, l.intensity);
         near.emplace_back(glm::distance(l.position, centre),
                           texel::make_light({l.position.x, l.height, l.position.y}, l.color, l.intensity, l.radius,
-                                            lamp ? texel::ShadowType::blurred : texel::ShadowType::hard));
+                                            lamp ? texel::ShadowType::blurred : texel::ShadowType::hard, 1.0f, 1.0f, fill));
     });
-    world.view<EmissiveLight>().each([&](const EmissiveLight& l) {
+    world.view<EmissiveLight>().each([&](ecs::Entity e, const EmissiveLight& l) {
         if (!reaches_view(l.position, l.radius)) return;
+        const Prop* prop = world.try_get<Prop>(e);
+        const glm::vec3 fill = prop && prop->kind == PropKind::crystal ? ambient(tables.crystal, l.intensity) : glm::vec3(0.0f);
         near.emplace_back(glm::distance(l.position, centre),
                           texel::make_light({l.position.x, 0.3f, l.position.y}, l.color, l.intensity, l.radius,
-                                            texel::ShadowType::none));
+                                            texel::ShadowType::none, 1.0f, 1.0f, fill));
     });
     constexpr std::size_t cap = 32;
     if (near.size() > cap) {

@@ -24,12 +24,15 @@ namespace lantern::game {
 inline constexpr int tables_format_version = 1;
 
 // A light the game gives a kind of thing. `height` is above the ground (point lights; the
-// crystal's emissive light has none).
+// crystal's emissive light has none). `ambient` is seed 001's ambient colour per light: what
+// the per-texel lit models (props, the player) take from the light without shadows, falling
+// off linearly to 0 at its radius (it flickers with a torch).
 struct ItemLight {
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
     float radius = 4.0f;
     float height = 1.0f;
+    glm::vec3 ambient{0.0f};
     friend bool operator==(const ItemLight&, const ItemLight&) = default;
 };
 
