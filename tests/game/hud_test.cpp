@@ -455,6 +455,41 @@ TEST(DrawList, TexelLightingMakesModelsTexelLitParts) {
     }
 }
 
+// Issue 19: a lower level of detail for far models. A part farther than texel_lod_distance
+// from the point the camera looks at takes LOD 1: the same box, its art at half the texels per
+// unit (a quarter of the texels to light), painted on every face texel.
+TEST(DrawList, FarModelsTakeTheCoarserLevelOfDetail) {
+    StreamedWorld open({60, 60});
+    ecs::World& world = open.world;
+    const systems::Streaming& streaming = *open.streaming;
+    spawn_player(world, {30.5f, 30.5f}, false);
+    spawn_prop(world, PropKind::tree, {32.5f, 30.5f});                    // near
+    spawn_prop(world, PropKind::tree, {30.5f + texel_lod_distance + 2.0f, 30.5f}); // far, still in view
+    DrawContext ctx;
+    ctx.camera = follow_camera({30.5f, 0.0f, 30.5f}, CameraRig{});
+    ctx.texel_lighting = true;
+    DrawList list;
+    build_draw_list(world, streaming, ctx, list);
+    int near = 0, far = 0;
+    for (const TexelPart& p : list.texel_parts) {
+        const bool is_far = p.center.x > 30.5f + texel_lod_distance;
+        EXPECT_EQ(p.lod, is_far ? 1 : 0) << p.center.x;
+        (is_far ? far : near) += 1;
+    }
+    EXPECT_EQ(far, 2); // the far tree's trunk and crown
+    EXPECT_GE(near, 5); // the player's three parts, the near tree's two
+    for (int m = 0; m < int(TexelModel::count); ++m) {
+        const texel::Model& fine = texel_model(TexelModel(m), 0);
+        const texel::Model& coarse = texel_model(TexelModel(m), 1);
+        EXPECT_LT(coarse.size, fine.size);
+        EXPECT_EQ(coarse.faces.size(), fine.faces.size());
+        for (const glm::ivec4& f : coarse.faces)
+            for (int j = 0; j < f.w; ++j)
+                for (int i = 0; i < f.z; ++i)
+                    EXPECT_GT(coarse.albedo[std::size_t(f.y + j) * std::size_t(coarse.size) + std::size_t(f.x + i)].a, 0.0f);
+    }
+}
+
 // Issue 19: a scene file's lights were invisible (no light or shadow may come from nothing).
 // The draw list now carries a lamp for each point light that no torch, prop or player owns
 // and a glowing slab for each such emissive light, in the light's hue; the game's own

@@ -51,6 +51,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     const glm::vec2 lo = glm::floor(area->min) - 2.0f;
     const glm::vec2 hi = glm::ceil(area->min + area->size) + glm::vec2(2.0f, 2.0f + ctx.wall_height * 2.0f);
     const float h = ctx.wall_height;
+    const glm::vec2 view_target(ctx.camera.target.x, ctx.camera.target.z); // the texel models' LOD is by distance to it
 
     // The ground: one flat box with only its top face.
     const glm::vec2 mid = (lo + hi) * 0.5f, half = (hi - lo) * 0.5f;
@@ -102,7 +103,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
             into.push_back(box(center, extent, color, lit.first, lit.second));
             return;
         }
-        out.texel_parts.push_back({e.bits() * 8u + std::uint64_t(index), int(model), center});
+        out.texel_parts.push_back({e.bits() * 8u + std::uint64_t(index), int(model), center, texel_lod_for(center, view_target)});
         into.push_back(box(center, extent, glm::vec3(1.0f), Material::texel_lit, float(out.texel_parts.size() - 1)));
     };
 

@@ -87,9 +87,9 @@ Texel paint(TexelModel model, int f, int i, int j, int w, int h) {
     return {glm::vec3(0.35f, 0.22f, 0.1f) * vary};
 }
 
-texel::Model make_model(TexelModel model) {
+texel::Model make_model(TexelModel model, int lod) {
     const glm::vec3 half = halves[std::size_t(model)];
-    texel::Model m = texel::box_model(-half, half, texel_density);
+    texel::Model m = texel::box_model(-half, half, texel_density >> lod);
     const std::size_t texels = std::size_t(m.size) * std::size_t(m.size);
     m.albedo.assign(texels, glm::vec4(0.0f));
     m.normal_map.assign(texels, glm::vec4(0.5f, 0.5f, 1.0f, 0.0f));
@@ -114,13 +114,18 @@ bool same_walls(const texel::WallPatch& a, const texel::WallPatch& b) {
 
 glm::vec3 texel_model_half(TexelModel model) { return halves[std::size_t(model)]; }
 
-const texel::Model& texel_model(TexelModel model) {
+int texel_lod_for(glm::vec3 center, glm::vec2 view_target) {
+    return glm::distance(glm::vec2(center.x, center.z), view_target) > texel_lod_distance ? 1 : 0;
+}
+
+const texel::Model& texel_model(TexelModel model, int lod) {
     static std::once_flag once;
-    static std::array<texel::Model, std::size_t(TexelModel::count)> models;
+    static std::array<std::array<texel::Model, std::size_t(TexelModel::count)>, texel_lod_count> models;
     std::call_once(once, [] {
-        for (int k = 0; k < int(TexelModel::count); ++k) models[std::size_t(k)] = make_model(TexelModel(k));
+        for (int l = 0; l < texel_lod_count; ++l)
+            for (int k = 0; k < int(TexelModel::count); ++k) models[std::size_t(l)][std::size_t(k)] = make_model(TexelModel(k), l);
     });
-    return models[std::size_t(model)];
+    return models[std::size_t(std::clamp(lod, 0, texel_lod_count - 1))][std::size_t(model)];
 }
 
 Result<std::unique_ptr<TexelWorld>> TexelWorld::create(gpu::Device& device) {
@@ -143,7 +148,7 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
     placements.reserve(parts.size());
     for (const TexelPart& p : parts) {
         const int model = std::clamp(p.model, 0, int(TexelModel::count) - 1);
-        placements.push_back({&texel_model(TexelModel(model)), glm::translate(glm::mat4(1.0f), p.center)});
+        placements.push_back({&texel_model(TexelModel(model), p.lod), glm::translate(glm::mat4(1.0f), p.center)});
     }
     // Walls are copied as far as the longest light (or the sun's shadow search) reaches.
     float reach = 1.0f;
@@ -152,7 +157,7 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
 
     const bool same_parts = parts.size() == last_parts_.size() &&
                             std::equal(parts.begin(), parts.end(), last_parts_.begin(), [](const TexelPart& a, const TexelPart& b) {
-                                return a.key == b.key && a.model == b.model;
+                                return a.key == b.key && a.model == b.model && a.lod == b.lod;
                             });
     if (!same_parts) {
         // Parts came into view or left it: the atlas is laid out again.

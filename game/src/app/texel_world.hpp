@@ -22,12 +22,19 @@ namespace lantern::game {
 
 enum class TexelModel : int { player_body, player_head, backpack, tree_trunk, tree_crown, lamp_post, torch_stick, count };
 
-inline constexpr int texel_density = 8; // texels per world unit of the models' art
+inline constexpr int texel_density = 8; // texels per world unit of the models' art (LOD 0)
+// Levels of detail: LOD k paints the model at texel_density >> k texels per unit, so a far
+// model's light costs a quarter per level. A part whose centre is farther than
+// texel_lod_distance tiles (on the ground) from the point the camera looks at takes LOD 1.
+inline constexpr int texel_lod_count = 2;
+inline constexpr float texel_lod_distance = 9.0f;
+int texel_lod_for(glm::vec3 center, glm::vec2 view_target);
 
 // The half extents of a model's box (the draw list's box for it has these).
 glm::vec3 texel_model_half(TexelModel model);
-// The model, its pixel-art albedo and normal map (made once, on first use; thread-safe).
-const texel::Model& texel_model(TexelModel model);
+// The model at a level of detail, its pixel-art albedo and normal map (made once, on first
+// use; thread-safe). The same box at every level; the art coarser.
+const texel::Model& texel_model(TexelModel model, int lod = 0);
 
 class TexelWorld {
   public:

@@ -112,6 +112,7 @@ struct TexelPart {
     std::uint64_t key = 0; // the same while the part exists (entity and part), for caching
     int model = 0;
     glm::vec3 center{0.0f}; // the box's centre (its half extents are the model's)
+    int lod = 0;            // level of detail: the model's art at 8 >> lod texels per unit
 };
 
 struct DrawList {
