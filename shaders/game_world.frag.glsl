@@ -191,7 +191,8 @@ void main() {
         // steps of its art's texels.
         const int texel = face_texel(clamp(in_position, in_box_min, in_box_max));
         vec3 light = texel_lit[texel].rgb;
-        if (HAS_GI) light += ground_indirect_light(texel_surfaces[3 * texel].xyz);
+        // The GI's bounce at the texel, and the baked light's direction on a side face.
+        if (HAS_GI) light = max(light + ground_indirect_light(texel_surfaces[3 * texel].xyz) + in_probe_light, vec3(0.0));
         color = texel_albedo[texel].rgb * in_color.rgb * light;
     } else {
         // Interpolation can step a hair off the box at its edges: keep the point on it, so

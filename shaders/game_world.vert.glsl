@@ -24,13 +24,25 @@ layout(location = 2) flat out vec4 out_color;   // rgb colour, a emissive
 layout(location = 3) flat out vec3 out_box_min; // the box, to keep interpolated positions on it
 layout(location = 4) flat out vec3 out_box_max;
 layout(location = 5) flat out vec3 out_face_light; // WALL_TOP_PER_FACE: the top's light
-layout(location = 6) flat out vec3 out_probe_light; // lit_probes: what the baked light's direction adds
+layout(location = 6) flat out vec3 out_probe_light; // lit_probes, texel_lit: what the baked light's direction adds
 layout(location = 7) flat out ivec4 out_texel; // texel_lit (TEXEL): atlas index of the face's texel (0, 0), texture size, face width, height
 
 const vec3 face_normal[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
 const vec3 face_u[5] = vec3[](vec3(0, 0, 1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(1, 0, 0), vec3(1, 0, 0));
 const vec3 face_v[5] = vec3[](vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 0, 1));
 const vec2 quad[6] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+
+// What the baked light's probes (world_renderer.hpp ProbeRecord at texel `base` of u_boxes)
+// add to a side face of normal n: max(pi E(phi), 0) - a0 (the GI textures give the a0 part).
+vec3 probe_face_light(int base, vec3 n) {
+    const float pi = 3.14159265;
+    const float phi = atan(n.z, n.x);
+    const vec3 a0 = texelFetch(u_boxes, base).rgb;
+    const vec3 e = a0 / pi + (texelFetch(u_boxes, base + 1).rgb * cos(phi) + texelFetch(u_boxes, base + 2).rgb * sin(phi)) * 0.5 +
+                   (texelFetch(u_boxes, base + 3).rgb * cos(2.0 * phi) + texelFetch(u_boxes, base + 4).rgb * sin(2.0 * phi)) *
+                       (2.0 / (3.0 * pi));
+    return max(pi * e, vec3(0.0)) - a0;
+}
 
 void main() {
     const int face = FACE;
@@ -60,15 +72,7 @@ void main() {
     if (out_material == 4) { // lit_probes: world_renderer.hpp ProbeRecord, at texel `emissive`
         const int base = int(in_color_emissive.w + 0.5);
         out_color.a = 0.0;
-        if (face < 4) {
-            const float pi = 3.14159265;
-            const float phi = atan(n.z, n.x);
-            const vec3 a0 = texelFetch(u_boxes, base).rgb;
-            const vec3 e = a0 / pi + (texelFetch(u_boxes, base + 1).rgb * cos(phi) + texelFetch(u_boxes, base + 2).rgb * sin(phi)) * 0.5 +
-                           (texelFetch(u_boxes, base + 3).rgb * cos(2.0 * phi) + texelFetch(u_boxes, base + 4).rgb * sin(2.0 * phi)) *
-                               (2.0 / (3.0 * pi));
-            out_probe_light = max(pi * e, vec3(0.0)) - a0;
-        }
+        if (face < 4) out_probe_light = probe_face_light(base, n);
     }
     out_texel = ivec4(0);
     if (TEXEL && out_material == 5) { // texel_lit: world_renderer.hpp TexelRecord, at texel `emissive`
@@ -79,6 +83,8 @@ void main() {
         out_texel = ivec4(int(texture.x + 0.5) + int(rect.y + 0.5) * size + int(rect.x + 0.5), size, int(rect.z + 0.5),
                           int(rect.w + 0.5));
         out_color.a = 0.0;
+        // Its baked-light probe record (texture.z: 1 + the record's first texel; 0 none).
+        if (face < 4 && texture.z > 0.5) out_probe_light = probe_face_light(int(texture.z + 0.5) - 1, n);
     }
     if (WALL_TOP_PER_FACE && HAS_GI) {
         set_gi_shading();

@@ -416,7 +416,12 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
         const std::size_t records_first = m.upload.size();
         for (BoxInstance& b : m.upload)
             if (int(b.material) == int(Material::texel_lit)) b.emissive = float(3 * (records_first + 2 * std::size_t(b.emissive)));
-        for (const TexelRecord& r : view.texel_records) {
+        for (TexelRecord r : view.texel_records) {
+            // Its probe record's index becomes 1 + the record's first texel (0: none).
+            const int probe = int(r.texture.z + 0.5f) - 1;
+            r.texture.z = probe >= 0 && std::size_t(probe) < list.probes.size()
+                              ? float(3 * (m.faces_drawn + 2 * std::size_t(probe)) + 1)
+                              : 0.0f;
             BoxInstance two[2];
             std::memcpy(static_cast<void*>(two), &r, sizeof(r));
             m.upload.insert(m.upload.end(), two, two + 2);

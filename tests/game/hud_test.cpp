@@ -478,6 +478,14 @@ TEST(DrawList, FarModelsTakeTheCoarserLevelOfDetail) {
     }
     EXPECT_EQ(far, 2); // the far tree's trunk and crown
     EXPECT_GE(near, 5); // the player's three parts, the near tree's two
+    for (const TexelPart& p : list.texel_parts) EXPECT_EQ(p.probe, -1) << "no baked light: no probe record";
+    // With baked light, each part names its own probe record (its side faces take the baked
+    // light's direction; WorldRendererTest.ProbesLightATexelLitFaceFromWhereTheBakedLightComes).
+    const BakedChunks baked;
+    ctx.probes = &baked;
+    build_draw_list(world, streaming, ctx, list);
+    ASSERT_EQ(list.probes.size(), list.texel_parts.size());
+    for (std::size_t k = 0; k < list.texel_parts.size(); ++k) EXPECT_EQ(list.texel_parts[k].probe, int(k));
     for (int m = 0; m < int(TexelModel::count); ++m) {
         const texel::Model& fine = texel_model(TexelModel(m), 0);
         const texel::Model& coarse = texel_model(TexelModel(m), 1);

@@ -749,6 +749,62 @@ TEST_F(WorldRendererTest, ProbesLightAFaceFromWhereTheBakedLightComes) {
     EXPECT_LE(r1[0], r0[0]) << "the face turned away gets no more light";
 }
 
+// Issue 19: the baked light's probes reach texel-lit models too. A texel_lit crate whose record
+// names a probe record takes the baked light's direction on its side faces, as a lit_probes
+// box does: its +x face, turned to an orange glow from +x, is brighter and more orange than the
+// same crate without the record.
+TEST_F(WorldRendererTest, ProbesLightATexelLitFaceFromWhereTheBakedLightComes) {
+    bake::CircularHarmonics h;
+    h.add_delta(0.0f, {0.3f, 0.12f, 0.02f});
+    game::ProbeRecord probe;
+    for (int k = 0; k < 5; ++k) probe.c[k] = glm::vec4(h.c[std::size_t(k)], 0.0f);
+    auto frame = lit_room_frame();
+    ASSERT_TRUE(frame);
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+    view.art.texture_pattern = false;
+    const glm::vec3 center{9.5f, 0.4f, 15.5f}, half{0.4f, 0.4f, 0.4f};
+    const texel::Model model = texel::box_model(center - half, center + half, 4);
+    const std::size_t texels = std::size_t(model.size) * std::size_t(model.size);
+    std::vector<glm::vec4> lit(texels, glm::vec4(0.3f)), albedo(texels, glm::vec4(0.7f, 0.7f, 0.7f, 1.0f));
+    std::vector<glm::vec4> surfaces(3 * texels, glm::vec4(center, 1.0f));
+    const auto buffer = [&](const std::vector<glm::vec4>& values, const char* name) {
+        gpu::Buffer b = device().create_buffer(
+            {values.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::upload, name});
+        device().upload(b, std::as_bytes(std::span<const glm::vec4>(values)));
+        return b;
+    };
+    const gpu::Buffer lit_buffer = buffer(lit, "test texel lit"), albedo_buffer = buffer(albedo, "test texel albedo"),
+                      surface_buffer = buffer(surfaces, "test texel surfaces");
+    view.texel_lit = &lit_buffer;
+    view.texel_albedo = &albedo_buffer;
+    view.texel_surfaces = &surface_buffer;
+    const auto render = [&](bool with_probe) {
+        game::TexelRecord record;
+        record.texture = glm::vec4(0.0f, float(model.size), with_probe ? 1.0f : 0.0f, 0.0f);
+        for (std::size_t f = 0; f < 5; ++f) record.faces[f] = glm::vec4(model.faces[f]);
+        DrawList list = world_list(*frame, false);
+        BoxInstance b;
+        b.center = center;
+        b.half = half;
+        b.material = float(int(Material::texel_lit));
+        b.color = glm::vec3(1.0f);
+        b.emissive = 0.0f;
+        list.boxes.push_back(b);
+        list.probes.push_back(probe);
+        WorldView v = view;
+        v.texel_records = std::span<const game::TexelRecord>(&record, 1);
+        return draw(v, list, frame.get());
+    };
+    const auto plain = render(false), probed = render(true);
+    maybe_write_png(probed, "texel_probes");
+    const glm::ivec2 px = project_pixel(view.camera, {9.9f, 0.4f, 15.5f}); // the +x face (left of the camera)
+    const auto p0 = pixel(plain, px.x, px.y), p1 = pixel(probed, px.x, px.y);
+    std::printf("texel-lit +x face: %d %d %d -> %d %d %d\n", p0[0], p0[1], p0[2], p1[0], p1[1], p1[2]);
+    EXPECT_GT(p1[0], p0[0] + 10) << "lit orange from the side the baked light comes from";
+    EXPECT_GT(p1[0] - p1[2], p0[0] - p0[2] + 5) << "and orange, not white";
+}
+
 // ---- GI views (the HUD's): a texture over the world from above
 
 // The distance view's display colour (game_world.frag.glsl gi_view_color, GI_VIEW 2).

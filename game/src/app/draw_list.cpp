@@ -85,13 +85,18 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
 
     // Things that move or stand in the open are lit by the baked light's probes too (with
     // baked light in use): one record per object, a lit_probes box per part.
-    auto probe_lit = [&](glm::vec2 at) -> std::pair<Material, float> {
-        if (!ctx.probes || ctx.texel_lighting) return {Material::prop, 0.0f}; // texel lit: no record needed
+    // The record's index, or -1 without baked light.
+    auto probe_record = [&](glm::vec2 at) -> int {
+        if (!ctx.probes) return -1;
         const bake::CircularHarmonics probes = ctx.probes->probes_at(at);
         ProbeRecord r;
         for (int k = 0; k < 5; ++k) r.c[k] = glm::vec4(probes.c[std::size_t(k)], 0.0f);
         out.probes.push_back(r);
-        return {Material::lit_probes, float(out.probes.size() - 1)};
+        return int(out.probes.size() - 1);
+    };
+    auto probe_lit = [&](glm::vec2 at) -> std::pair<Material, float> {
+        if (!ctx.probes || ctx.texel_lighting) return {Material::prop, 0.0f}; // texel lit: a record per part, below
+        return {Material::lit_probes, float(probe_record(at))};
     };
 
     // A part of a model that is lit per texel with texel lighting on (its model's box, white:
@@ -103,7 +108,10 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
             into.push_back(box(center, extent, color, lit.first, lit.second));
             return;
         }
-        out.texel_parts.push_back({e.bits() * 8u + std::uint64_t(index), int(model), center, texel_lod_for(center, view_target)});
+        // The baked light's probes at the part, for its side faces (the texel pass has the
+        // direct light, the GI textures the baked light's ground part).
+        out.texel_parts.push_back({e.bits() * 8u + std::uint64_t(index), int(model), center, texel_lod_for(center, view_target),
+                                   probe_record({center.x, center.z})});
         into.push_back(box(center, extent, glm::vec3(1.0f), Material::texel_lit, float(out.texel_parts.size() - 1)));
     };
 

@@ -184,7 +184,7 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
     for (std::size_t k = 0; k < parts.size(); ++k) {
         const texel::Model& m = *placements[k].model;
         TexelRecord& r = records_[k];
-        r.texture = glm::vec4(float(scene.placements[k].ranges.z), float(m.size), 0.0f, 0.0f);
+        r.texture = glm::vec4(float(scene.placements[k].ranges.z), float(m.size), float(parts[k].probe + 1), 0.0f);
         for (std::size_t f = 0; f < 5; ++f) r.faces[f] = glm::vec4(m.faces[f]);
     }
     scene_ = std::move(scene);

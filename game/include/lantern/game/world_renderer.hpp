@@ -98,7 +98,9 @@ static_assert(sizeof(ProbeRecord) == 2 * sizeof(BoxInstance), "probe records rid
 glm::vec3 probe_face_light(const ProbeRecord& r, float phi);
 
 // Where a texel_lit box's texture lies in the per-texel atlas (96 bytes: two BoxInstances):
-// `texture` x the atlas index of its texel (0, 0), y its size (texels per side); face f's
+// `texture` x the atlas index of its texel (0, 0), y its size (texels per side), z 1 + the
+// index of its baked-light ProbeRecord in the DrawList (0: none; the side faces then take
+// the baked light's direction as lit_probes boxes do); face f's
 // rectangle of texels (x, y, width, height) as texel::box_model lays the box's faces out
 // (texel::Model::faces: +x, -x, +z, -z, top).
 struct TexelRecord {
@@ -113,6 +115,7 @@ struct TexelPart {
     int model = 0;
     glm::vec3 center{0.0f}; // the box's centre (its half extents are the model's)
     int lod = 0;            // level of detail: the model's art at 8 >> lod texels per unit
+    int probe = -1;         // its baked-light ProbeRecord in the DrawList (-1: none)
 };
 
 struct DrawList {
