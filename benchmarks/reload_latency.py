@@ -84,16 +84,14 @@ def wait_for(predicate, proc, what, deadline_s=300):
     raise SystemExit(f"reload_latency: {what}: never happened (exit status {proc.poll()})")
 
 
-def game_case(build, folder, edits, edit_map, map_size):
-    scene = os.path.join(folder, "level.json")
+def watch_case(build, folder, edits, args, edit, own_pattern):
+    """Starts the game headless with `args` and --watch, makes `edits` edits (edit(k) writes
+    edit k), waits for each on the status file's reload counter; the wall times, and the
+    game's own figures (own_pattern in its log)."""
     status = os.path.join(folder, "status.json")
     log_path = os.path.join(folder, "game.log")
-    uses_map = edit_map or map_size > 0
-    if uses_map:
-        atomic_write(os.path.join(folder, "level.map"), map_text(max(map_size, 16), 7))
-    atomic_write(scene, scene_text(4.5, uses_map))
     log = open(log_path, "w")
-    proc = subprocess.Popen([os.path.join(build, "game", "lantern"), "--headless", "--scene", scene, "--watch",
+    proc = subprocess.Popen([os.path.join(build, "game", "lantern"), "--headless", *args, "--watch",
                              "--frames", "10000000", "--screenshots", "0", "--no-bake", "--status-file", status,
                              "--out", os.path.join(folder, "out")], stdout=log, stderr=subprocess.STDOUT)
 
@@ -110,10 +108,7 @@ def game_case(build, folder, edits, edit_map, map_size):
         walls = []
         for k in range(1, edits + 1):
             start = time.monotonic()
-            if edit_map:
-                atomic_write(os.path.join(folder, "level.map"), map_text(max(map_size, 16), 7 + k % 3))
-            else:
-                atomic_write(scene, scene_text(4.5 + 0.25 * (k % 8), uses_map))
+            edit(k)
             wait_for(lambda: True if (reloads() or 0) >= k else None, proc, f"reload {k}")
             walls.append((time.monotonic() - start) * 1e3)
     finally:
@@ -121,49 +116,37 @@ def game_case(build, folder, edits, edit_map, map_size):
         proc.wait()
         log.close()
     with open(log_path) as f:
-        own = [float(x) for x in re.findall(r"scene reloaded \(\d+\): ([0-9.]+) ms", f.read())]
+        own = [float(x) for x in re.findall(own_pattern, f.read())]
     return walls, own
+
+
+def game_case(build, folder, edits, edit_map, map_size):
+    scene = os.path.join(folder, "level.json")
+    uses_map = edit_map or map_size > 0
+    if uses_map:
+        atomic_write(os.path.join(folder, "level.map"), map_text(max(map_size, 16), 7))
+    atomic_write(scene, scene_text(4.5, uses_map))
+
+    def edit(k):
+        if edit_map:
+            atomic_write(os.path.join(folder, "level.map"), map_text(max(map_size, 16), 7 + k % 3))
+        else:
+            atomic_write(scene, scene_text(4.5 + 0.25 * (k % 8), uses_map))
+
+    return watch_case(build, folder, edits, ["--scene", scene], edit, r"scene reloaded \(\d+\): ([0-9.]+) ms")
 
 
 def tables_case(build, folder, edits):
     """The caves (no scene) with --tables: each edit retints the torches, applied in place."""
     tables = os.path.join(folder, "tables.json")
-    status = os.path.join(folder, "status.json")
-    log_path = os.path.join(folder, "game.log")
 
     def tables_text(k):
         return ('{"lantern_tables": 1, "lights": {"torch": {"color": [1, %.3f, 0.3], "radius": %.2f}}}\n'
                 % (0.5 + 0.05 * (k % 8), 6.0 + 0.25 * (k % 5)))
 
     atomic_write(tables, tables_text(0))
-    log = open(log_path, "w")
-    proc = subprocess.Popen([os.path.join(build, "game", "lantern"), "--headless", "--tables", tables, "--watch",
-                             "--frames", "10000000", "--screenshots", "0", "--no-bake", "--status-file", status,
-                             "--out", os.path.join(folder, "out")], stdout=log, stderr=subprocess.STDOUT)
-
-    def reloads():
-        try:
-            with open(status) as f:
-                m = re.search(r'"reloads": (\d+)', f.read())
-                return int(m.group(1)) if m else None
-        except OSError:
-            return None
-
-    try:
-        wait_for(lambda: reloads(), proc, "the game's first frame")
-        walls = []
-        for k in range(1, edits + 1):
-            start = time.monotonic()
-            atomic_write(tables, tables_text(k))
-            wait_for(lambda: True if (reloads() or 0) >= k else None, proc, f"reload {k}")
-            walls.append((time.monotonic() - start) * 1e3)
-    finally:
-        proc.terminate()
-        proc.wait()
-        log.close()
-    with open(log_path) as f:
-        own = [float(x) for x in re.findall(r"tables reloaded \(\d+\): ([0-9.]+) ms", f.read())]
-    return walls, own
+    return watch_case(build, folder, edits, ["--tables", tables], lambda k: atomic_write(tables, tables_text(k)),
+                      r"tables reloaded \(\d+\): ([0-9.]+) ms")
 
 
 def render_case(build, folder, edits):

@@ -256,6 +256,13 @@ void maybe_write_png(const render::Rgba8Image& image, const std::string& name) {
 class WorldRendererTest : public test::RenderTest {
   protected:
     game::WorldRenderer& world() { return *shared(device()).world; }
+    // A storage buffer holding `values` (texel light, albedo, surfaces for texel_lit boxes).
+    gpu::Buffer vec4_buffer(const std::vector<glm::vec4>& values, const char* name) {
+        gpu::Buffer b = device().create_buffer(
+            {values.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::upload, name});
+        device().upload(b, std::as_bytes(std::span<const glm::vec4>(values)));
+        return b;
+    }
     gi::vk::Renderer& gi() { return *shared(device()).gi; }
 
     // Records the GI of `frame` (when given) and the world in one list, submits, reads back.
@@ -565,14 +572,8 @@ TEST_F(WorldRendererTest, TexelLitFacesTakeTheLightOfTheirTexels) {
         const int x = int(i % std::size_t(model.size)), y = int(i / std::size_t(model.size));
         lit[i] = ((x + y) & 1) ? glm::vec4(1.0f) : glm::vec4(0.2f);
     }
-    const auto buffer = [&](const std::vector<glm::vec4>& values, const char* name) {
-        gpu::Buffer b = device().create_buffer(
-            {values.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::upload, name});
-        device().upload(b, std::as_bytes(std::span<const glm::vec4>(values)));
-        return b;
-    };
-    const gpu::Buffer lit_buffer = buffer(lit, "test texel lit"), albedo_buffer = buffer(albedo, "test texel albedo"),
-                      surface_buffer = buffer(surfaces, "test texel surfaces");
+    const gpu::Buffer lit_buffer = vec4_buffer(lit, "test texel lit"), albedo_buffer = vec4_buffer(albedo, "test texel albedo"),
+                      surface_buffer = vec4_buffer(surfaces, "test texel surfaces");
     game::TexelRecord record;
     record.texture = glm::vec4(0.0f, float(model.size), 0.0f, 0.0f);
     for (std::size_t f = 0; f < 5; ++f) record.faces[f] = glm::vec4(model.faces[f]);
@@ -768,14 +769,8 @@ TEST_F(WorldRendererTest, ProbesLightATexelLitFaceFromWhereTheBakedLightComes) {
     const std::size_t texels = std::size_t(model.size) * std::size_t(model.size);
     std::vector<glm::vec4> lit(texels, glm::vec4(0.3f)), albedo(texels, glm::vec4(0.7f, 0.7f, 0.7f, 1.0f));
     std::vector<glm::vec4> surfaces(3 * texels, glm::vec4(center, 1.0f));
-    const auto buffer = [&](const std::vector<glm::vec4>& values, const char* name) {
-        gpu::Buffer b = device().create_buffer(
-            {values.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryKind::upload, name});
-        device().upload(b, std::as_bytes(std::span<const glm::vec4>(values)));
-        return b;
-    };
-    const gpu::Buffer lit_buffer = buffer(lit, "test texel lit"), albedo_buffer = buffer(albedo, "test texel albedo"),
-                      surface_buffer = buffer(surfaces, "test texel surfaces");
+    const gpu::Buffer lit_buffer = vec4_buffer(lit, "test texel lit"), albedo_buffer = vec4_buffer(albedo, "test texel albedo"),
+                      surface_buffer = vec4_buffer(surfaces, "test texel surfaces");
     view.texel_lit = &lit_buffer;
     view.texel_albedo = &albedo_buffer;
     view.texel_surfaces = &surface_buffer;
