@@ -296,6 +296,14 @@ TEST_F(MenuFixture, QuitAsksOnlyWhenSomethingIsUnsaved) {
     ASSERT_TRUE(click("Quit"));
     a = click("Quit without saving");
     ASSERT_TRUE(a && a->quit);
+    // The scene editor's unsaved edits: the question says so, and its save saves them too.
+    menu.open();
+    in.unsaved_scene = "level.json";
+    ASSERT_TRUE(click("Quit"));
+    EXPECT_FALSE(click("Save to slot 1 and quit")) << "not offered: it would drop the scene's edits";
+    a = click("Save the scene and slot 1, and quit");
+    ASSERT_TRUE(a);
+    EXPECT_TRUE(a->save_and_quit);
 }
 
 TEST_F(MenuFixture, BackWalksUpThePagesAndButtonsStayPut) {
