@@ -11,7 +11,8 @@ struct DirectParams {
     int pad_f;            // (the faces computed are FACES, a specialisation constant)
     float wall_height;    // unfolded proxy shadows: the face's height
     int proxy_per_light;  // 1: gi_light_bins wrote a proxy mask per (bin, point light)
-    int pad1, pad2, pad3;
+    int bins_x, bins_y;   // the workgroup grid (LIST: the bins, one workgroup per listed bin)
+    int list_first;       // LIST: workgroup i computes bin u_dirty.bins[list_first + i]
 };
 #define GI_PASS_PARAMS DirectParams
 #include "lantern/gi_common.glsl"
@@ -21,6 +22,12 @@ const bool POINT_MAP = (FEATURES & 4u) != 0u; // gi.shadow_method = shadow_map: 
 // gi.light_softness is 1 (the default): the falloff is linear, no pow. lavapipe evaluates
 // pow as exp2(log2) per (texel, light) pair: about 40 % of the emissives' cost.
 const bool LINEAR_FALLOFF = (FEATURES & 8u) != 0u;
+// Dirty light bins (docs/gi.md): workgroup i computes bin u_dirty.bins[list_first + i]
+// (row-major in a bins_x x bins_y grid) and the other bins keep what they hold.
+const bool LIST = (FEATURES & 16u) != 0u;
+// Bins no light reaches: what every texel holds without light, with the light loops compiled
+// out (lavapipe runs a loop's body at least once, masked, so an empty bin costs a light).
+const bool NO_LIGHTS = (FEATURES & 32u) != 0u;
 
 layout(constant_id = 4) const int MAX_LIGHTS = 2048; // point lights + emissives (64 KiB UBO)
 
@@ -40,6 +47,7 @@ layout(std430, binding = 12) writeonly buffer UpperPZ { uvec2 texels[]; } o_uppe
 layout(std430, binding = 13) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
 layout(std430, binding = 14) readonly buffer PointMapBins { uvec2 bins[]; } u_point_map; // gi_point_map.glsl
 layout(std430, binding = 15) readonly buffer ProxyBins { uint masks[]; } u_proxy_bins; // gi_light_bins
+layout(std430, binding = 16) readonly buffer DirtyBins { uint bins[]; } u_dirty; // LIST
 
 // The proxies this workgroup's bin lists, in ascending order (gi_shadow.glsl's loops).
 int g_proxy_base;
@@ -194,13 +202,19 @@ void texel_light(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
 }
 
 void main() {
-    ivec2 o = block_origin();
+    uvec2 group = gl_WorkGroupID.xy, groups = gl_NumWorkGroups.xy;
+    if (LIST) {
+        groups = uvec2(pc.pass.bins_x, pc.pass.bins_y);
+        uint bin = u_dirty.bins[pc.pass.list_first + int(gl_WorkGroupID.x)];
+        group = uvec2(bin % groups.x, bin / groups.x);
+    }
+    ivec2 o = ivec2((group * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy) * uvec2(BLOCK_W, BLOCK_H));
     if (o.x >= pc.size.x) return;
+    g_bin = int(group.y * groups.x + group.x);
     g_bin_words = (pc.counts.x + pc.counts.y + 31) >> 5;
-    g_bin_base = int(gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * g_bin_words;
+    g_bin_base = g_bin * g_bin_words;
     g_proxy_words = (pc.counts.w + 31) >> 5;
-    g_bin = int(gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x);
-    g_bins_total = int(gl_NumWorkGroups.x * gl_NumWorkGroups.y);
+    g_bins_total = int(groups.x * groups.y);
     g_proxy_base = g_bin * g_proxy_words;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);
@@ -215,7 +229,7 @@ void main() {
                 ivec2 cell = ivec2(floor(p));
                 wall = HAS_WALLS && is_wall(cell);
                 // A wall's ground light is 0; with no face computed a wall texel has no light.
-                if (!wall || FACES != 0u) texel_light(wall, cell, p, t);
+                if (!NO_LIGHTS && (!wall || FACES != 0u)) texel_light(wall, cell, p, t);
             }
             int index = texel_index(x, y);
             o_direct.texels[index] = pack_rgba16f(vec4(t.color, 0.0));

@@ -3,11 +3,13 @@
 // settings and inputs, its Vulkan recorder and its C++ reference.
 #include "rows/rows.hpp"
 
+#include "lantern/core/hash.hpp"
 #include "lantern/gi/point_map.hpp"
 #include "lantern/gi/sun_map.hpp"
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <array>
 #include <cstring>
@@ -99,7 +101,9 @@ struct DirectParams {
     float light_softness = 0, face_exponent = 1;
     std::int32_t pad_f = 0; // (the faces computed: PipelineSpec::faces)
     float wall_height = 0;
-    std::int32_t proxy_per_light = 0, pad1 = 0, pad2 = 0, pad3 = 0;
+    std::int32_t proxy_per_light = 0;
+    std::int32_t bins_x = 0, bins_y = 0; // the workgroup grid (with feature_list: one workgroup per listed bin)
+    std::int32_t list_first = 0;         // feature_list: the first listed bin this dispatch computes
 };
 struct DirectionalParams {
     float wall_height = 0, angle_scale = 0, face_exponent = 1;
@@ -111,6 +115,8 @@ constexpr std::uint32_t feature_upper = 1;   // unfolded proxy shadows (unfolds_
 constexpr std::uint32_t feature_sun_map = 2; // gi.sun_shadow_method shadow_map
 constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
 constexpr std::uint32_t feature_linear_falloff = 8; // gi.light_softness 1: no pow (gi_direct.comp)
+constexpr std::uint32_t feature_list = 16; // gi_direct.comp: one workgroup per listed bin (dirty light bins)
+constexpr std::uint32_t feature_no_lights = 32; // gi_direct.comp: bins no light reaches (the light loops left out)
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
@@ -188,7 +194,100 @@ void reference_ao_row(ReferenceContext& c) { c.store.put(Tex::ao, reference_ao(c
 struct DirectState : vk::PassState {
     gpu::Buffer bins, proxy_bins, lights;
     UploadedArray map_bins;
+    // Dirty light bins: what the outputs hold (the context of the last run, 0 when they hold
+    // anything else) and each bin's lights then; the bins recorded this run.
+    std::uint64_t context = 0;
+    std::vector<std::uint64_t> bin_lights;
+    gpu::Buffer dirty;
 };
+
+// ---- dirty light bins (docs/gi.md, "Dirty light bins")
+//
+// A direct-pass workgroup (a light bin) writes its own texels only, and what it writes
+// depends on the window, the walls, the proxies, the settings, the output textures and the
+// lights that reach its texels (a texel farther from a light than its radius gets nothing
+// from it), taken in index order. The row keeps a hash of the first group (the context) and
+// one per bin of the second; when only lights changed since it last ran, a bin whose lights
+// did not change holds what a new run would write, and the row records the other bins
+// alone (a torch's flicker, the player's lantern: a few bins of the window).
+
+// Everything the outputs depend on but the lights.
+std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uint32_t features, bool proxy_per_light) {
+    const FrameInputs& in = r.in;
+    const WallView& walls = in.walls;
+    Hasher h;
+    h.add(hash_window(in.window)).add(in.window.width).add(in.window.height).add(in.window.resolution);
+    h.add(walls.width).add(walls.height).add(walls.origin.x).add(walls.origin.y).add(walls.phase.x).add(walls.phase.y);
+    h.add_bytes(walls.cells, std::size_t(walls.width) * std::size_t(walls.height));
+    h.add_span(std::span(in.proxies)).add(in.wall_height).add(r.plan.has_walls_in_window);
+    h.add(in.settings.light_softness).add(in.settings.wall_face_exponent).add(computed_faces(in.settings));
+    h.add(features).add(proxy_per_light).add(r.block_h()).add(r.group_x()).add(r.group_y());
+    h.add(reinterpret_cast<std::uintptr_t>(out.data()));
+    for (const Tex t : out) h.add(r.has(t) ? r.serial(t) : 0);
+    for (const Tex t : upper_outputs(out)) h.add(r.has(t) ? r.serial(t) : 0);
+    const std::uint64_t v = h.value();
+    return v ? v : 1;
+}
+
+// Per bin (row-major, bins_x x bins_y of bin_w x bin_h texels), a hash of the lights that
+// can reach one of its texels, in index order (points, then emissives: the shader's order).
+// A bin no light reaches (bin_lights).
+constexpr std::uint64_t no_light_bin = 0x62696e73ull;
+
+std::vector<std::uint64_t> bin_lights(const FrameInputs& lights, const GiWindow& w, std::uint32_t bins_x, std::uint32_t bins_y,
+                                      float bin_w, float bin_h) {
+    std::vector<std::uint64_t> out(std::size_t(bins_x) * bins_y, no_light_bin);
+    const float res = float(w.resolution);
+    auto add = [&](const GpuPointLight& l, std::uint64_t id) {
+        const std::uint64_t light = Hasher().add(id).add_bytes(&l, sizeof l).value();
+        // In texel units: texel x's centre is x + 0.5. A texel is reached when its centre is
+        // within the radius; one texel more, and the float error of far coordinates, pad it.
+        const double cx = (double(l.position_radius.x) - double(w.view.min_x)) * res,
+                     cz = (double(l.position_radius.y) - double(w.view.min_z)) * res;
+        const double reach = double(l.position_radius.z) * res + 1.0 +
+                             1e-5 * res * (std::abs(double(l.position_radius.x)) + std::abs(double(l.position_radius.y)) +
+                                           std::abs(double(l.position_radius.z)));
+        std::uint32_t x0 = 0, x1 = bins_x, z0 = 0, z1 = bins_y;
+        const bool finite = std::isfinite(cx) && std::isfinite(cz) && std::isfinite(reach);
+        if (finite) {
+            if (!(reach >= 0.0)) return; // a negative radius reaches nothing
+            auto span = [reach](double c, double size, std::uint32_t count, std::uint32_t& lo, std::uint32_t& hi) {
+                const double a = std::floor((c - reach) / size), b = std::floor((c + reach) / size) + 1.0;
+                lo = std::uint32_t(std::clamp(a, 0.0, double(count)));
+                hi = std::uint32_t(std::clamp(b, 0.0, double(count)));
+            };
+            span(cx, bin_w, bins_x, x0, x1);
+            span(cz, bin_h, bins_y, z0, z1);
+        }
+        for (std::uint32_t bz = z0; bz < z1; ++bz)
+            for (std::uint32_t bx = x0; bx < x1; ++bx) {
+                if (finite) { // the disc against the bin's rectangle
+                    const double dx = std::max({double(bx) * bin_w - cx, 0.0, cx - double(bx + 1) * bin_w}),
+                                 dz = std::max({double(bz) * bin_h - cz, 0.0, cz - double(bz + 1) * bin_h});
+                    if (dx * dx + dz * dz > reach * reach) continue;
+                }
+                std::uint64_t& h = out[std::size_t(bz) * bins_x + bx];
+                h = Hasher(h).add(light).value();
+            }
+    };
+    const std::size_t points = lights.point_lights.size();
+    for (std::size_t i = 0; i < points; ++i) add(lights.point_lights[i], i);
+    for (std::size_t i = 0; i < lights.emissive_lights.size(); ++i)
+        add(lights.emissive_lights[i], (std::uint64_t(1) << 32) | (points + i));
+    return out;
+}
+
+// Whether a row after this one writes one of `outputs` this frame. The baked row adds the
+// mixed lights' light into the direct textures in place, after the bounce passes read them:
+// the texture then holds more than this row's light, and a kept bin would hold it twice.
+bool written_later(PassRecorder& r, TexSet outputs) {
+    bool after = false;
+    for (const PassRow* row : method(r.in.settings.method).rows) {
+        if (after && r.plan.run.has(row->pass) && (row->outputs(r.in).bits & outputs.bits) != 0) return true;
+        after = after || row->pass == r.row().pass;
+    }
+    return false;
+}
 
 // Uploads this frame's point-light maps and the lights with their headers; false (the
 // DDA) when the maps exceed what a storage buffer holds.
@@ -237,10 +336,12 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
             if (r.has(t)) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
     }
-    if (no_lights) return;
     DirectState& s = r.state<DirectState>();
-    const bool point_map = upload_point_maps(
-        r, lights, s, in.settings.shadow_method == scene::ShadowMethod::shadow_map && !lights.point_lights.empty());
+    if (no_lights) {
+        s.context = 0; // cleared, not what a run writes (face flags)
+        return;
+    }
+    const bool want_map = in.settings.shadow_method == scene::ShadowMethod::shadow_map && !lights.point_lights.empty();
     const std::uint32_t blocks_x = std::uint32_t(r.pitch(out[0]) / 4);
     const std::uint32_t blocks_y = (std::uint32_t(w.height) + r.block_h() - 1) / r.block_h();
     const std::uint32_t bins_x = (blocks_x + r.group_x() - 1) / r.group_x(), bins_y = (blocks_y + r.group_y() - 1) / r.group_y();
@@ -251,8 +352,52 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const VkDeviceSize per_bin = VkDeviceSize(bins_x) * bins_y * proxy_words * 4;
     const VkDeviceSize per_light = per_bin * lights.point_lights.size();
     const bool proxy_per_light = proxy_words > 0 && per_light <= (VkDeviceSize(16) << 20);
+    const std::uint32_t base_features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
+                                        (in.settings.light_softness == 1.0f ? feature_linear_falloff : 0u);
+
+    // Dirty light bins: the bins to record, all of them unless only lights changed. Of those,
+    // the bins no light reaches take the light-free variant.
+    const std::uint32_t bin_count = bins_x * bins_y;
+    const std::uint64_t context = direct_context(r, out, base_features | (want_map ? feature_point_map : 0u), proxy_per_light);
+    std::vector<std::uint64_t> hashes =
+        bin_lights(lights, w, bins_x, bins_y, float(4 * r.group_x()), float(r.block_h() * r.group_y()));
+    const bool overwritten = !r.dirty_bins() || written_later(r, face_set(out, in));
+    bool kept = s.context == context && s.bin_lights.size() == hashes.size() && !overwritten;
+    std::vector<std::uint32_t> lit, dark;
+    auto list_bins = [&] {
+        lit.clear(), dark.clear();
+        for (std::uint32_t b = 0; b < bin_count; ++b)
+            if (!kept || hashes[b] != s.bin_lights[b]) (hashes[b] == no_light_bin ? dark : lit).push_back(b);
+    };
+    list_bins();
+    s.context = overwritten ? 0 : context;
+    std::swap(s.bin_lights, hashes); // hashes: the last run's
+    if (lit.empty() && dark.empty()) { // nothing reaching the window changed
+        r.count_workgroups(bin_count, 0);
+        return;
+    }
+
+    const bool point_map = upload_point_maps(r, lights, s, want_map);
+    if (point_map != want_map) { // the maps did not fit: the DDA, which sums in another order
+        s.context = 0;
+        if (kept) {
+            kept = false;
+            std::swap(s.bin_lights, hashes);
+            list_bins();
+            std::swap(s.bin_lights, hashes);
+        }
+    }
+    // Lists (lit bins, then dark ones) unless every bin is lit; one dispatch row each.
+    const bool listed = r.dirty_bins() && lit.size() < bin_count && std::max(lit.size(), dark.size()) <= 65535;
+    std::vector<std::uint32_t> list;
+    if (listed) {
+        list = lit;
+        list.insert(list.end(), dark.begin(), dark.end());
+    }
     const VkDeviceSize proxy_bytes = std::max<VkDeviceSize>(16, per_bin + (proxy_per_light ? per_light : 0));
-    for (auto [buffer, bytes, name] : {std::tuple{&s.bins, bin_bytes, "gi light bins"}, std::tuple{&s.proxy_bins, proxy_bytes, "gi proxy bins"}})
+    const VkDeviceSize list_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(list.size()) * 4);
+    for (auto [buffer, bytes, name] : {std::tuple{&s.bins, bin_bytes, "gi light bins"}, std::tuple{&s.proxy_bins, proxy_bytes, "gi proxy bins"},
+                                       std::tuple{&s.dirty, list_bytes, "gi dirty light bins"}})
         if (!*buffer || buffer->size() < bytes) {
             gpu::BufferDesc desc;
             desc.size = bytes;
@@ -260,6 +405,11 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
             desc.name = name;
             *buffer = r.device().create_buffer(desc);
         }
+    if (listed) {
+        r.cmd.upload(s.dirty, 0, std::as_bytes(std::span<const std::uint32_t>(list)));
+        r.cmd.barrier_transfer_to_compute();
+    }
+    r.count_workgroups(bin_count, lit.size() + dark.size());
     const glm::ivec2 counts(int(lights.point_lights.size()), int(lights.emissive_lights.size()));
     r.cmd.bind(r.pipeline<LightBinParams>("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 8, .group_y = 8}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
@@ -280,38 +430,52 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
     r.cmd.barrier_compute_to_compute();
 
-    const std::uint32_t features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
-                                   (point_map ? feature_point_map : 0u) |
-                                   (in.settings.light_softness == 1.0f ? feature_linear_falloff : 0u);
-    r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
-                                                          .walls = r.plan.has_walls_in_window,
-                                                          .features = features,
-                                                          .faces = faces}));
-    r.cmd.push_descriptors(gpu::DescriptorWrites()
-                               .uniform_texel_buffer(0, r.walls())
-                               .uniform_buffer(1, r.proxies())
-                               .uniform_buffer(2, s.lights)
-                               .storage_buffer(3, r.buffer(out[0]))
-                               .storage_buffer(4, r.buffer(out[1]))
-                               .storage_buffer(5, face_buffer(r, out, 0))
-                               .storage_buffer(6, face_buffer(r, out, 1))
-                               .storage_buffer(7, face_buffer(r, out, 2))
-                               .storage_buffer(8, face_buffer(r, out, 3))
-                               .storage_buffer(9, s.bins)
-                               .storage_buffer(10, upper_buffer(r, out, 0))
-                               .storage_buffer(11, upper_buffer(r, out, 1))
-                               .storage_buffer(12, upper_buffer(r, out, 2))
-                               .storage_buffer(13, upper_buffer(r, out, 3))
-                               .storage_buffer(14, s.map_bins.buffer)
-                               .storage_buffer(15, s.proxy_bins));
+    const std::uint32_t features = base_features | (point_map ? feature_point_map : 0u);
+    const gpu::DescriptorWrites writes = gpu::DescriptorWrites()
+                                             .uniform_texel_buffer(0, r.walls())
+                                             .uniform_buffer(1, r.proxies())
+                                             .uniform_buffer(2, s.lights)
+                                             .storage_buffer(3, r.buffer(out[0]))
+                                             .storage_buffer(4, r.buffer(out[1]))
+                                             .storage_buffer(5, face_buffer(r, out, 0))
+                                             .storage_buffer(6, face_buffer(r, out, 1))
+                                             .storage_buffer(7, face_buffer(r, out, 2))
+                                             .storage_buffer(8, face_buffer(r, out, 3))
+                                             .storage_buffer(9, s.bins)
+                                             .storage_buffer(10, upper_buffer(r, out, 0))
+                                             .storage_buffer(11, upper_buffer(r, out, 1))
+                                             .storage_buffer(12, upper_buffer(r, out, 2))
+                                             .storage_buffer(13, upper_buffer(r, out, 3))
+                                             .storage_buffer(14, s.map_bins.buffer)
+                                             .storage_buffer(15, s.proxy_bins)
+                                             .storage_buffer(16, s.dirty);
     auto p = r.params<DirectParams>(w.width, w.height);
     p.counts.x = counts.x, p.counts.y = counts.y;
     p.pass.light_softness = in.settings.light_softness;
     p.pass.face_exponent = in.settings.wall_face_exponent;
     p.pass.wall_height = in.wall_height;
     p.pass.proxy_per_light = proxy_per_light ? 1 : 0;
-    r.cmd.push_constants(p);
-    r.dispatch(w.width, w.height);
+    p.pass.bins_x = std::int32_t(bins_x);
+    p.pass.bins_y = std::int32_t(bins_y);
+    auto run = [&](std::uint32_t variant, std::size_t first, std::size_t count) {
+        r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
+                                                              .walls = r.plan.has_walls_in_window,
+                                                              .features = features | variant,
+                                                              .faces = faces}));
+        r.cmd.push_descriptors(writes);
+        p.pass.list_first = std::int32_t(first);
+        r.cmd.push_constants(p);
+        if (variant & feature_list)
+            r.cmd.dispatch(std::uint32_t(count), 1);
+        else
+            r.dispatch(w.width, w.height);
+    };
+    if (!listed) {
+        run(0, 0, 0);
+    } else {
+        if (!lit.empty()) run(feature_list, 0, lit.size());
+        if (!dark.empty()) run(feature_list | feature_no_lights, lit.size(), dark.size());
+    }
     r.cmd.barrier_compute_to_compute();
     if (out.data() != direct_set && out.data() != point_set) return;
     // What a later frame may need, before it does (creating it then stalls that frame): this
@@ -319,7 +483,9 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const bool sun_map = in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map;
     for (int flip = 0; flip < 4; ++flip) {
         const bool proxies = (flip & 1) != 0, walls = (flip & 2) != 0;
-        r.prefetch_pipeline<DirectParams>("gi_direct.comp", {.proxies = proxies, .walls = walls, .features = features, .faces = faces});
+        for (std::uint32_t variant : {0u, feature_list, feature_list | feature_no_lights})
+            r.prefetch_pipeline<DirectParams>("gi_direct.comp",
+                                              {.proxies = proxies, .walls = walls, .features = features | variant, .faces = faces});
         r.prefetch_pipeline<DirectionalParams>(
             "gi_directional.comp",
             {.proxies = proxies, .walls = walls, .features = directional_features(in, sun_map), .faces = faces});

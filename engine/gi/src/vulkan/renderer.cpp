@@ -94,6 +94,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(gpu::Device& device, const Re
     r->block_h_ = options.block_h ? options.block_h : (cpu ? 4u : 1u);
     r->group_x_ = options.group_x ? options.group_x : (cpu ? 8u : 16u);
     r->group_y_ = options.group_y ? options.group_y : (cpu ? 8u : 8u);
+    r->dirty_bins_ = options.dirty_bins;
     // gi_exact.glsl: CPU drivers divide and take roots with the processor's IEEE
     // instructions; GPUs' may err by ULPs, corrected with fma residuals where it is fused.
     r->pipelines_->exact_rounding = cpu ? 0u : (driver_fuses_fma(device) ? 2u : 1u);
@@ -127,6 +128,7 @@ void Renderer::ensure_texture(Tex t, TexFormat format, int width, int height, bo
     g.width = width;
     g.height = height;
     g.pitch = pitch_of(width);
+    g.serial = ++texture_serial_;
     const VkDeviceSize texel_bytes = rgba8 ? 4 : VkDeviceSize(bytes_per_texel(format));
     gpu::BufferDesc desc;
     desc.size = std::max<VkDeviceSize>(16, (VkDeviceSize(g.pitch) * VkDeviceSize(height) * texel_bytes + 15) & ~VkDeviceSize(15));

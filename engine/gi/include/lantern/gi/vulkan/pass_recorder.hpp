@@ -55,6 +55,18 @@ class PassRecorder {
     const gpu::BufferView& view(Tex t) const { return texture(t).view; }
     const gpu::BufferView& view_u32(Tex t) const { return texture(t).view_u32; } // words32 textures
     int pitch(Tex t) const { return texture(t).pitch; }
+    // Which allocation of `t` this is: a texture reallocated (a new size, or released and
+    // allocated again) holds nothing of what was written before.
+    std::uint64_t serial(Tex t) const { return texture(t).serial; }
+    const PassRow& row() const { return row_; }
+    // RendererOptions::dirty_bins.
+    bool dirty_bins() const { return r_.dirty_bins_; }
+    // This pass recorded `recorded` of its `workgroups` (Renderer::partial_work).
+    void count_workgroups(std::uint64_t workgroups, std::uint64_t recorded) {
+        Renderer::PartialWork& w = r_.partial_work_[std::size_t(row_.pass)];
+        w.workgroups += workgroups;
+        w.recorded += recorded;
+    }
     const gpu::BufferView& walls() const { return r_.walls_view_; }
     const gpu::Buffer& lights() const { return r_.lights_; }
     const gpu::Buffer& proxies() const { return r_.proxies_; }

@@ -46,6 +46,11 @@ struct RendererOptions {
     std::uint32_t block_h = 0;      // texel rows per invocation; 0 = by device type
     std::uint32_t group_x = 0;      // workgroup size in blocks; 0 = by device type
     std::uint32_t group_y = 0;
+    // The direct pass records only the workgroups whose lights changed since it last ran,
+    // and runs the ones no light reaches without its light loops (docs/gi.md, "Dirty light
+    // bins"). The results are the same bit for bit; false records every workgroup the one
+    // way (benchmarks compare the two).
+    bool dirty_bins = true;
 };
 
 struct PassTiming {
@@ -124,6 +129,15 @@ class Renderer {
     std::uint32_t group_x() const { return group_x_; }
     std::uint32_t group_y() const { return group_y_; }
 
+    // Workgroups of a pass that can record only part of its window (the direct and mixed
+    // passes keep the workgroups whose lights did not change: docs/gi.md, "Dirty light
+    // bins"), summed over every frame recorded: how many it had, and how many it recorded.
+    struct PartialWork {
+        std::uint64_t workgroups = 0;
+        std::uint64_t recorded = 0;
+    };
+    PartialWork partial_work(Pass pass) const { return partial_work_[std::size_t(pass)]; }
+
     // Benchmark baseline: GPU time (ms, median of `repeats`) of the copy kernel (texel-buffer
     // read, one 64-bit word written per texel: the GI passes' access pattern) run as one
     // dispatch per entry of `bytes_written`, each writing that many bytes. Blocking.
@@ -139,6 +153,7 @@ class Renderer {
         TexFormat format = TexFormat::rgba16f;
         int width = 0, height = 0, pitch = 0;
         bool rgba8 = false;
+        std::uint64_t serial = 0; // which allocation this is (unique per renderer)
     };
     struct Pipelines;
     struct QuerySet;
@@ -162,6 +177,9 @@ class Renderer {
     gpu::Buffer walls_;
     gpu::BufferView walls_view_;
     std::uint64_t wall_bytes_uploaded_ = 0;
+    std::uint64_t texture_serial_ = 0;
+    std::array<PartialWork, pass_count> partial_work_{};
+    bool dirty_bins_ = true;
     gpu::Buffer lights_, proxies_, suns_; // uniform buffers, written with update_buffer
     std::map<const PassRow*, std::unique_ptr<PassState>> states_; // each row's own GPU state
     std::vector<QuerySet> queries_;

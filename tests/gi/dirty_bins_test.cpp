@@ -1,0 +1,189 @@
+// Dirty light bins (docs/gi.md): the direct pass records only the workgroups whose lights
+// changed since it last ran, and runs those no light reaches without its light loops. Two
+// renderers see the same frames, one with dirty bins and one without: every texture of
+// every frame is the same bit for bit, the first records fewer workgroups where only
+// lights changed, and all of them where anything else did. The frames cover a flicker, a
+// light that moves, one that leaves, removed and added lights (indices shift), emissives,
+// proxies, unfolded proxy shadows, a sun coming and going, and mixed lights.
+#include "gi_compare.hpp"
+#include "test_scenes.hpp"
+
+#include "gpu_test_support.hpp"
+#include "lantern/gi/baked_light.hpp"
+#include "lantern/gi/frame_runner.hpp"
+#include "lantern/gi/pass_table.hpp"
+#include "lantern/gi/vulkan/renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace lantern::gi;
+using gi_test::inputs_of;
+using lantern::scene::Scene;
+
+namespace {
+
+class DirtyBins : public lantern::test::GpuTest {
+  protected:
+    void SetUp() override {
+        GpuTest::SetUp();
+        if (IsSkipped()) return;
+        auto a = vk::Renderer::create(device());
+        auto b = vk::Renderer::create(device(), {.dirty_bins = false});
+        ASSERT_TRUE(a.ok() && b.ok());
+        dirty_ = std::move(a.value());
+        full_ = std::move(b.value());
+    }
+    void TearDown() override {
+        dirty_.reset();
+        full_.reset();
+        GpuTest::TearDown();
+    }
+
+    // What a pass did on the renderer with dirty bins: nothing, part of its workgroups, all
+    // of them; `any`: not checked (the pass does not run).
+    enum class Expect { any, none, some, all };
+
+    // One frame on both renderers: every contract texture equal bit for bit; the direct and
+    // mixed passes recorded as many workgroups as `direct` and `mixed` say.
+    void frame(const std::string& name, const FrameInputs& in, Expect direct, Expect mixed = Expect::any) {
+        PassPlan plan = plan_passes(in, true);
+        const vk::Renderer::PartialWork before[2] = {dirty_->partial_work(Pass::direct), dirty_->partial_work(Pass::mixed)};
+        auto a = run_vulkan_frame(*dirty_, in, plan);
+        auto b = run_vulkan_frame(*full_, in, plan);
+        ASSERT_TRUE(a.ok() && b.ok()) << name;
+        const vk::Renderer::PartialWork after[2] = {dirty_->partial_work(Pass::direct), dirty_->partial_work(Pass::mixed)};
+        const Expect expect[2] = {direct, mixed};
+        for (int k = 0; k < 2; ++k) {
+            const std::string what = name + (k == 0 ? ": direct" : ": mixed");
+            const std::uint64_t workgroups = after[k].workgroups - before[k].workgroups,
+                                recorded = after[k].recorded - before[k].recorded;
+            if (expect[k] != Expect::any) {
+                ASSERT_GT(workgroups, 0u) << what;
+            }
+            switch (expect[k]) {
+            case Expect::any: break;
+            case Expect::none: EXPECT_EQ(recorded, 0u) << what; break;
+            case Expect::some:
+                EXPECT_GT(recorded, 0u) << what;
+                EXPECT_LT(recorded, workgroups) << what;
+                break;
+            case Expect::all: EXPECT_EQ(recorded, workgroups) << what; break;
+            }
+        }
+        int compared = 0;
+        for (const auto& [tex, want] : b->textures) {
+            auto it = a->textures.find(tex);
+            ASSERT_NE(it, a->textures.end()) << name << ": " << tex;
+            const Texture& got = it->second;
+            ASSERT_EQ(got.texels.size(), want.texels.size()) << name << ": " << tex;
+            std::size_t differ = 0, first = 0;
+            for (std::size_t i = 0; i < got.texels.size(); ++i)
+                if (std::memcmp(&got.texels[i], &want.texels[i], sizeof(float)) != 0 && differ++ == 0) first = i;
+            EXPECT_EQ(differ, 0u) << name << ": " << tex << " differs in " << differ << " values, first at value " << first
+                                  << " (" << got.texels[first] << " against " << want.texels[first] << ")";
+            ++compared;
+        }
+        EXPECT_GE(compared, 6) << name;
+    }
+
+    std::unique_ptr<vk::Renderer> dirty_, full_;
+};
+
+// A cave with point lights, an emissive, and proxies that cast unfolded shadows up the walls.
+Scene lit_cave() {
+    Scene s = gi_test::open_scene({20, 15}, {40, 30}, 4);
+    s.walls = gi_test::cave(40, 30, 7, 0.42f);
+    s.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::unfold;
+    s.point_lights = {gi_test::point({8.5f, 7.5f}, {1.0f, 0.6f, 0.3f}, 1.0f, 6.5f),
+                      gi_test::point({30.2f, 20.7f}, {0.3f, 0.6f, 1.0f}, 1.2f, 5.0f),
+                      gi_test::point({20.5f, 14.5f}, {1.0f, 1.0f, 0.8f}, 0.8f, 4.0f),
+                      gi_test::point({34.5f, 5.5f}, {1.0f, 0.4f, 0.2f}, 1.0f, 6.0f)};
+    s.emissive_lights = {gi_test::emissive({12.5f, 24.5f}, {0.2f, 1.0f, 0.4f}, 1.0f, 4.0f)};
+    for (glm::vec2 p : {glm::vec2(10.5f, 9.0f), glm::vec2(29.0f, 18.5f)}) {
+        lantern::scene::ShadowProxy proxy;
+        proxy.position = p;
+        proxy.size = {0.4f, 0.4f};
+        s.shadow_proxies.push_back(proxy);
+    }
+    return s;
+}
+
+} // namespace
+
+TEST_F(DirtyBins, OnlyTheBinsOfChangedLightsAreRecordedAndTheFrameIsTheSame) {
+    Scene s = lit_cave();
+    frame("the first frame", inputs_of(s), Expect::all);
+    frame("nothing changed", inputs_of(s), Expect::none);
+    s.point_lights[0].intensity *= 0.83f;
+    frame("a torch flickers", inputs_of(s), Expect::some);
+    s.point_lights[1].position += glm::vec2(0.3f, -0.2f);
+    frame("a light moves", inputs_of(s), Expect::some);
+    s.emissive_lights[0].intensity = 1.4f;
+    frame("an emissive brightens", inputs_of(s), Expect::some);
+    s.point_lights.pop_back();
+    frame("the last point light is gone (the emissive's index shifts)", inputs_of(s), Expect::some);
+    s.point_lights.insert(s.point_lights.begin(), gi_test::point({3.5f, 3.5f}, {1.0f, 0.9f, 0.9f}, 1.0f, 3.0f));
+    frame("a point light comes first (every index shifts)", inputs_of(s), Expect::some);
+    s.point_lights[1].position = {-40.0f, -40.0f};
+    frame("a light leaves the window", inputs_of(s), Expect::some);
+    s.shadow_proxies[0].position.x += 0.25f;
+    frame("a proxy moves", inputs_of(s), Expect::all);
+    s.point_lights[2].intensity *= 1.1f;
+    frame("after it, a flicker again", inputs_of(s), Expect::some);
+    s.walls.cells[std::size_t(15 * 40 + 20)] ^= 1;
+    frame("a wall is mined", inputs_of(s), Expect::all);
+    s.point_lights[2].intensity *= 0.9f;
+    frame("after it, a flicker again", inputs_of(s), Expect::some);
+}
+
+// With a sun the direct pass writes the point lights' textures and the directional pass the
+// frame's; when the sun sets, the direct pass writes the frame's textures again (all of it).
+TEST_F(DirtyBins, ASunComingAndGoingRecordsEverything) {
+    Scene s = lit_cave();
+    frame("the first frame", inputs_of(s), Expect::all);
+    lantern::scene::DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.3f));
+    sun.intensity = 0.4f;
+    s.directional_lights.push_back(sun);
+    frame("the sun rises", inputs_of(s), Expect::all);
+    s.point_lights[0].intensity *= 0.9f;
+    frame("a flicker under the sun", inputs_of(s), Expect::some);
+    s.directional_lights.clear();
+    frame("the sun sets", inputs_of(s), Expect::all);
+    s.point_lights[0].intensity *= 0.9f;
+    frame("a flicker at night", inputs_of(s), Expect::some);
+}
+
+// Mixed lights (a bake is used): the baked pass adds their direct light into the direct
+// textures in place, after the bounce passes read them, so the direct pass keeps no bin
+// then. The mixed pass keeps its own bins while realtime lights change.
+TEST_F(DirtyBins, MixedLightsKeepTheirOwnBins) {
+    Scene s = lit_cave();
+    s.point_lights[3].mode = lantern::scene::LightMode::mixed;
+    auto inputs = [&] {
+        FrameInputs in = inputs_of(s);
+        in.baked = gi_test::synthetic_bake(in.walls, {-2, -2}, {44, 34}, 4, 0.0f, 900);
+        split_for_bake(in, s);
+        return in;
+    };
+    {
+        const FrameInputs in = inputs();
+        ASSERT_EQ(in.mixed_lights.size(), 1u);
+        const PassPlan plan = plan_passes(in, true);
+        ASSERT_TRUE(plan.run.has(Pass::mixed) && plan.run.has(Pass::baked));
+    }
+    frame("the first frame", inputs(), Expect::all, Expect::all);
+    s.point_lights[0].intensity *= 0.8f;
+    frame("a realtime torch flickers", inputs(), Expect::all, Expect::none);
+    s.point_lights[3].position += glm::vec2(0.5f, 0.0f);
+    frame("the mixed light moves", inputs(), Expect::all, Expect::some);
+    s.point_lights[3].position = {-50.0f, 0.0f};
+    frame("the mixed light leaves (nothing is added in place)", inputs(), Expect::all, Expect::any);
+    s.point_lights[0].intensity *= 1.2f;
+    frame("a realtime torch flickers again", inputs(), Expect::some, Expect::any);
+}
