@@ -47,4 +47,10 @@ struct BakedOptions {
 };
 int baked(const BakedOptions& options);
 
+struct DirtyBinsOptions {
+    int frames = 15;     // measured frames per case (after one warm-up); median
+    int resolution = 8;  // gi.resolution of the seed scene
+};
+int dirty_bins(const DirtyBinsOptions& options);
+
 } // namespace lantern::bench

@@ -3,6 +3,7 @@
 //
 //   lantern-bench seed-table [--repeats N] [--no-reference] [--row I] [--markdown FILE]
 //   lantern-bench radiosity-noise [--frames N] [--resolution R] [--lights N]
+//   lantern-bench dirty-bins [--frames N] [--resolution R]
 //   lantern-bench baked [--chunks N] [--lights N] [--repeats N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
 //   lantern-bench accuracy [--quick] [--repeats N] [--out DIR] [--scenes A,B] [--maps DIR]
 //                          [--albedo A] [--target E] [--cache DIR | --no-cache] [--backend B]
@@ -30,6 +31,8 @@ constexpr const char* commands =
     "  radiosity-noise  the radiosity method's noise over frames: temporal noise, error against a\n"
     "              converged image and the denoiser's banding, for each noise shift, ray count,\n"
     "              accumulation and blur\n"
+    "  dirty-bins  the direct pass with dirty light bins against the same pass recording every\n"
+    "              workgroup, while one, some or all of the lights change frame after frame\n"
     "  baked       the bake (seconds per chunk on 1 and 2 threads), its memory (dense against seed 002's\n"
     "              bricks, with their error) and the frame with the lights realtime, mixed and baked\n"
     "'lantern-bench COMMAND --help' lists a command's options.\n";
@@ -117,6 +120,17 @@ int radiosity_noise_main(int argc, char** argv) {
     return lantern::bench::radiosity_noise(o);
 }
 
+int dirty_bins_main(int argc, char** argv) {
+    lantern::bench::DirtyBinsOptions o;
+    Parser p("lantern-bench dirty-bins", "[options]",
+             "The direct pass with dirty light bins (docs/gi.md) against the same pass recording every\n"
+             "workgroup, on seed 000's scene while one, some or all of the lights change every frame.");
+    p.integer("--frames", "N", "measured frames per case, after a warm-up (default 15)", o.frames, 1, 10000);
+    p.integer("--resolution", "R", "gi.resolution (default 8)", o.resolution, 1, 32);
+    if (auto exit = p.parse(argc, argv, 2)) return *exit;
+    return lantern::bench::dirty_bins(o);
+}
+
 int baked_main(int argc, char** argv) {
     lantern::bench::BakedOptions o;
     Parser p("lantern-bench baked", "[options]",
@@ -146,6 +160,7 @@ int main(int argc, char** argv) {
     if (command == "accuracy") return accuracy_main(argc, argv);
     if (command == "radiosity-noise") return radiosity_noise_main(argc, argv);
     if (command == "baked") return baked_main(argc, argv);
+    if (command == "dirty-bins") return dirty_bins_main(argc, argv);
     if (command.empty() || command.starts_with("-")) {
         if (auto exit = top.parse(argc, argv)) return *exit;
         std::fprintf(stderr, "%s\n", top.message("no command given").c_str());
