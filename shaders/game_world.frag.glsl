@@ -193,7 +193,7 @@ void main() {
         vec3 light = texel_lit[texel].rgb;
         // The GI's bounce at the texel, and the baked light's direction on a side face.
         if (HAS_GI) light = max(light + ground_indirect_light(texel_surfaces[3 * texel].xyz) + in_probe_light, vec3(0.0));
-        color = texel_albedo[texel].rgb * in_color.rgb * light;
+        color = texel_albedo[texel].rgb * in_color.rgb * (light + in_color.a); // a: its glow (a crystal)
     } else {
         // Interpolation can step a hair off the box at its edges: keep the point on it, so
         // the routing (which cell, which side) follows the face being drawn.

@@ -82,7 +82,7 @@ void main() {
         const int size = int(texture.y + 0.5);
         out_texel = ivec4(int(texture.x + 0.5) + int(rect.y + 0.5) * size + int(rect.x + 0.5), size, int(rect.z + 0.5),
                           int(rect.w + 0.5));
-        out_color.a = 0.0;
+        out_color.a = texture.w; // its glow
         // Its baked-light probe record (texture.z: 1 + the record's first texel; 0 none).
         if (face < 4 && texture.z > 0.5) out_probe_light = probe_face_light(int(texture.z + 0.5) - 1, n);
     }

@@ -800,6 +800,54 @@ TEST_F(WorldRendererTest, ProbesLightATexelLitFaceFromWhereTheBakedLightComes) {
     EXPECT_GT(p1[0] - p1[2], p0[0] - p0[2] + 5) << "and orange, not white";
 }
 
+// A glowing texel-lit part (a crystal: TexelRecord.texture.w, its box's colour the tint)
+// adds albedo x tint x glow to what its texels are lit with: brighter, in the tint's hue;
+// without glow the same part is as before.
+TEST_F(WorldRendererTest, AGlowingTexelLitPartAddsItsGlowInItsTint) {
+    auto frame = lit_room_frame();
+    ASSERT_TRUE(frame);
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+    view.art.texture_pattern = false;
+    const glm::vec3 center{9.5f, 0.4f, 15.5f}, half{0.4f, 0.4f, 0.4f};
+    const texel::Model model = texel::box_model(center - half, center + half, 4);
+    const std::size_t texels = std::size_t(model.size) * std::size_t(model.size);
+    std::vector<glm::vec4> lit(texels, glm::vec4(0.05f)), albedo(texels, glm::vec4(0.8f, 0.8f, 0.8f, 1.0f));
+    std::vector<glm::vec4> surfaces(3 * texels, glm::vec4(center, 1.0f));
+    const gpu::Buffer lit_buffer = vec4_buffer(lit, "test texel lit"), albedo_buffer = vec4_buffer(albedo, "test texel albedo"),
+                      surface_buffer = vec4_buffer(surfaces, "test texel surfaces");
+    view.texel_lit = &lit_buffer;
+    view.texel_albedo = &albedo_buffer;
+    view.texel_surfaces = &surface_buffer;
+    const glm::vec3 tint(0.3f, 0.6f, 1.0f);
+    const auto render = [&](float glow, glm::vec3 color) {
+        game::TexelRecord record;
+        record.texture = glm::vec4(0.0f, float(model.size), 0.0f, glow);
+        for (std::size_t f = 0; f < 5; ++f) record.faces[f] = glm::vec4(model.faces[f]);
+        DrawList list = world_list(*frame, false);
+        BoxInstance b;
+        b.center = center;
+        b.half = half;
+        b.material = float(int(Material::texel_lit));
+        b.color = color;
+        b.emissive = 0.0f;
+        list.boxes.push_back(b);
+        WorldView v = view;
+        v.texel_records = std::span<const game::TexelRecord>(&record, 1);
+        return draw(v, list, nullptr); // no GI: the texels' own light alone (dim)
+    };
+    const auto plain = render(0.0f, glm::vec3(1.0f)), tinted = render(0.0f, tint), glowing = render(1.2f, tint);
+    maybe_write_png(glowing, "texel_glow");
+    const glm::ivec2 px = project_pixel(view.camera, {9.5f, 0.8f, 15.5f}); // the top face
+    const auto p0 = pixel(plain, px.x, px.y), p1 = pixel(tinted, px.x, px.y), p2 = pixel(glowing, px.x, px.y);
+    std::printf("texel-lit top: plain %d %d %d, tinted %d %d %d, glowing %d %d %d\n", p0[0], p0[1], p0[2], p1[0], p1[1],
+                p1[2], p2[0], p2[1], p2[2]);
+    EXPECT_LE(p1[2], p0[2] + 1) << "a tint alone does not brighten";
+    EXPECT_LT(p1[0], p0[0]) << "it takes the tint's hue";
+    EXPECT_GT(p2[2], p1[2] + 60) << "the glow brightens it";
+    EXPECT_GT(p2[2], p2[0] + 40) << "in the tint's hue (blue over red)";
+}
+
 // ---- GI views (the HUD's): a texture over the world from above
 
 // The distance view's display colour (game_world.frag.glsl gi_view_color, GI_VIEW 2).

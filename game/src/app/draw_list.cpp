@@ -18,6 +18,9 @@ BoxInstance box(glm::vec3 center, glm::vec3 half, glm::vec3 color, Material m, f
 }
 
 constexpr glm::vec3 player_xray_colour(0.55f, 0.8f, 1.0f);
+// A texel-lit crystal's glow: below the plain glowing box's 1.6, since its own light (and
+// the others') lights its facets on top.
+constexpr float crystal_glow = 1.1f;
 
 bool in_rect(glm::vec2 p, glm::vec2 lo, glm::vec2 hi) { return p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y; }
 
@@ -101,8 +104,10 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
 
     // A part of a model that is lit per texel with texel lighting on (its model's box, white:
     // the texture has the colours), else the box it always was.
+    // `tint` and `glow`: a glowing part's colour and strength (a crystal), lit per texel too.
     auto part = [&](ecs::Entity e, int index, TexelModel model, glm::vec3 center, glm::vec3 color,
-                    std::pair<Material, float> lit, std::vector<BoxInstance>& into) {
+                    std::pair<Material, float> lit, std::vector<BoxInstance>& into, glm::vec3 tint = glm::vec3(1.0f),
+                    float glow = 0.0f) {
         const glm::vec3 extent = texel_model_half(model);
         if (!ctx.texel_lighting) {
             into.push_back(box(center, extent, color, lit.first, lit.second));
@@ -110,9 +115,11 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         }
         // The baked light's probes at the part, for its side faces (the texel pass has the
         // direct light, the GI textures the baked light's ground part).
-        out.texel_parts.push_back({e.bits() * 8u + std::uint64_t(index), int(model), center, texel_lod_for(center, view_target),
-                                   probe_record({center.x, center.z})});
-        into.push_back(box(center, extent, glm::vec3(1.0f), Material::texel_lit, float(out.texel_parts.size() - 1)));
+        TexelPart p{e.bits() * 8u + std::uint64_t(index), int(model), center, texel_lod_for(center, view_target),
+                    probe_record({center.x, center.z})};
+        p.glow = glow;
+        out.texel_parts.push_back(p);
+        into.push_back(box(center, extent, tint, Material::texel_lit, float(out.texel_parts.size() - 1)));
     };
 
     // Props.
@@ -123,8 +130,11 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         case PropKind::crystal: {
             glm::vec3 color(0.4f, 0.7f, 1.0f);
             if (const EmissiveLight* l = world.try_get<EmissiveLight>(e)) color = l->color;
-            out.boxes.push_back(box(at + glm::vec3(0, 0.28f, 0), {0.12f, 0.28f, 0.12f}, color, Material::glow, 1.6f));
-            out.boxes.push_back(box(at + glm::vec3(0.14f, 0.14f, 0.05f), {0.07f, 0.14f, 0.07f}, color, Material::glow, 1.2f));
+            // Glowing shards; with texel lighting their facets are lit per texel on top.
+            part(e, 0, TexelModel::crystal, at + glm::vec3(0, 0.28f, 0), color, {Material::glow, 1.6f}, out.boxes, color,
+                 crystal_glow);
+            part(e, 1, TexelModel::crystal_shard, at + glm::vec3(0.14f, 0.14f, 0.05f), color, {Material::glow, 1.2f},
+                 out.boxes, color, 0.75f * crystal_glow);
             break;
         }
         case PropKind::tree: {

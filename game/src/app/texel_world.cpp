@@ -22,6 +22,8 @@ constexpr std::array<glm::vec3, std::size_t(TexelModel::count)> halves = {{
     {0.42f, 0.38f, 0.42f}, // tree crown
     {0.06f, 0.7f, 0.06f},  // lamp post
     {0.04f, 0.25f, 0.04f}, // torch stick
+    {0.12f, 0.28f, 0.12f}, // crystal
+    {0.07f, 0.14f, 0.07f}, // crystal shard
 }};
 
 float noise(int model, int face, int i, int j) {
@@ -81,6 +83,18 @@ Texel paint(TexelModel model, int f, int i, int j, int w, int h) {
     }
     case TexelModel::lamp_post:
         return {side && j % 6 == 0 ? glm::vec3(0.35f, 0.35f, 0.4f) : glm::vec3(0.2f, 0.2f, 0.23f) * vary};
+    case TexelModel::crystal:
+    case TexelModel::crystal_shard: {
+        // Facets: bands running up the shard at a slant, each tilted its own way in the
+        // normal map and a little brighter or darker; a pale core line; the top brightest.
+        // Near white: the part's tint (the crystal's light colour) gives the hue.
+        if (top) return {glm::vec3(0.95f) * vary, glm::vec3(0.5f, 0.5f, 1.0f)};
+        const int band = (i + (h - 1 - j) / 2) / 2;
+        const float tilt = (band & 1) ? 0.32f : 0.68f;
+        const float shade = (band & 1) ? 0.72f : 0.9f;
+        const bool core = i == w / 2 && j > h / 4;
+        return {glm::vec3(core ? 1.0f : shade) * vary, glm::vec3(tilt, 0.5f, 0.88f)};
+    }
     case TexelModel::torch_stick:
     case TexelModel::count: break;
     }
@@ -184,7 +198,7 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
     for (std::size_t k = 0; k < parts.size(); ++k) {
         const texel::Model& m = *placements[k].model;
         TexelRecord& r = records_[k];
-        r.texture = glm::vec4(float(scene.placements[k].ranges.z), float(m.size), float(parts[k].probe + 1), 0.0f);
+        r.texture = glm::vec4(float(scene.placements[k].ranges.z), float(m.size), float(parts[k].probe + 1), parts[k].glow);
         for (std::size_t f = 0; f < 5; ++f) r.faces[f] = glm::vec4(m.faces[f]);
     }
     scene_ = std::move(scene);

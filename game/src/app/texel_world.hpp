@@ -20,7 +20,18 @@
 
 namespace lantern::game {
 
-enum class TexelModel : int { player_body, player_head, backpack, tree_trunk, tree_crown, lamp_post, torch_stick, count };
+enum class TexelModel : int {
+    player_body,
+    player_head,
+    backpack,
+    tree_trunk,
+    tree_crown,
+    lamp_post,
+    torch_stick,
+    crystal,       // a crystal's tall shard (it glows: TexelPart::glow)
+    crystal_shard, // and the small one beside it
+    count
+};
 
 inline constexpr int texel_density = 8; // texels per world unit of the models' art (LOD 0)
 // Levels of detail: LOD k paints the model at texel_density >> k texels per unit, so a far

@@ -100,7 +100,7 @@ glm::vec3 probe_face_light(const ProbeRecord& r, float phi);
 // Where a texel_lit box's texture lies in the per-texel atlas (96 bytes: two BoxInstances):
 // `texture` x the atlas index of its texel (0, 0), y its size (texels per side), z 1 + the
 // index of its baked-light ProbeRecord in the DrawList (0: none; the side faces then take
-// the baked light's direction as lit_probes boxes do); face f's
+// the baked light's direction as lit_probes boxes do), w its glow (TexelPart::glow); face f's
 // rectangle of texels (x, y, width, height) as texel::box_model lays the box's faces out
 // (texel::Model::faces: +x, -x, +z, -z, top).
 struct TexelRecord {
@@ -116,6 +116,9 @@ struct TexelPart {
     glm::vec3 center{0.0f}; // the box's centre (its half extents are the model's)
     int lod = 0;            // level of detail: the model's art at 8 >> lod texels per unit
     int probe = -1;         // its baked-light ProbeRecord in the DrawList (-1: none)
+    // Light of its own (a crystal): the raster adds albedo x tint x glow to what the texel
+    // passes lit (the box's colour is the tint), as a glowing box adds colour x emissive.
+    float glow = 0.0f;
 };
 
 struct DrawList {
