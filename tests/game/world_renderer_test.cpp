@@ -265,6 +265,42 @@ class WorldRendererTest : public test::RenderTest {
     }
     gi::vk::Renderer& gi() { return *shared(device()).gi; }
 
+    // A texel_lit crate (texel::box_model at 4 texels per unit) whose every texel is lit with
+    // `light` and has albedo `albedo`, all at its centre: its model and buffers.
+    struct TexelCrate {
+        glm::vec3 center{0.0f}, half{0.0f};
+        texel::Model model;
+        gpu::Buffer lit, albedo, surfaces;
+    };
+    TexelCrate texel_crate(glm::vec3 center, glm::vec3 half, float light, float albedo) {
+        TexelCrate c{center, half, texel::box_model(center - half, center + half, 4), {}, {}, {}};
+        const std::size_t texels = std::size_t(c.model.size) * std::size_t(c.model.size);
+        c.lit = vec4_buffer(std::vector<glm::vec4>(texels, glm::vec4(light)), "test texel lit");
+        c.albedo = vec4_buffer(std::vector<glm::vec4>(texels, glm::vec4(glm::vec3(albedo), 1.0f)), "test texel albedo");
+        c.surfaces = vec4_buffer(std::vector<glm::vec4>(3 * texels, glm::vec4(center, 1.0f)), "test texel surfaces");
+        return c;
+    }
+    // `list` with the crate added (its record's texture.z `probe` and .w `glow`, its box's
+    // colour `color`), drawn.
+    render::Rgba8Image draw_crate(WorldView view, DrawList list, const TexelCrate& c, float probe, float glow,
+                                  glm::vec3 color, const GiFrame* frame) {
+        game::TexelRecord record;
+        record.texture = glm::vec4(0.0f, float(c.model.size), probe, glow);
+        for (std::size_t f = 0; f < 5; ++f) record.faces[f] = glm::vec4(c.model.faces[f]);
+        BoxInstance b;
+        b.center = c.center;
+        b.half = c.half;
+        b.material = float(int(Material::texel_lit));
+        b.color = color;
+        b.emissive = 0.0f;
+        list.boxes.push_back(b);
+        view.texel_lit = &c.lit;
+        view.texel_albedo = &c.albedo;
+        view.texel_surfaces = &c.surfaces;
+        view.texel_records = std::span<const game::TexelRecord>(&record, 1);
+        return draw(view, list, frame);
+    }
+
     // Records the GI of `frame` (when given) and the world in one list, submits, reads back.
     render::Rgba8Image draw(WorldView view, const DrawList& list, const GiFrame* frame) {
         gpu::CommandList cmd = device().begin("world renderer test");
@@ -764,32 +800,11 @@ TEST_F(WorldRendererTest, ProbesLightATexelLitFaceFromWhereTheBakedLightComes) {
     WorldView view;
     view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
     view.art.texture_pattern = false;
-    const glm::vec3 center{9.5f, 0.4f, 15.5f}, half{0.4f, 0.4f, 0.4f};
-    const texel::Model model = texel::box_model(center - half, center + half, 4);
-    const std::size_t texels = std::size_t(model.size) * std::size_t(model.size);
-    std::vector<glm::vec4> lit(texels, glm::vec4(0.3f)), albedo(texels, glm::vec4(0.7f, 0.7f, 0.7f, 1.0f));
-    std::vector<glm::vec4> surfaces(3 * texels, glm::vec4(center, 1.0f));
-    const gpu::Buffer lit_buffer = vec4_buffer(lit, "test texel lit"), albedo_buffer = vec4_buffer(albedo, "test texel albedo"),
-                      surface_buffer = vec4_buffer(surfaces, "test texel surfaces");
-    view.texel_lit = &lit_buffer;
-    view.texel_albedo = &albedo_buffer;
-    view.texel_surfaces = &surface_buffer;
+    const TexelCrate crate = texel_crate({9.5f, 0.4f, 15.5f}, glm::vec3(0.4f), 0.3f, 0.7f);
     const auto render = [&](bool with_probe) {
-        game::TexelRecord record;
-        record.texture = glm::vec4(0.0f, float(model.size), with_probe ? 1.0f : 0.0f, 0.0f);
-        for (std::size_t f = 0; f < 5; ++f) record.faces[f] = glm::vec4(model.faces[f]);
         DrawList list = world_list(*frame, false);
-        BoxInstance b;
-        b.center = center;
-        b.half = half;
-        b.material = float(int(Material::texel_lit));
-        b.color = glm::vec3(1.0f);
-        b.emissive = 0.0f;
-        list.boxes.push_back(b);
         list.probes.push_back(probe);
-        WorldView v = view;
-        v.texel_records = std::span<const game::TexelRecord>(&record, 1);
-        return draw(v, list, frame.get());
+        return draw_crate(view, list, crate, with_probe ? 1.0f : 0.0f, 0.0f, glm::vec3(1.0f), frame.get());
     };
     const auto plain = render(false), probed = render(true);
     maybe_write_png(probed, "texel_probes");
@@ -809,32 +824,11 @@ TEST_F(WorldRendererTest, AGlowingTexelLitPartAddsItsGlowInItsTint) {
     WorldView view;
     view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
     view.art.texture_pattern = false;
-    const glm::vec3 center{9.5f, 0.4f, 15.5f}, half{0.4f, 0.4f, 0.4f};
-    const texel::Model model = texel::box_model(center - half, center + half, 4);
-    const std::size_t texels = std::size_t(model.size) * std::size_t(model.size);
-    std::vector<glm::vec4> lit(texels, glm::vec4(0.05f)), albedo(texels, glm::vec4(0.8f, 0.8f, 0.8f, 1.0f));
-    std::vector<glm::vec4> surfaces(3 * texels, glm::vec4(center, 1.0f));
-    const gpu::Buffer lit_buffer = vec4_buffer(lit, "test texel lit"), albedo_buffer = vec4_buffer(albedo, "test texel albedo"),
-                      surface_buffer = vec4_buffer(surfaces, "test texel surfaces");
-    view.texel_lit = &lit_buffer;
-    view.texel_albedo = &albedo_buffer;
-    view.texel_surfaces = &surface_buffer;
+    const TexelCrate crate = texel_crate({9.5f, 0.4f, 15.5f}, glm::vec3(0.4f), 0.05f, 0.8f);
     const glm::vec3 tint(0.3f, 0.6f, 1.0f);
     const auto render = [&](float glow, glm::vec3 color) {
-        game::TexelRecord record;
-        record.texture = glm::vec4(0.0f, float(model.size), 0.0f, glow);
-        for (std::size_t f = 0; f < 5; ++f) record.faces[f] = glm::vec4(model.faces[f]);
-        DrawList list = world_list(*frame, false);
-        BoxInstance b;
-        b.center = center;
-        b.half = half;
-        b.material = float(int(Material::texel_lit));
-        b.color = color;
-        b.emissive = 0.0f;
-        list.boxes.push_back(b);
-        WorldView v = view;
-        v.texel_records = std::span<const game::TexelRecord>(&record, 1);
-        return draw(v, list, nullptr); // no GI: the texels' own light alone (dim)
+        // No GI: the texels' own light alone (dim).
+        return draw_crate(view, world_list(*frame, false), crate, 0.0f, glow, color, nullptr);
     };
     const auto plain = render(0.0f, glm::vec3(1.0f)), tinted = render(0.0f, tint), glowing = render(1.2f, tint);
     maybe_write_png(glowing, "texel_glow");

@@ -34,7 +34,7 @@ TEST(Reflect, GiShadersDeclareTheBindingsTheirRecordersPush) {
          {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::storage_buffer, B::storage_buffer,
           B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
           B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
-          B::storage_buffer}},
+          B::storage_buffer, B::storage_buffer}}, // 16: the dirty light bins' list
     };
     for (const auto& [shader, bindings] : expected) {
         auto layout = reflect_spirv(lantern_gi_shaders_spirv(shader));
