@@ -229,11 +229,11 @@ std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uin
     return v ? v : 1;
 }
 
-// Per bin (row-major, bins_x x bins_y of bin_w x bin_h texels), a hash of the lights that
-// can reach one of its texels, in index order (points, then emissives: the shader's order).
 // A bin no light reaches (bin_lights).
 constexpr std::uint64_t no_light_bin = 0x62696e73ull;
 
+// Per bin (row-major, bins_x x bins_y of bin_w x bin_h texels), a hash of the lights that
+// can reach one of its texels, in index order (points, then emissives: the shader's order).
 std::vector<std::uint64_t> bin_lights(const FrameInputs& lights, const GiWindow& w, std::uint32_t bins_x, std::uint32_t bins_y,
                                       float bin_w, float bin_h) {
     std::vector<std::uint64_t> out(std::size_t(bins_x) * bins_y, no_light_bin);
