@@ -357,6 +357,16 @@ TEST(Bake, BadSettingsAndShardsAreRefused) {
     auto r = bake::bake_world(s, dir.path().string(), b);
     ASSERT_FALSE(r.ok());
     EXPECT_EQ(r.error().message, "bake.resolution: must be an integer in [1, 16], got 0");
+    b = quick();
+    b.falloff = 0.0f;
+    r = bake::bake_world(s, dir.path().string(), b);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message.substr(0, 41), "bake.falloff: must be a number in [0.0156");
+    b = quick();
+    b.ambient = std::nanf("");
+    r = bake::bake_world(s, dir.path().string(), b);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message.substr(0, 34), "bake.ambient: must be a number in ");
     bake::BakeOptions o;
     o.shard = 3;
     o.shards = 3;
@@ -545,4 +555,103 @@ TEST(BakeAtRunTime, ABakedLightLooksAsItDoesLive) {
     EXPECT_GT(ground, 2000);
     EXPECT_GT(faces, 100);
     EXPECT_LT(std::sqrt(err2 / ref2), 0.01);
+}
+
+// Seed 002's own bake (BakeSolver::seed002) in a closed square room with no light but the
+// ambient fill: every ray hits a wall of radiosity albedo x ambient, weighted by
+// 1 / (1 + (d / falloff)^2). The ground's fluence is then the integral over the circle of
+// (B w(d) / 2), a face's irradiance the integral over its half circle of (B w(d) / 2) cos,
+// with d the distance to the room's wall along each direction: computed here from the
+// geometry alone, independently of the bake's ray marching.
+namespace {
+
+// Distance from p (inside or on the box [lo, hi]^2) to the box's boundary along angle t.
+double to_box(glm::dvec2 p, double lo, double hi, double t) {
+    const double c = std::cos(t), s = std::sin(t);
+    double d = 1e30;
+    if (c > 1e-12) d = std::min(d, (hi - p.x) / c);
+    if (c < -1e-12) d = std::min(d, (lo - p.x) / c);
+    if (s > 1e-12) d = std::min(d, (hi - p.y) / s);
+    if (s < -1e-12) d = std::min(d, (lo - p.y) / s);
+    return d;
+}
+
+double weight(double d, double falloff) { return 1.0 / (1.0 + (d / falloff) * (d / falloff)); }
+
+scene::Scene ambient_room() { // open tiles 1..10 in x and z: the room spans [1, 11]^2
+    scene::Scene s;
+    s.walls.width = s.walls.height = 12;
+    s.walls.cells.assign(144, 0);
+    for (int i = 0; i < 12; ++i)
+        for (int k : {0, 11}) s.walls.cells[std::size_t(i * 12 + k)] = s.walls.cells[std::size_t(k * 12 + i)] = 1;
+    s.gi.wall_albedo = 0.6f;
+    return s;
+}
+
+} // namespace
+
+TEST(Bake, Seed002WeighsEachHitByItsDistanceAndFillsWithAmbient) {
+    const scene::Scene s = ambient_room();
+    BakeSettings b = quick();
+    b.solver = bake::BakeSolver::seed002;
+    b.ambient = 0.5f;
+    b.rays = 1024;
+    b.face_rays = 1024;
+    const double radiosity = 0.6 * 0.5;
+    const double pi = 3.14159265358979;
+    for (float falloff : {1.0f, 3.0f, 4096.0f}) {
+        b.falloff = falloff;
+        const bake::ChunkBake baked = bake::bake_chunk(s, {0, 0}, b);
+        ASSERT_FALSE(baked.empty) << "the ambient fill lights the room";
+        const int side = baked.side();
+        // Ground texel (12, 9): centre (6.25, 4.75).
+        const glm::dvec2 p(6.25, 4.75);
+        double ground = 0.0, face = 0.0, at_probe = 0.0;
+        const int steps = 200000;
+        for (int k = 0; k < steps; ++k) {
+            const double t = 2.0 * pi * (k + 0.5) / steps;
+            ground += radiosity * weight(to_box(p, 1.0, 11.0, t), double(falloff)) / 2.0 * (2.0 * pi / steps);
+            at_probe += radiosity * weight(to_box({6.5, 4.5}, 1.0, 11.0, t), double(falloff)) / 2.0 * (2.0 * pi / steps);
+            // The +Z face of wall tile (6, 0) at its texel (12, 1): the point (6.25, 1), facing +z.
+            const double u = pi * (k + 0.5) / steps; // 0..pi: the half circle above the face
+            face += radiosity * weight(to_box({6.25, 1.0}, 1.0, 11.0, u), double(falloff)) / 2.0 * std::sin(u) *
+                    (pi / steps);
+        }
+        const glm::vec3 got_ground = texel(baked.ground, side, 12, 9);
+        const glm::vec3 got_face = texel(baked.faces[2], side, 12, 1);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(got_ground[c], ground, 0.01 * ground) << "falloff " << falloff;
+            EXPECT_NEAR(got_face[c], face, 0.01 * face) << "falloff " << falloff;
+        }
+        // Walls far from the ambient room's walls count less: the nearer the wall, the more
+        // a shorter falloff keeps of the light.
+        if (falloff == 1.0f) {
+            EXPECT_LT(ground, 0.45 * radiosity * pi);
+        }
+        if (falloff == 4096.0f) {
+            EXPECT_NEAR(ground, radiosity * pi, 1e-3 * radiosity * pi);
+        }
+        // The light probe at (6.5, 4.5) holds the fluence there (its zeroth harmonic).
+        const std::size_t k = std::size_t(2 * bake::chunk_probes + 3);
+        ASSERT_EQ(baked.probe_valid[k], 1);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(baked.probes[k].fluence()[c], at_probe, 0.01 * at_probe);
+    }
+}
+
+// Seed 002's settings are part of the cache key; the gather's key does not depend on them.
+TEST(Bake, Seed002SettingsAreInTheKey) {
+    const scene::Scene s = world();
+    BakeSettings b = quick();
+    const std::uint64_t gather = bake::chunk_key(s, {0, 0}, b);
+    b.falloff = 9.0f;
+    b.ambient = 0.25f;
+    EXPECT_EQ(bake::chunk_key(s, {0, 0}, b), gather);
+    b.solver = bake::BakeSolver::seed002;
+    const std::uint64_t seed = bake::chunk_key(s, {0, 0}, b);
+    EXPECT_NE(seed, gather);
+    b.falloff = 8.0f;
+    EXPECT_NE(bake::chunk_key(s, {0, 0}, b), seed);
+    b.falloff = 9.0f;
+    b.ambient = 0.5f;
+    EXPECT_NE(bake::chunk_key(s, {0, 0}, b), seed);
 }

@@ -196,26 +196,35 @@ std::vector<SingleSource> single_sources(const gi::FrameInputs& in) {
     return out;
 }
 
-// The light probe at `pos`: the bounce solve's radiance by rays (`store` after the solve;
+// What the probes' rays see of the bounce solve: the faces' direct light, their indirect
+// light (none for seed 002's one bounce) and the weighting of seed 002's bake.
+struct BounceField {
+    gi::FaceTextures direct{};
+    const gi::Texture* faces = nullptr;
+    gi::GatherWeighting weighting;
+};
+
+// The light probe at `pos`: the bounce solve's radiance by rays (`field`, after the solve;
 // none without one) and the baked lights' direct light as point sources.
-CircularHarmonics capture_probe(const ChunkProblem& p, const gi::ReferenceStore* store,
+CircularHarmonics capture_probe(const ChunkProblem& p, const BounceField* field,
                                 const std::vector<SingleSource>& sources, glm::vec2 pos, int rays) {
     constexpr float two_pi = 6.28318531f;
     CircularHarmonics h;
-    if (store) {
+    if (field) {
         const gi::GatherFrame f = gi::gather_frame(p.bounce);
-        gi::FaceTextures direct{};
-        for (int face = 0; face < 4; ++face) direct[std::size_t(face)] = store->find(gi::Tex(int(gi::Tex::wall_direct_px) + face));
-        const gi::Texture* faces = store->find(gi::gather_face_target(p.bounce.settings.gather.bounces - 1));
         const glm::vec2 rel = (pos - glm::vec2(f.origin_tile)) * float(gi::gather_unit);
         const glm::ivec2 fixed(int(std::lround(rel.x)), int(std::lround(rel.y)));
         const glm::ivec2 cell = fixed / gi::gather_unit; // inside the window: non-negative
         const std::vector<glm::ivec2>& dirs = gi::radiosity_directions();
         for (int k = 0; k < rays; ++k) {
             const int index = (k * 4096) / rays;
-            const gi::GatherHit hit = gi::gather_trace(p.bounce, f, fixed, cell, dirs[std::size_t(index)]);
+            const glm::ivec2 d = dirs[std::size_t(index)];
+            const gi::GatherHit hit = gi::gather_trace(p.bounce, f, fixed, cell, d);
             if (hit.face < 0) continue;
-            const glm::vec3 radiance = gi::gather_radiosity(p.bounce, direct, faces, hit.face, hit.texel) * 0.5f;
+            const gi::GatherWeighting& w = field->weighting;
+            const glm::vec3 radiance =
+                gi::gather_radiosity(p.bounce, field->direct, field->faces, hit.face, hit.texel, w.ambient) *
+                (0.5f * w.weight(hit.distance(d)));
             h.add_ray(two_pi * float(index) / 4096.0f, radiance, two_pi / float(rays));
         }
     }
@@ -228,11 +237,40 @@ CircularHarmonics capture_probe(const ChunkProblem& p, const gi::ReferenceStore*
     return h;
 }
 
+// Seed 002's one-bounce bake of the bounce lights (BakeSolver::seed002) into `store`: the
+// faces' direct light, then the gather's face and ground steps once, weighted, from it alone.
+void solve_seed002(const gi::FrameInputs& in, const BakeSettings& b, gi::ReferenceStore& store) {
+    gi::DirectTextures d = gi::reference_direct(in);
+    gi::reference_directional(in, d);
+    gi::FaceTextures direct{};
+    for (int face = 0; face < 4; ++face) {
+        gi::Texture& t = d.wall_direct[std::size_t(face)];
+        if (t.width == 0) continue;
+        const gi::Tex tex = gi::Tex(int(gi::Tex::wall_direct_px) + face);
+        store.put(tex, std::move(t));
+        direct[std::size_t(face)] = store.find(tex);
+    }
+    const gi::GatherWeighting weighting{b.falloff, b.ambient};
+    const gi::Texture faces = gi::reference_gather_faces(in, direct, nullptr, {}, weighting);
+    std::array<gi::Texture, 4> fill = gi::reference_gather_fill(in, faces);
+    for (int face = 0; face < 4; ++face)
+        if (fill[std::size_t(face)].width > 0)
+            store.put(gi::Tex(int(gi::Tex::wall_indirect_px) + face), std::move(fill[std::size_t(face)]));
+    const glm::ivec2 size = gi::gather_face_size(in);
+    const gi::Texture none("gather_face", gi::TexFormat::rgba16f, size.x, size.y); // no indirect: one bounce
+    const gi::Texture ground = gi::reference_gather_ground(in, direct, none, {}, weighting);
+    store.put(gi::Tex::indirect, gi::reference_upsample(in, gi::gather_grid(in), ground));
+}
+
 void add(std::vector<float>& to, const std::vector<float>& from) {
     for (std::size_t i = 0; i < to.size(); ++i) to[i] += from[i];
 }
 
 } // namespace
+
+const char* solver_name(BakeSolver solver) {
+    return solver == BakeSolver::seed002 ? "seed002" : "gather";
+}
 
 Result<void> validate_settings(const BakeSettings& s) {
     if (s.resolution < 1 || s.resolution > 16)
@@ -243,6 +281,12 @@ Result<void> validate_settings(const BakeSettings& s) {
         return make_error("bake.rays: must be an integer in [1, 1024], got " + std::to_string(s.rays));
     if (s.face_rays < 1 || s.face_rays > 1024)
         return make_error("bake.face_rays: must be an integer in [1, 1024], got " + std::to_string(s.face_rays));
+    if (s.solver != BakeSolver::gather && s.solver != BakeSolver::seed002)
+        return make_error("bake.solver: unknown solver " + std::to_string(int(s.solver)));
+    if (!(s.falloff >= 1.0f / 64.0f && s.falloff <= 4096.0f))
+        return make_error("bake.falloff: must be a number in [0.015625, 4096] tiles, got " + std::to_string(s.falloff));
+    if (!(s.ambient >= 0.0f && s.ambient <= 1000.0f))
+        return make_error("bake.ambient: must be a number in [0, 1000], got " + std::to_string(s.ambient));
     return {};
 }
 
@@ -265,8 +309,9 @@ std::vector<ChunkId> shard_of(const std::vector<ChunkId>& chunks, int shard, int
 std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
     const ChunkProblem p = make_problem(s, c, b);
     Hasher h;
-    const char solver[] = "lantern-bake/gather";
-    h.add_bytes(solver, sizeof(solver)).add(bake_code_version).add(b.resolution).add(b.margin).add(b.rays).add(b.face_rays);
+    const std::string solver = std::string("lantern-bake/") + solver_name(b.solver);
+    h.add_bytes(solver.c_str(), solver.size() + 1).add(bake_code_version).add(b.resolution).add(b.margin).add(b.rays).add(b.face_rays);
+    if (b.solver == BakeSolver::seed002) h.add(b.falloff).add(b.ambient);
     h.add(c.x).add(c.z);
     for (double v : scene::gi_setting_values(bake_gi(s, b))) h.add(v);
     h.add(s.wall_height);
@@ -287,16 +332,19 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
     out.key = chunk_key(s, c, b);
     out.resolution = b.resolution;
     const ChunkProblem p = make_problem(s, c, b);
-    const bool bounce = has_light(p.bounce) || glows_in(p.bounce);
+    const bool seed002 = b.solver == BakeSolver::seed002;
+    // Seed 002's ambient fill lights every wall: then every chunk with a wall in reach bakes.
+    const bool bounce = has_light(p.bounce) || glows_in(p.bounce) || (seed002 && b.ambient > 0.0f);
     const bool direct = has_light(p.direct);
     if (!bounce && !direct) return out; // no baked light reaches the chunk
     out.empty = false;
     out.probes.assign(std::size_t(chunk_probes * chunk_probes), CircularHarmonics{});
     out.probe_valid.assign(out.probes.size(), 0);
     const int side = out.side();
-    // Bounce light: the gather converged (the live method's frames x bounces, in one frame).
     gi::ReferenceStore store;
-    if (bounce) {
+    BounceField field;
+    if (bounce && !seed002) {
+        // The gather converged (the live method's frames x bounces, in one frame).
         gi::Convergence convergence;
         for (int f = 0; f < p.bounce.settings.gather.frames; ++f) {
             gi::PassPlan plan = gi::plan_passes(p.bounce, false);
@@ -304,6 +352,14 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
             gi::execute_reference(p.bounce, plan, plan.run, {}, store);
             convergence.advance(plan.run);
         }
+        for (int face = 0; face < 4; ++face)
+            field.direct[std::size_t(face)] = store.find(gi::Tex(int(gi::Tex::wall_direct_px) + face));
+        field.faces = store.find(gi::gather_face_target(p.bounce.settings.gather.bounces - 1));
+    } else if (bounce) {
+        solve_seed002(p.bounce, b, store);
+        for (int face = 0; face < 4; ++face)
+            field.direct[std::size_t(face)] = store.find(gi::Tex(int(gi::Tex::wall_direct_px) + face));
+        field.weighting = {b.falloff, b.ambient};
     }
     out.ground = crop(store.find(gi::Tex::indirect), p, side);
     for (int f = 0; f < 4; ++f)
@@ -315,7 +371,7 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
             const glm::ivec2 tile(c.x * chunk_tiles + i * probe_spacing, c.z * chunk_tiles + j * probe_spacing);
             if (s.walls.is_wall_tile(tile.x, tile.y)) continue;
             const std::size_t k = std::size_t(j * chunk_probes + i);
-            out.probes[k] = capture_probe(p, bounce ? &store : nullptr, sources, glm::vec2(tile) + 0.5f, b.rays);
+            out.probes[k] = capture_probe(p, bounce ? &field : nullptr, sources, glm::vec2(tile) + 0.5f, b.rays);
             out.probe_valid[k] = 1;
         }
     // Direct light of the baked lights, exactly as the live direct passes compute it.

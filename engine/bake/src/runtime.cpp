@@ -21,6 +21,20 @@ void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& pr
               s.rays, 1, 1024);
     p.integer(prefix + "face-rays", "N", "gather rays per wall-face texel (default " + std::to_string(d.face_rays) + ")",
               s.face_rays, 1, 1024);
+    p.custom(prefix + "solver", "gather|seed002",
+             "how the bounce light is solved: the converged gather (default) or seed 002's one-bounce bake with "
+             "its falloff and ambient fill",
+             [&s](std::string_view v) -> std::optional<std::string> {
+                 if (v == "gather") s.solver = BakeSolver::gather;
+                 else if (v == "seed002") s.solver = BakeSolver::seed002;
+                 else return "must be gather or seed002, got '" + std::string(v.substr(0, 40)) + "'";
+                 return std::nullopt;
+             });
+    p.number(prefix + "falloff", "TILES",
+             "seed002: a hit at this distance counts half (default " + std::to_string(int(d.falloff)) + ")", s.falloff,
+             1.0f / 64.0f, 4096.0f);
+    p.number(prefix + "ambient", "E", "seed002: ambient fill every hit wall receives (default 0)", s.ambient, 0.0f,
+             1000.0f);
 }
 
 std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,

@@ -135,6 +135,21 @@ Parser& Parser::number(std::string name, std::string metavar, std::string help, 
     return *this;
 }
 
+Parser& Parser::number(std::string name, std::string metavar, std::string help, float& out, float min, float max) {
+    add(std::move(name), std::move(metavar), std::move(help), true,
+        [&out, min, max](std::string_view v) -> std::optional<std::string> {
+            float x = 0.0f;
+            const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+            if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !std::isfinite(x) || x < min ||
+                x > max)
+                return "must be a number in [" + format_bound(double(min)) + ", " + format_bound(double(max)) +
+                       "], got " + quote(v);
+            out = x;
+            return std::nullopt;
+        });
+    return *this;
+}
+
 Parser& Parser::custom(std::string name, std::string metavar, std::string help, Check on, bool repeatable,
                        bool optional_value) {
     Option& o = add(std::move(name), std::move(metavar), std::move(help), true, std::move(on));

@@ -35,9 +35,9 @@ int blue_noise_at(const GatherFrame& f, int x, int y) {
 // B = albedo x (direct + indirect) + emission of face `face` at window texel t, by the
 // material of t's tile.
 glm::vec3 radiosity_at(const FrameInputs& in, const GatherFrame& f, const FaceTextures& direct, const Texture* faces,
-                       int face, glm::ivec2 t) {
-    glm::vec3 e(0.0f);
-    if (direct[std::size_t(face)]) e = glm::vec3(load4(*direct[std::size_t(face)], t.x, t.y));
+                       int face, glm::ivec2 t, float ambient = 0.0f) {
+    glm::vec3 e(ambient);
+    if (direct[std::size_t(face)]) e += glm::vec3(load4(*direct[std::size_t(face)], t.x, t.y));
     if (faces) e += glm::vec3(load4(*faces, t.x, face * in.window.height + t.y));
     const glm::ivec2 tile = f.origin_tile + (f.offset + t) / f.resolution; // both non-negative
     const GpuMaterial m = material_of(in, in.walls.cell(tile.x, tile.y));
@@ -53,8 +53,14 @@ int texel_center_fixed(int i_with_offset, int span, int resolution) {
 } // namespace
 
 glm::vec3 gather_radiosity(const FrameInputs& in, const FaceTextures& direct, const Texture* faces, int face,
-                           glm::ivec2 t) {
-    return radiosity_at(in, gather_frame(in), direct, faces, face, t);
+                           glm::ivec2 t, float ambient) {
+    return radiosity_at(in, gather_frame(in), direct, faces, face, t, ambient);
+}
+
+float GatherHit::distance(glm::ivec2 d) const {
+    // The entry point is p + (t_num / t_den) d in fixed point; |d| is about gather_unit.
+    const float length = std::sqrt(float(d.x) * float(d.x) + float(d.y) * float(d.y));
+    return float(t_num) / float(t_den) * length / float(gather_unit);
 }
 
 HeatGrid gather_grid(const FrameInputs& in) {
@@ -106,6 +112,8 @@ GatherHit gather_trace(const FrameInputs& in, const GatherFrame& f, glm::ivec2 p
         // The entry point's coordinate along the face (non-negative operands throughout).
         GatherHit h;
         h.face = face;
+        h.t_num = t_num;
+        h.t_den = step_x ? ax : az;
         const int r = f.resolution;
         if (step_x) {
             const int dz = int((std::uint32_t(az) * std::uint32_t(t_num)) / std::uint32_t(ax));
@@ -151,7 +159,7 @@ glm::ivec2 gather_face_size(const FrameInputs& in) {
 }
 
 Texture reference_gather_faces(const FrameInputs& in, const FaceTextures& direct, const Texture* previous,
-                               const RefOptions& options) {
+                               const RefOptions& options, const GatherWeighting& weighting) {
     const GatherFrame f = gather_frame(in);
     const int w = in.window.width, h = in.window.height, r = f.resolution;
     const int rays = in.settings.gather.face_rays;
@@ -182,7 +190,8 @@ Texture reference_gather_faces(const FrameInputs& in, const FaceTextures& direct
                     if (cosine <= 0) continue;
                     const GatherHit hit = gather_trace(in, f, p, cell, d);
                     if (hit.face < 0) continue;
-                    sum += radiosity_at(in, f, direct, previous, hit.face, hit.texel) * float(cosine);
+                    sum += radiosity_at(in, f, direct, previous, hit.face, hit.texel, weighting.ambient) *
+                           (float(cosine) * weighting.weight(hit.distance(d)));
                 }
                 // E = integral of (B / 2) cos over the half circle: (pi / rays) x sum (B / 2) cos.
                 const glm::vec3 e = sum * (pi / (2.0f * 4096.0f * float(rays)));
@@ -223,7 +232,7 @@ std::array<Texture, 4> reference_gather_fill(const FrameInputs& in, const Textur
 }
 
 Texture reference_gather_ground(const FrameInputs& in, const FaceTextures& direct, const Texture& faces,
-                                const RefOptions& options) {
+                                const RefOptions& options, const GatherWeighting& weighting) {
     const GatherFrame f = gather_frame(in);
     const HeatGrid g = gather_grid(in);
     const int rays = in.settings.gather.rays;
@@ -240,7 +249,9 @@ Texture reference_gather_ground(const FrameInputs& in, const FaceTextures& direc
             for (int k = 0; k < rays; ++k) {
                 const glm::ivec2 d = dirs[std::size_t(((k * 4096 + noise) / rays) & 4095)];
                 const GatherHit hit = gather_trace(in, f, p, cell, d);
-                if (hit.face >= 0) sum += radiosity_at(in, f, direct, &faces, hit.face, hit.texel);
+                if (hit.face >= 0)
+                    sum += radiosity_at(in, f, direct, &faces, hit.face, hit.texel, weighting.ambient) *
+                           weighting.weight(hit.distance(d));
             }
             // Fluence = integral of B / 2 over the circle: (2 pi / rays) x sum B / 2.
             store4(out, i, j, glm::vec4(sum * (pi / float(rays)), 1.0f));

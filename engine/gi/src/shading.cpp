@@ -140,6 +140,33 @@ glm::vec3 surface_light(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
     return combined;
 }
 
+glm::vec3 surface_bounce(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
+    const FrameInputs& f = *in.frame;
+    const GiWindow& w = f.window;
+    switch (classify_surface(f.walls, w, pos, n, f.settings.wall_lighting)) {
+    case surface_wall_face: {
+        const glm::vec2 inside = wall_sample_position(w, pos, n);
+        const int face = dominant_face(n);
+        glm::vec3 light = fetch_rgb(in.wall_indirect[face], texel_at(w, inside));
+        if (f.settings.ao.walls && in.ao) {
+            const glm::ivec2 outside = texel_at(w, face_ao_position(w, inside, {pos.x, pos.z}, face));
+            light *= in.ao->at(outside.x, outside.y)[0];
+        }
+        return light;
+    }
+    case surface_wall_top: return ground_indirect_average(in, {pos.x, pos.z});
+    case surface_ground: break;
+    }
+    const glm::ivec2 t = texel_at(w, {pos.x, pos.z});
+    glm::vec3 indirect = fetch_rgb(in.indirect, t);
+    const float sun_visibility = in.shadow ? in.shadow->at(t.x, t.y)[1] : 0.0f;
+    for (const GpuDirectionalLight& sun : f.directional_lights)
+        indirect += glm::vec3(sun.color_multiplier) * sun_angle(sun, f.settings.directional_angle_scale) *
+                    sun.bounce.x * (1.0f - sun_visibility);
+    if (in.ao) indirect *= in.ao->at(t.x, t.y)[0];
+    return wall_at(f.walls, {pos.x, pos.z}) ? glm::vec3(0.0f) : indirect;
+}
+
 glm::vec3 shade(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
     return tone_map(surface_light(in, pos, n), in.frame->settings.tone_map, in.frame->settings.white_point);
 }

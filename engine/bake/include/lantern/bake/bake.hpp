@@ -58,18 +58,34 @@ inline constexpr int probe_spacing = 2;              // tiles between light prob
 inline constexpr int chunk_probes = chunk_tiles / probe_spacing; // probes a side
 inline constexpr std::uint32_t bake_code_version = 2; // raise when the bake's output changes
 
+// How the bounce light is solved.
+//   gather   the converged physical method (gi.method = gather): every bounce, in the
+//            transport model's units, so the bake agrees with engine/transport.
+//   seed002  seed 002's own bake, stylised: one bounce, each ray's hit counted
+//            1 / (1 + (d / falloff)^2) (d its length in tiles: near walls dominate, the
+//            bounce gathers at seams), every hit face receiving `ambient` besides its direct
+//            light (the seed's ambient fill), misses adding nothing. Same rays and units as
+//            the gather (fluence: the seed's average over rays times pi), so with no falloff
+//            and no ambient it is the gather's first bounce.
+enum class BakeSolver : std::uint8_t { gather, seed002 };
+const char* solver_name(BakeSolver solver);
+
 struct BakeSettings {
     int resolution = 4; // texels per tile, 1..16
     int margin = 32;    // tiles around the chunk whose walls reflect or send light into it, 0..64
     int rays = 256;      // gather rays per ground texel and light probe, 1..1024 (the live default is 32)
     int face_rays = 128; // gather rays per face texel, 1..1024
+    BakeSolver solver = BakeSolver::gather;
+    float falloff = 4.0f; // seed002: the falloff's half distance, tiles, (0, 4096]
+    float ambient = 0.0f; // seed002: the ambient fill every hit face receives, [0, 1000]
 
     friend bool operator==(const BakeSettings&, const BakeSettings&) = default;
 };
 // Errors read "bake.<field>: <what is wrong>" (exit status 2).
 Result<void> validate_settings(const BakeSettings& settings);
 // The settings as command-line options `<prefix>resolution`, `<prefix>margin`,
-// `<prefix>rays`, `<prefix>face-rays` (lantern-bake: "--", lantern-render: "--bake-").
+// `<prefix>rays`, `<prefix>face-rays`, `<prefix>solver`, `<prefix>falloff`,
+// `<prefix>ambient` (lantern-bake: "--", lantern-render: "--bake-").
 void add_settings_options(cli::Parser& parser, BakeSettings& settings, const std::string& prefix);
 
 // Chunk (x, z) covers the tiles [32 x, 32 x + 32) x [32 z, 32 z + 32).

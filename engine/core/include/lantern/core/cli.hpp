@@ -53,6 +53,7 @@ class Parser {
     Parser& integer(std::string name, std::string metavar, std::string help, int& out, int min, int max);
     // --name X, a finite number in [min, max].
     Parser& number(std::string name, std::string metavar, std::string help, double& out, double min, double max);
+    Parser& number(std::string name, std::string metavar, std::string help, float& out, float min, float max);
     // --name VALUE handled by `on` (which returns an error text or nullopt). With
     // `optional_value`, a following argument that starts with '-' (or none) is not taken:
     // `on` then gets an empty view. With `repeatable`, every occurrence is handled.

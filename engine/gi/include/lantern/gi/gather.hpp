@@ -62,6 +62,11 @@ GatherFrame gather_frame(const FrameInputs& in);
 struct GatherHit {
     int face = -1;
     glm::ivec2 texel{0};
+    // The ray's length to the entry point: t_num / t_den lengths of the direction `d` (see
+    // distance); only the C++ reference's weighted bake reads it.
+    int t_num = 0, t_den = 1;
+    // The length in tiles for the direction the ray was traced along.
+    float distance(glm::ivec2 d) const;
 };
 // `p`: fixed-point position relative to origin_tile's corner; `cell`: its tile (relative);
 // `d`: a direction of the table.
@@ -83,21 +88,38 @@ glm::ivec2 gather_face_size(const FrameInputs& in);
 inline Tex gather_face_source(int step) { return step % 2 == 0 ? Tex::gather_face_a : Tex::gather_face_b; }
 inline Tex gather_face_target(int step) { return step % 2 == 0 ? Tex::gather_face_b : Tex::gather_face_a; }
 
+// Seed 002's own one-bounce bake (lantern-bake --solver seed002; C++ only, never a frame's
+// pass): every face a ray hits receives `ambient` besides its direct light (the seed's
+// ambient fill), and its radiosity counts 1 / (1 + (d / falloff)^2), d the ray's length in
+// tiles, so near walls dominate. The default weighs nothing: the gather itself.
+struct GatherWeighting {
+    float falloff = 0.0f; // tiles; 0: no falloff
+    float ambient = 0.0f; // received by every hit face, as direct light is
+
+    float weight(float distance) const {
+        if (falloff <= 0.0f) return 1.0f;
+        const float q = distance / falloff;
+        return 1.0f / (1.0f + q * q);
+    }
+};
+
 // The reference's steps. `direct` holds wall_direct_px..nz (absent faces: nullptr).
 using FaceTextures = std::array<const Texture*, 4>;
 // The radiosity B leaving face `face` at window texel t (a hit of gather_trace): albedo x
-// (direct + indirect `faces`, nullptr: none) + emission, by the material of t's tile.
+// (direct + indirect `faces`, nullptr: none + `ambient`) + emission, by the material of t's
+// tile.
 glm::vec3 gather_radiosity(const FrameInputs& in, const FaceTextures& direct, const Texture* faces, int face,
-                           glm::ivec2 t);
+                           glm::ivec2 t, float ambient = 0.0f);
 // One face bounce: E_indirect of every exposed face texel from B = albedo x (direct +
 // `previous`) (nullptr: no indirect yet).
+// `weighting`: seed 002's bake (GatherWeighting); the frame's passes use none.
 Texture reference_gather_faces(const FrameInputs& in, const FaceTextures& direct, const Texture* previous,
-                               const RefOptions& options = {});
+                               const RefOptions& options = {}, const GatherWeighting& weighting = {});
 // wall_indirect_* from the face texture.
 std::array<Texture, 4> reference_gather_fill(const FrameInputs& in, const Texture& faces,
                                              const RefOptions& options = {});
 // The ground's fluence on the gather grid.
 Texture reference_gather_ground(const FrameInputs& in, const FaceTextures& direct, const Texture& faces,
-                                const RefOptions& options = {});
+                                const RefOptions& options = {}, const GatherWeighting& weighting = {});
 
 } // namespace lantern::gi

@@ -43,6 +43,10 @@ SurfaceKind classify_surface(const WallView& walls, const GiWindow& window, glm:
                              bool wall_lighting = true);
 // Linear (before tone mapping) light arriving at the surface.
 glm::vec3 surface_light(const ShadingInputs& in, glm::vec3 pos, glm::vec3 normal);
+// The bounce part of surface_light (the indirect textures' terms, with AO as it applies
+// them): what the game's raster reshapes with seed 002's runtime knobs (shading.glsl's
+// surface_bounce; game::reflected_bounce).
+glm::vec3 surface_bounce(const ShadingInputs& in, glm::vec3 pos, glm::vec3 normal);
 glm::vec3 shade(const ShadingInputs& in, glm::vec3 pos, glm::vec3 normal);
 
 // The lit image of the GI window seen from above, one pixel per GI texel, tone-mapped and
