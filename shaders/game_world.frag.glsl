@@ -17,6 +17,7 @@ layout(location = 4) flat in vec3 in_box_max;
 layout(location = 5) flat in vec3 in_face_light; // WALL_TOP_PER_FACE: the top's light
 layout(location = 6) flat in vec3 in_probe_light; // lit_probes: the baked light's direction
 layout(location = 7) flat in ivec4 in_texel; // texel_lit: the face's first atlas texel, texture size, face width, height
+layout(location = 8) flat in vec3 in_face_bounce; // WALL_TOP_PER_FACE: the bounce part of in_face_light
 
 layout(location = 0) out vec4 out_color;
 
@@ -165,6 +166,24 @@ vec3 gi_view_color(vec3 pos) {
     return vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) * (0.7 / 255.0) + 0.15;
 }
 
+// Seed 002's runtime knobs (BounceStyle in world_renderer.hpp; knobs: self, bleed): the
+// bounce light `bounce` as a surface of albedo `albedo` reflects it.
+vec3 reflected_bounce(vec3 bounce, vec3 albedo, vec2 knobs) {
+    const vec3 chroma = albedo - (albedo.r + albedo.g + albedo.b) / 3.0;
+    const float len = length(chroma);
+    if (len > 1e-6) {
+        const vec3 c = chroma / len;
+        bounce -= (1.0 - knobs.x) * max(dot(bounce, c), 0.0) * c;
+    }
+    return bounce * mix(albedo, vec3(1.0), knobs.y);
+}
+// The knobs of a material's set: the world's for ground and walls, the characters' else.
+vec2 bounce_knobs(int material) {
+    return material == MATERIAL_GROUND || material == MATERIAL_WALL ? pc.bounce.xy : pc.bounce.zw;
+}
+// The defaults (self 1, bleed 0) take the plain path: albedo x light, as before the knobs.
+bool bounce_styled(vec2 knobs) { return knobs.x != 1.0 || knobs.y != 0.0; }
+
 void main() {
     if (XRAY) {
         // Every other pixel, in the box's own colour: the world behind still shows through.
@@ -191,22 +210,39 @@ void main() {
         // steps of its art's texels.
         const int texel = face_texel(clamp(in_position, in_box_min, in_box_max));
         vec3 light = texel_lit[texel].rgb;
-        // The GI's bounce at the texel, and the baked light's direction on a side face.
-        if (HAS_GI) light = max(light + ground_indirect_light(texel_surfaces[3 * texel].xyz) + in_probe_light, vec3(0.0));
-        color = texel_albedo[texel].rgb * in_color.rgb * (light + in_color.a); // a: its glow (a crystal)
+        const vec3 albedo = texel_albedo[texel].rgb * in_color.rgb;
+        const vec2 knobs = bounce_knobs(MATERIAL_TEXEL_LIT);
+        if (HAS_GI && bounce_styled(knobs)) {
+            const vec3 bounce = ground_indirect_light(texel_surfaces[3 * texel].xyz) + in_probe_light;
+            color = max(albedo * light + reflected_bounce(bounce, albedo, knobs), vec3(0.0)) + albedo * in_color.a;
+        } else {
+            // The GI's bounce at the texel, and the baked light's direction on a side face.
+            if (HAS_GI) light = max(light + ground_indirect_light(texel_surfaces[3 * texel].xyz) + in_probe_light, vec3(0.0));
+            color = albedo * (light + in_color.a); // a: its glow (a crystal)
+        }
     } else {
         // Interpolation can step a hair off the box at its edges: keep the point on it, so
         // the routing (which cell, which side) follows the face being drawn.
         const vec3 pos = clamp(in_position, in_box_min, in_box_max);
         vec3 albedo = in_color.rgb;
         if (pc.art.w != 0) albedo *= pattern(in_material, FACE, pos);
+        const vec3 normals[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
+        const vec2 knobs = bounce_knobs(in_material);
         vec3 light = vec3(0.0);
-        if (HAS_GI) {
-            const vec3 normals[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
+        if (HAS_GI && bounce_styled(knobs)) {
+            // The light split into its direct part and its bounce, which the knobs reshape.
             light = WALL_TOP_PER_FACE ? in_face_light : surface_light(pos, normals[FACE]);
-            if (in_material == MATERIAL_LIT_PROBES) light = max(light + in_probe_light, vec3(0.0));
+            const vec3 gi_bounce = WALL_TOP_PER_FACE ? in_face_bounce : surface_bounce(pos, normals[FACE]);
+            const vec3 direct = light - gi_bounce;
+            const vec3 bounce = in_material == MATERIAL_LIT_PROBES ? gi_bounce + in_probe_light : gi_bounce;
+            color = max(albedo * direct + reflected_bounce(bounce, albedo, knobs), vec3(0.0)) + in_color.rgb * in_color.a;
+        } else {
+            if (HAS_GI) {
+                light = WALL_TOP_PER_FACE ? in_face_light : surface_light(pos, normals[FACE]);
+                if (in_material == MATERIAL_LIT_PROBES) light = max(light + in_probe_light, vec3(0.0));
+            }
+            color = albedo * light + in_color.rgb * in_color.a;
         }
-        color = albedo * light + in_color.rgb * in_color.a;
     }
     color = tone_map(color, int(pc.config.y), pc.config.z);
     out_color = vec4(apply_art(color), 1.0);

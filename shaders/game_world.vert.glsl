@@ -25,6 +25,7 @@ layout(location = 3) flat out vec3 out_box_min; // the box, to keep interpolated
 layout(location = 4) flat out vec3 out_box_max;
 layout(location = 5) flat out vec3 out_face_light; // WALL_TOP_PER_FACE: the top's light
 layout(location = 6) flat out vec3 out_probe_light; // lit_probes, texel_lit: what the baked light's direction adds
+layout(location = 8) flat out vec3 out_face_bounce; // WALL_TOP_PER_FACE: the bounce part of out_face_light
 layout(location = 7) flat out ivec4 out_texel; // texel_lit (TEXEL): atlas index of the face's texel (0, 0), texture size, face width, height
 
 const vec3 face_normal[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
@@ -68,6 +69,7 @@ void main() {
     out_box_min = center - half_extent;
     out_box_max = center + half_extent;
     out_face_light = vec3(0.0);
+    out_face_bounce = vec3(0.0);
     out_probe_light = vec3(0.0);
     if (out_material == 4) { // lit_probes: world_renderer.hpp ProbeRecord, at texel `emissive`
         const int base = int(in_color_emissive.w + 0.5);
@@ -89,5 +91,6 @@ void main() {
     if (WALL_TOP_PER_FACE && HAS_GI) {
         set_gi_shading();
         out_face_light = surface_light(vec3(center.x, center.y + half_extent.y, center.z), vec3(0.0, 1.0, 0.0));
+        out_face_bounce = surface_bounce(vec3(center.x, center.y + half_extent.y, center.z), vec3(0.0, 1.0, 0.0));
     }
 }

@@ -79,6 +79,8 @@ std::string format_settings(const PlayerSettings& s) {
     w.field("vsync", s.vsync).field("pixel_scale", s.pixel_scale);
     w.field("posterize", s.posterize).field("dither", s.dither).field("palette", palette_names[s.palette]);
     w.field("autosave_seconds", s.autosave_seconds).field("volume", s.volume);
+    w.field("world_self", s.world_self).field("world_bleed", s.world_bleed);
+    w.field("character_self", s.character_self).field("character_bleed", s.character_bleed);
     w.key("keys").begin_object();
     for (int i = 0; i < action_count; ++i) w.field(action_keys[i], platform::key_name(s.keys[std::size_t(i)]));
     w.end();
@@ -93,7 +95,7 @@ Result<PlayerSettings> parse_settings(std::string_view text, const std::string& 
     PlayerSettings s;
     Fields top(r, *doc, "",
                {"lantern_settings", "gi_preset", "vsync", "pixel_scale", "posterize", "dither", "palette", "autosave_seconds", "volume",
-                "keys"});
+                "world_self", "world_bleed", "character_self", "character_bleed", "keys"});
     int version = 0;
     top.required("lantern_settings", version, IntRange{1, 1 << 20});
     if (r.ok() && version != settings_format_version)
@@ -106,7 +108,11 @@ Result<PlayerSettings> parse_settings(std::string_view text, const std::string& 
         .optional("dither", s.dither)
         .optional("palette", s.palette, palette_choices)
         .optional("autosave_seconds", s.autosave_seconds, IntRange{0, max_autosave_seconds})
-        .optional("volume", s.volume, IntRange{0, 100});
+        .optional("volume", s.volume, IntRange{0, 100})
+        .optional("world_self", s.world_self, scene::reading::between(0.0, 1.0))
+        .optional("world_bleed", s.world_bleed, scene::reading::between(0.0, 1.0))
+        .optional("character_self", s.character_self, scene::reading::between(0.0, 1.0))
+        .optional("character_bleed", s.character_bleed, scene::reading::between(0.0, 1.0));
     if (r.ok() && s.posterize == 1) top.fail("posterize", "must be 0 (off) or in [2, 64], got 1");
     if (const json::Value* keys = top.find("keys")) {
         Fields f(r, *keys, "keys",

@@ -41,12 +41,13 @@ struct alignas(16) WorldFrame {
     glm::ivec4 gi{0};           // pitch, presence bits, sun count, GI on
     glm::ivec4 art{0};          // posterize levels, dither, palette colours, pattern
     glm::vec4 art_params{0.0f}; // dither amplitude
+    glm::vec4 bounce{1.0f, 0.0f, 1.0f, 0.0f}; // BounceStyle: world self, bleed; characters self, bleed
     glm::ivec4 view_tex{0};     // the GI view's texture: width, height, pitch
     glm::vec4 view_params{0.0f}; // its texels per world unit
     std::array<glm::vec4, max_palette_colors> palette{};
     std::array<gi::GpuDirectionalLight, 8> suns{};
 };
-static_assert(sizeof(WorldFrame) == 64 + 11 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
+static_assert(sizeof(WorldFrame) == 64 + 12 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
 
 static_assert(offsetof(BoxInstance, half) == 16 && offsetof(BoxInstance, color) == 32,
               "BoxInstance must match game_world.vert.glsl's three texels per box");
@@ -234,6 +235,16 @@ void append_wall_boxes(DrawList& list, const IsWall& is_wall, glm::ivec2 min_til
             b.emissive = 0.0f;
             list.boxes.push_back(b);
         }
+}
+
+glm::vec3 reflected_bounce(const BounceStyle& style, glm::vec3 bounce, glm::vec3 albedo) {
+    const glm::vec3 chroma = albedo - (albedo.r + albedo.g + albedo.b) / 3.0f;
+    const float length = glm::length(chroma);
+    if (length > 1e-6f) {
+        const glm::vec3 c = chroma / length;
+        bounce -= (1.0f - style.self) * std::max(glm::dot(bounce, c), 0.0f) * c;
+    }
+    return bounce * glm::mix(albedo, glm::vec3(1.0f), style.bleed);
 }
 
 glm::vec3 probe_face_light(const ProbeRecord& r, float phi) {
@@ -520,6 +531,8 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
                             : colors ? 0.5f / std::sqrt(float(colors))
                                      : 1.0f / 255.0f;
     f.art_params = glm::vec4(amplitude, 0.0f, 0.0f, 0.0f);
+    f.bounce = glm::vec4(view.world_bounce.self, view.world_bounce.bleed, view.character_bounce.self,
+                         view.character_bounce.bleed);
     m.frame.write(cmd, std::as_bytes(std::span<const WorldFrame>(&f, 1)));
     writes.uniform_texel_buffer(binding_boxes, m.instance_texels);
     writes.storage_buffer(binding_texel_lit, texel_on ? *view.texel_lit : m.dummy_storage);

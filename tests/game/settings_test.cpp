@@ -53,6 +53,10 @@ TEST(Settings, RoundTripIsExactAndAMissingFileGivesTheDefaults) {
     s.palette = 3; // pico
     s.autosave_seconds = 0;
     s.volume = 35;
+    s.world_self = 0.25f;
+    s.world_bleed = 0.1f;
+    s.character_self = 0.7f;
+    s.character_bleed = 1.0f / 3.0f; // not a short decimal: the file keeps every float exactly
     bind(s.keys, Action::walk_right, Key::l);
     bind(s.keys, Action::quick_save, Key::f6);
     ASSERT_TRUE(write_settings(path, s));
@@ -114,6 +118,8 @@ TEST(Settings, MalformedFilesAreRejectedWithPositions) {
         {R"({"lantern_settings": 1, "pixel_scale": 9})", "s.json:1:40: pixel_scale:"},
         {R"({"lantern_settings": 1, "posterize": 1})", "s.json:1:38: posterize: must be 0 (off) or in [2, 64], got 1"},
         {R"({"lantern_settings": 1, "volume": 101})", "s.json:1:35: volume:"},
+        {R"({"lantern_settings": 1, "world_bleed": 1.5})", "s.json:1:40: world_bleed:"},
+        {R"({"lantern_settings": 1, "character_self": -0.1})", "s.json:1:43: character_self:"},
         {R"({"lantern_settings": 1, "palette": "neon"})", "s.json:1:36: palette: expected one of \"off\", \"cave\", \"gameboy\", \"pico\", \"dusk\", got \"neon\""},
         {R"({"lantern_settings": 1,
   "keys": {"walk_up": "w", "trace": "blorp"}})", "s.json:2:37: keys.trace: unknown key 'blorp'"},

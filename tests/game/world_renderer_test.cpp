@@ -319,7 +319,116 @@ class WorldRendererTest : public test::RenderTest {
     }
 
     gi::Texture read(gi::vk::Tex t) { return gi().read_back(t); }
+
+    // The GPU's own GI textures of the last frame drawn, as the C++ shading library reads them.
+    struct GpuShading {
+        std::map<gi::vk::Tex, gi::Texture> textures;
+        gi::ShadingInputs in;
+    };
+    std::unique_ptr<GpuShading> read_shading(const GiFrame& frame) {
+        using gi::vk::Tex;
+        auto s = std::make_unique<GpuShading>();
+        for (Tex t : {Tex::direct, Tex::indirect, Tex::ao, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx,
+                      Tex::wall_direct_pz, Tex::wall_direct_nz, Tex::wall_indirect_px, Tex::wall_indirect_nx,
+                      Tex::wall_indirect_pz, Tex::wall_indirect_nz}) {
+            if (!gi().has(t)) {
+                ADD_FAILURE() << "no " << gi::vk::tex_name(t);
+                return nullptr;
+            }
+            s->textures[t] = read(t);
+        }
+        gi::ShadingInputs& in = s->in;
+        in.frame = &frame.in;
+        in.direct = &s->textures[Tex::direct];
+        in.indirect = &s->textures[Tex::indirect];
+        in.ao = &s->textures[Tex::ao];
+        in.shadow = &s->textures[Tex::shadow];
+        for (int f = 0; f < 4; ++f) {
+            in.wall_direct[std::size_t(f)] = &s->textures[Tex(int(Tex::wall_direct_px) + f)];
+            in.wall_indirect[std::size_t(f)] = &s->textures[Tex(int(Tex::wall_indirect_px) + f)];
+        }
+        return s;
+    }
 };
+
+// Each pixel of `image` against `expected(box, point, normal)` (sRGB8) at the point the
+// pixel's centre ray meets. Pixels whose neighbours meet another box or face (geometric
+// edges) are skipped. Positions within a hair of a GI texel or tile boundary may land on
+// either side on the GPU (interpolation vs. ray hit): the reference is taken at the hit and
+// at the hit moved by +-eps along the face, best match counted.
+struct PixelComparison {
+    int worst = 0, compared = 0, edges = 0, boundary = 0, over = 0;
+    double mean = 0.0;
+    std::array<int, 3> kinds{}; // lit pixels by SurfaceKind
+    glm::ivec2 worst_at{-1};
+    std::array<int, 3> worst_gpu{}, worst_ref{};
+};
+
+template <typename Expected>
+PixelComparison compare_pixels(const render::Rgba8Image& image, const scene::PerspectiveCamera& camera,
+                               const DrawList& list, const GiFrame& frame, Expected&& expected) {
+    PixelComparison r;
+    std::vector<Hit> hits(std::size_t(target_size.x * target_size.y));
+    for (int y = 0; y < target_size.y; ++y)
+        for (int x = 0; x < target_size.x; ++x)
+            hits[std::size_t(y * target_size.x + x)] = trace(game::camera_ray(camera, pixel_ndc(x, y)), list);
+    const float eps = 2e-3f;
+    double sum = 0.0;
+    for (int y = 1; y + 1 < target_size.y; ++y)
+        for (int x = 1; x + 1 < target_size.x; ++x) {
+            const Hit& h = hits[std::size_t(y * target_size.x + x)];
+            if (h.box < 0 || h.face > 4) {
+                ++r.edges;
+                continue;
+            }
+            bool edge = false;
+            for (glm::ivec2 d : {glm::ivec2(1, 0), glm::ivec2(-1, 0), glm::ivec2(0, 1), glm::ivec2(0, -1)}) {
+                const Hit& o = hits[std::size_t((y + d.y) * target_size.x + x + d.x)];
+                edge = edge || o.box != h.box || o.face != h.face;
+            }
+            if (edge) {
+                ++r.edges;
+                continue;
+            }
+            const BoxInstance& b = list.boxes[std::size_t(h.box)];
+            EXPECT_TRUE((int(b.face_mask) >> h.face) & 1) << "a ray entered a box through a face not drawn";
+            const game::Ray ray = game::camera_ray(camera, pixel_ndc(x, y));
+            const glm::vec3 hit = ray.origin + ray.direction * h.t;
+            const glm::vec3 n = face_normals[std::size_t(h.face)];
+            const std::array<int, 3> gpu = pixel(image, x, y);
+            int best = max_diff(gpu, expected(b, hit, n));
+            if (best > 2) {
+                ++r.boundary;
+                for (int dz = -1; dz <= 1; ++dz)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        glm::vec3 p = hit + glm::vec3(float(dx) * eps, 0.0f, float(dz) * eps);
+                        p = glm::clamp(p, b.center - b.half, b.center + b.half); // stay on the face
+                        best = std::min(best, max_diff(gpu, expected(b, p, n)));
+                    }
+            }
+            ++r.compared;
+            sum += best;
+            r.over += best > 2;
+            if (int(b.material) != int(Material::glow))
+                ++r.kinds[std::size_t(gi::classify_surface(frame.in.walls, frame.in.window, hit, n))];
+            if (best > r.worst) {
+                r.worst = best;
+                r.worst_at = {x, y};
+                r.worst_gpu = gpu;
+                r.worst_ref = expected(b, hit, n);
+            }
+        }
+    r.mean = r.compared ? sum / r.compared : 0.0;
+    return r;
+}
+
+void expect_close(const PixelComparison& r) {
+    EXPECT_EQ(r.over, 0) << "worst at (" << r.worst_at.x << ", " << r.worst_at.y << "): gpu " << r.worst_gpu[0] << " "
+                         << r.worst_gpu[1] << " " << r.worst_gpu[2] << ", reference " << r.worst_ref[0] << " "
+                         << r.worst_ref[1] << " " << r.worst_ref[2];
+    EXPECT_LE(r.worst, 2);
+    EXPECT_LT(r.mean, 0.5);
+}
 
 // ---- 1. lighting equals the C++ reference
 
@@ -336,24 +445,9 @@ TEST_F(WorldRendererTest, LightingEqualsTheCppShadingLibrary) {
     maybe_write_png(image, "lighting");
 
     // The GPU's own GI textures, through the C++ shading library.
-    using gi::vk::Tex;
-    std::map<Tex, gi::Texture> textures;
-    for (Tex t : {Tex::direct, Tex::indirect, Tex::ao, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx,
-                  Tex::wall_direct_pz, Tex::wall_direct_nz, Tex::wall_indirect_px, Tex::wall_indirect_nx,
-                  Tex::wall_indirect_pz, Tex::wall_indirect_nz}) {
-        ASSERT_TRUE(gi().has(t)) << gi::vk::tex_name(t);
-        textures[t] = read(t);
-    }
-    gi::ShadingInputs in;
-    in.frame = &frame->in;
-    in.direct = &textures[Tex::direct];
-    in.indirect = &textures[Tex::indirect];
-    in.ao = &textures[Tex::ao];
-    in.shadow = &textures[Tex::shadow];
-    for (int f = 0; f < 4; ++f) {
-        in.wall_direct[std::size_t(f)] = &textures[Tex(int(Tex::wall_direct_px) + f)];
-        in.wall_indirect[std::size_t(f)] = &textures[Tex(int(Tex::wall_indirect_px) + f)];
-    }
+    const auto shading = read_shading(*frame);
+    ASSERT_TRUE(shading);
+    const gi::ShadingInputs& in = shading->in;
     const scene::GiSettings& settings = frame->in.settings;
     auto expected = [&](const BoxInstance& b, glm::vec3 pos, glm::vec3 n) {
         glm::vec3 c = b.color * b.emissive;
@@ -361,81 +455,70 @@ TEST_F(WorldRendererTest, LightingEqualsTheCppShadingLibrary) {
         return srgb8(gi::tone_map(c, settings.tone_map, settings.white_point));
     };
 
-    // Per pixel: the box and face the centre ray meets; skip pixels whose neighbours meet
-    // another box or face (geometric edges). Positions within a hair of a GI texel or tile
-    // boundary may land on either side on the GPU (interpolation vs. ray hit): the reference
-    // is taken at the hit and at the hit moved by +-eps along the face, best match counted.
-    std::vector<Hit> hits(std::size_t(target_size.x * target_size.y));
-    for (int y = 0; y < target_size.y; ++y)
-        for (int x = 0; x < target_size.x; ++x)
-            hits[std::size_t(y * target_size.x + x)] = trace(game::camera_ray(view.camera, pixel_ndc(x, y)), list);
-    const float eps = 2e-3f;
-    int worst = 0, compared = 0, edges = 0, boundary = 0, over = 0;
-    double sum = 0.0;
-    std::array<int, 3> kinds{};
-    glm::ivec2 worst_at{-1};
-    std::array<int, 3> worst_gpu{}, worst_ref{};
-    for (int y = 1; y + 1 < target_size.y; ++y)
-        for (int x = 1; x + 1 < target_size.x; ++x) {
-            const Hit& h = hits[std::size_t(y * target_size.x + x)];
-            if (h.box < 0 || h.face > 4) {
-                ++edges;
-                continue;
-            }
-            bool edge = false;
-            for (glm::ivec2 d : {glm::ivec2(1, 0), glm::ivec2(-1, 0), glm::ivec2(0, 1), glm::ivec2(0, -1)}) {
-                const Hit& o = hits[std::size_t((y + d.y) * target_size.x + x + d.x)];
-                edge = edge || o.box != h.box || o.face != h.face;
-            }
-            if (edge) {
-                ++edges;
-                continue;
-            }
-            const BoxInstance& b = list.boxes[std::size_t(h.box)];
-            ASSERT_TRUE((int(b.face_mask) >> h.face) & 1) << "a ray entered a box through a face not drawn";
-            const game::Ray ray = game::camera_ray(view.camera, pixel_ndc(x, y));
-            const glm::vec3 hit = ray.origin + ray.direction * h.t;
-            const glm::vec3 n = face_normals[std::size_t(h.face)];
-            const std::array<int, 3> gpu = pixel(image, x, y);
-            int best = max_diff(gpu, expected(b, hit, n));
-            if (best > 2) {
-                ++boundary;
-                for (int dz = -1; dz <= 1; ++dz)
-                    for (int dx = -1; dx <= 1; ++dx) {
-                        glm::vec3 p = hit + glm::vec3(float(dx) * eps, 0.0f, float(dz) * eps);
-                        p = glm::clamp(p, b.center - b.half, b.center + b.half); // stay on the face
-                        best = std::min(best, max_diff(gpu, expected(b, p, n)));
-                    }
-            }
-            ++compared;
-            sum += best;
-            over += best > 2;
-            if (int(b.material) != int(Material::glow))
-                ++kinds[std::size_t(gi::classify_surface(frame->in.walls, frame->in.window, hit, n))];
-            if (best > worst) {
-                worst = best;
-                worst_at = {x, y};
-                worst_gpu = gpu;
-                worst_ref = expected(b, hit, n);
-            }
-        }
-    const double mean = compared ? sum / compared : 0.0;
+    const PixelComparison r = compare_pixels(image, view.camera, list, *frame, expected);
     std::printf("[ lighting ] %d pixels compared (%d ground, %d wall face, %d wall top), %d on edges skipped, "
                 "%d near texel boundaries (compared at +-eps); max error %d/255, mean %.4f/255\n",
-                compared, kinds[0], kinds[1], kinds[2], edges, boundary, worst, mean);
-    EXPECT_GT(compared, target_size.x * target_size.y / 2);
-    EXPECT_GT(kinds[0], 10000);
-    EXPECT_GT(kinds[1], 1000);
-    EXPECT_GT(kinds[2], 1000);
-    EXPECT_EQ(over, 0) << "worst at (" << worst_at.x << ", " << worst_at.y << "): gpu " << worst_gpu[0] << " "
-                       << worst_gpu[1] << " " << worst_gpu[2] << ", reference " << worst_ref[0] << " " << worst_ref[1]
-                       << " " << worst_ref[2];
-    EXPECT_LE(worst, 2);
-    EXPECT_LT(mean, 0.5);
+                r.compared, r.kinds[0], r.kinds[1], r.kinds[2], r.edges, r.boundary, r.worst, r.mean);
+    EXPECT_GT(r.compared, target_size.x * target_size.y / 2);
+    EXPECT_GT(r.kinds[0], 10000);
+    EXPECT_GT(r.kinds[1], 1000);
+    EXPECT_GT(r.kinds[2], 1000);
+    expect_close(r);
     // Not a dark image: the comparison saw light.
     int lit = 0;
     for (std::size_t i = 0; i < image.pixels.size(); i += 4) lit += image.pixels[i] + image.pixels[i + 1] > 60;
     EXPECT_GT(lit, target_size.x * target_size.y / 4);
+}
+
+// Seed 002's runtime knobs (BounceStyle): the world's set on ground and walls, the
+// characters' on the crate, each pixel as the C++ twin computes it from the GPU's own GI
+// textures: max(albedo x (light - bounce) + reflected_bounce(style, bounce, albedo), 0) +
+// emission. The image must differ from the plain one (the knobs act), and a grey surface
+// keeps its light under `self` alone (its albedo has no chroma).
+TEST_F(WorldRendererTest, BounceKnobsReshapeTheBounceAsTheCppTwin) {
+    auto frame = lit_room_frame();
+    ASSERT_TRUE(frame);
+    const DrawList list = world_list(*frame);
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+    view.art.texture_pattern = false;
+    const render::Rgba8Image plain = draw(view, list, frame.get());
+    view.world_bounce = {0.2f, 0.6f};
+    view.character_bounce = {0.0f, 1.0f};
+    const render::Rgba8Image image = draw(view, list, frame.get());
+    maybe_write_png(image, "bounce_knobs");
+    const auto shading = read_shading(*frame);
+    ASSERT_TRUE(shading);
+    const scene::GiSettings& settings = frame->in.settings;
+    auto expected = [&](const BoxInstance& b, glm::vec3 pos, glm::vec3 n) {
+        glm::vec3 c = b.color * b.emissive;
+        if (int(b.material) != int(Material::glow)) {
+            const bool world = int(b.material) == int(Material::ground) || int(b.material) == int(Material::wall);
+            const game::BounceStyle& style = world ? view.world_bounce : view.character_bounce;
+            const glm::vec3 light = gi::surface_light(shading->in, pos, n);
+            const glm::vec3 bounce = gi::surface_bounce(shading->in, pos, n);
+            c += glm::max(b.color * (light - bounce) + game::reflected_bounce(style, bounce, b.color), glm::vec3(0.0f));
+        }
+        return srgb8(gi::tone_map(c, settings.tone_map, settings.white_point));
+    };
+    const PixelComparison r = compare_pixels(image, view.camera, list, *frame, expected);
+    std::printf("[ bounce knobs ] %d pixels compared, max error %d/255, mean %.4f/255\n", r.compared, r.worst, r.mean);
+    EXPECT_GT(r.compared, target_size.x * target_size.y / 2);
+    expect_close(r);
+    int changed = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4)
+        changed += std::abs(int(image.pixels[i]) - int(plain.pixels[i])) + std::abs(int(image.pixels[i + 2]) - int(plain.pixels[i + 2])) > 6;
+    std::printf("[ bounce knobs ] %d of %d pixels changed by more than 6/255\n", changed, target_size.x * target_size.y);
+    EXPECT_GT(changed, target_size.x * target_size.y / 10);
+    // The twin itself: a grey albedo has no chroma (self leaves it), bleed 1 reflects as white.
+    const glm::vec3 orange(1.0f, 0.5f, 0.1f);
+    EXPECT_EQ(game::reflected_bounce({0.0f, 0.0f}, orange, glm::vec3(0.5f)), orange * 0.5f);
+    EXPECT_EQ(game::reflected_bounce({1.0f, 1.0f}, orange, glm::vec3(0.05f)), orange);
+    // An orange wall under orange bounce with self 0: the bounce's chroma along the wall's own
+    // is gone, its mean (brightness) kept.
+    const glm::vec3 kept = game::reflected_bounce({0.0f, 1.0f}, orange, orange);
+    EXPECT_NEAR((kept.r + kept.g + kept.b) / 3.0f, (orange.r + orange.g + orange.b) / 3.0f, 1e-5f);
+    EXPECT_LT(kept.r - kept.b, 0.2f * (orange.r - orange.b));
 }
 
 // ---- 2. geometry

@@ -120,6 +120,8 @@ void Game::apply_settings(Session* s, bool gi) {
     if (!options_.given.posterize) art_.posterize = settings_.posterize;
     if (!options_.given.dither) art_.dither = settings_.dither;
     if (options_.palette.empty()) art_.palette = settings_.palette; // --palette wins (init sets it)
+    world_bounce_ = {settings_.world_self, settings_.world_bleed};
+    character_bounce_ = {settings_.character_self, settings_.character_bleed};
     if (sound_) sound_->mixer().set_volume(float(settings_.volume) / 100.0f);
     if (gi && s) // the HUD's live GI edits are replaced
         if (auto g = session_gi(s->info)) s->world.resource<systems::GiConfig>().settings = *g;
@@ -167,6 +169,8 @@ void Game::record_world(gpu::CommandList& cmd, Session& s) {
     view.gi = gv.window ? &w.resource<systems::FramePasses>().inputs : nullptr;
     view.renderer = gi_renderer_.get();
     view.art = art_;
+    view.world_bounce = world_bounce_;
+    view.character_bounce = character_bounce_;
     view.gi_view = gi_view_;
     view.time = float(w.resource<GameClock>().time);
     std::uint32_t region = 0;
@@ -230,6 +234,8 @@ void Game::render_system(Session& s) {
         in.report = &report;
         in.config = &w.resource<systems::GiConfig>();
         in.art = &art_;
+        in.world_bounce = &world_bounce_;
+        in.character_bounce = &character_bounce_;
         in.gi_view = &gi_view_;
         in.gi_view_drawn = world_renderer_->gi_view_drawn();
         const bool gather = f.inputs.settings.method == scene::GiMethod::gather;

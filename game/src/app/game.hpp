@@ -195,6 +195,7 @@ class Game {
     std::unique_ptr<Session> session_;
     std::uint32_t raster_lane_ = 0;
     ArtSettings art_;
+    BounceStyle world_bounce_, character_bounce_; // the settings' knobs; the HUD edits them live
     GiDebugView gi_view_ = GiDebugView::lit; // the HUD's GI views
     Hud hud_;
     render::PresentRect present_rect_;

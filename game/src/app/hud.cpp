@@ -321,6 +321,13 @@ HudActions Hud::draw(const HudInputs& in) {
         std::vector<const char*> names;
         for (const Palette& p : palettes) names.push_back(p.name);
         ImGui::Combo("palette", &in.art->palette, names.data(), int(names.size()));
+        if (in.world_bounce && in.character_bounce) {
+            // Seed 002's runtime knobs on the bounce light (docs/baked.md, "Bounce knobs").
+            ImGui::SliderFloat("world self", &in.world_bounce->self, 0.0f, 1.0f);
+            ImGui::SliderFloat("world bleed", &in.world_bounce->bleed, 0.0f, 1.0f);
+            ImGui::SliderFloat("character self", &in.character_bounce->self, 0.0f, 1.0f);
+            ImGui::SliderFloat("character bleed", &in.character_bounce->bleed, 0.0f, 1.0f);
+        }
     }
     if (in.day && ImGui::CollapsingHeader("World", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextWrapped("placing: %s   (keys 1-5; the hotbar shows what is left)", in.item);

@@ -19,6 +19,8 @@ struct HudInputs {
     const systems::FrameReport* report = nullptr; // this frame's
     systems::GiConfig* config = nullptr;          // edited live
     ArtSettings* art = nullptr;                   // edited live
+    BounceStyle* world_bounce = nullptr;          // edited live (seed 002's knobs)
+    BounceStyle* character_bounce = nullptr;      // edited live
     GiDebugView* gi_view = nullptr;               // edited live
     GiDebugView gi_view_drawn = GiDebugView::lit; // what the last frame drew
     int converge_history = 0;                     // frames of history the method's converging pass has

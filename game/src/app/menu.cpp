@@ -131,6 +131,12 @@ void PauseMenu::draw_settings(const MenuInputs& in) {
     int posterize = s.posterize;
     if (ImGui::SliderInt("posterize (0 off)", &posterize, 0, 32)) s.posterize = posterize == 1 ? 2 : posterize;
     ImGui::SliderInt("volume (%)", &s.volume, 0, 100);
+    // Seed 002's bounce knobs: how much a colour reinforces itself, how much dark surfaces
+    // take their neighbours' colour (world, then characters).
+    ImGui::SliderFloat("bounce self (world)", &s.world_self, 0.0f, 1.0f);
+    ImGui::SliderFloat("bounce bleed (world)", &s.world_bleed, 0.0f, 1.0f);
+    ImGui::SliderFloat("bounce self (characters)", &s.character_self, 0.0f, 1.0f);
+    ImGui::SliderFloat("bounce bleed (characters)", &s.character_bleed, 0.0f, 1.0f);
     int minutes = s.autosave_seconds / 60;
     if (ImGui::SliderInt("autosave (minutes, 0 off)", &minutes, 0, 30)) s.autosave_seconds = minutes * 60;
     const float w = full_width();

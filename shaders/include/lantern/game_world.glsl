@@ -53,6 +53,7 @@ struct WorldFrame {
     ivec4 art;         // x: posterize levels (0 off), y: dither, z: palette colours (0 off), w: pattern
                        // (x, y, z all 0: HAS_ART is false)
     vec4 art_params;   // x: dither amplitude (encoded units)
+    vec4 bounce;       // seed 002's runtime knobs (BounceStyle): world self, bleed; characters self, bleed
     ivec4 view_tex;    // GI_VIEW's texture: width, height, pitch, 0
     vec4 view_params;  // x: its texels per world unit (from the window's min corner)
     vec4 palette[16];  // sRGB-encoded palette colours

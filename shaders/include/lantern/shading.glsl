@@ -150,6 +150,22 @@ vec3 ground_indirect_light(vec3 pos) {
     return gi_wall_at(pos.xz) ? vec3(0.0) : indirect;
 }
 
+// The bounce part of surface_light (its GI_INDIRECT and wall_indirect terms, with AO as it
+// applies them; the rest is direct light): what seed 002's runtime knobs act on in the
+// game's raster (reflected_bounce in game_world.frag). Game-only, as ground_indirect_light.
+vec3 surface_bounce(vec3 pos, vec3 n) {
+    int kind = classify_surface(pos, n);
+    if (kind == SURFACE_WALL_FACE) {
+        vec2 inside = wall_sample_position(pos, n);
+        vec3 light = gi_fetch_rgb(GI_WALL_INDIRECT + dominant_face(n), gi_texel_at(inside));
+        if (gi_shading.options.y != 0.0 && gi_has(GI_AO))
+            light *= gi_fetch(GI_AO, gi_texel_at(face_ao_position(inside, pos.xz, dominant_face(n)))).r;
+        return light;
+    }
+    if (kind == SURFACE_WALL_TOP) return ground_indirect_average(pos.xz);
+    return ground_indirect_light(pos);
+}
+
 vec3 shade(vec3 pos, vec3 n) {
     return tone_map(surface_light(pos, n), int(gi_shading.config.y), gi_shading.config.z);
 }

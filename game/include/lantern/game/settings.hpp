@@ -75,6 +75,10 @@ struct PlayerSettings {
     int palette = 0;              // index into palette_names (0: off)
     int autosave_seconds = 180;   // of play (not paused, not minimised); 0: no autosave
     int volume = 80;              // sound, percent (0: silent)
+    // Seed 002's runtime knobs on the bounce light (game::BounceStyle, world_renderer.hpp):
+    // self and bleed for the world (ground, walls) and for characters and decorations.
+    float world_self = 1.0f, world_bleed = 0.0f;
+    float character_self = 1.0f, character_bleed = 0.0f;
     KeyBindings keys = default_key_bindings();
     friend bool operator==(const PlayerSettings&, const PlayerSettings&) = default;
 };

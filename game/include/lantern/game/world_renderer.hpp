@@ -173,6 +173,27 @@ struct ArtSettings {
     bool texture_pattern = true; // the procedural per-texel pixel-art pattern (tests turn it off)
 };
 
+// Seed 002's runtime knobs on the bounce light a surface reflects (live sliders: no re-bake,
+// nothing recomputed but the raster). The GI's indirect light (live and baked) reaches a
+// surface of albedo a as
+//   b = indirect, less (1 - self) x its part along the chroma of a (a - mean(a), unit
+//       length) where that part is positive, kept non-negative;
+//   reflected = b x mix(a, 1, bleed).
+// self = 1, bleed = 0 (the defaults) is the physical albedo x indirect. Lower `self`: an
+// orange wall no longer piles its own orange onto itself, while cross-colour bounce and the
+// light's brightness (the chroma has mean 0) stay; higher `bleed`: dark surfaces pick up
+// their neighbours' colour. One set for the world (ground, walls) and one for characters
+// and decorations (everything else that is lit), as the seed splits them.
+struct BounceStyle {
+    float self = 1.0f;  // [0, 1]
+    float bleed = 0.0f; // [0, 1]
+    friend bool operator==(const BounceStyle&, const BounceStyle&) = default;
+};
+// The bounce light `bounce` as a surface of albedo `albedo` reflects it under `style` (the C++
+// twin of game_world.frag's reflected_bounce). A lit face shows
+// max(albedo x direct + reflected_bounce(...), 0) + emission when the style is not the default.
+glm::vec3 reflected_bounce(const BounceStyle& style, glm::vec3 bounce, glm::vec3 albedo);
+
 struct WorldView {
     scene::PerspectiveCamera camera;           // the tilted top-down camera (game::follow_camera)
     const gi::FrameInputs* gi = nullptr;       // this frame's GI inputs; nullptr: no GI (lit
@@ -181,6 +202,8 @@ struct WorldView {
                                                // earlier in the same command list (or an earlier
                                                // submission); nullptr: no GI
     ArtSettings art;
+    BounceStyle world_bounce;     // ground and walls
+    BounceStyle character_bounce; // props, the player, trees, texel-lit models
     GiDebugView gi_view = GiDebugView::lit; // a texture this frame lacks (the method has no such
                                             // pass) draws the lit scene
     float time = 0.0f; // seconds; unused for now (no animated glow: output is a function of the view)
