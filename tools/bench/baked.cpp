@@ -97,12 +97,17 @@ int baked(const BakedOptions& o) {
     settings.margin = o.margin;
     settings.rays = o.rays;
     settings.face_rays = o.face_rays;
+    settings.solver = o.solver == "seed002" ? bake::BakeSolver::seed002 : bake::BakeSolver::gather;
+    settings.falloff = o.falloff;
+    settings.ambient = o.ambient;
     const scene::Scene baked_world = caves_world(o.chunks, o.lights, scene::LightMode::baked);
     const fs::path dir = fs::temp_directory_path() / ("lantern-bench-baked-" + std::to_string(now_ns()));
 
     // 1. The bake, on 1 and 2 threads.
-    std::printf("\n## Bake (resolution %d, margin %d, %d ground and %d face rays)\n\n", settings.resolution, settings.margin,
-                settings.rays, settings.face_rays);
+    std::printf("\n## Bake (solver %s, resolution %d, margin %d, %d ground and %d face rays)\n\n",
+                bake::solver_name(settings.solver), settings.resolution, settings.margin, settings.rays, settings.face_rays);
+    if (settings.solver == bake::BakeSolver::seed002)
+        std::printf("seed002: falloff %g tiles, ambient %g\n\n", double(settings.falloff), double(settings.ambient));
     std::printf("| threads | chunks | seconds | per chunk |\n|---|---|---|---|\n");
     for (int threads : {1, 2}) {
         jobs::JobSystem::Config config;
@@ -167,14 +172,17 @@ int baked(const BakedOptions& o) {
         fs::remove_all(dir);
         return 1;
     }
-    auto renderer = gi::vk::Renderer::create(**device);
+    // Without dirty light bins: the same still frame repeats, and with them every repeat
+    // after the first would record no direct work at all (docs/gi.md, "Dirty light bins").
+    // This measures a frame whose lights all changed, as when torches flicker.
+    auto renderer = gi::vk::Renderer::create(**device, {.dirty_bins = false});
     if (!renderer) {
         std::fprintf(stderr, "lantern-bench baked: %s\n", renderer.error().message.c_str());
         fs::remove_all(dir);
         return 1;
     }
     auto light = bake::runtime_light(pointers, walls);
-    std::printf("\n## The frame on %s (GPU ms, median of %d; every pass planned runs)\n\n", (*device)->name().c_str(), o.repeats);
+    std::printf("\n## The frame on %s (GPU ms, median of %d; every pass planned runs, dirty light bins off)\n\n", (*device)->name().c_str(), o.repeats);
     std::printf("| method | lights | total | direct | mixed | baked | the method's own passes |\n|---|---|---|---|---|---|---|\n");
     for (scene::GiMethod method : {scene::GiMethod::heat, scene::GiMethod::gather}) {
         for (scene::LightMode mode : {scene::LightMode::realtime, scene::LightMode::mixed, scene::LightMode::baked}) {

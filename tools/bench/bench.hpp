@@ -44,6 +44,8 @@ struct BakedOptions {
     int lights = 32;     // point lights on open tiles
     int repeats = 5;     // timed frames per configuration (after one warm-up); median
     int resolution = 2, margin = 8, rays = 64, face_rays = 32; // the bake's settings (the game's)
+    std::string solver = "gather";                             // or "seed002", with:
+    float falloff = 4.0f, ambient = 0.0f;
 };
 int baked(const BakedOptions& options);
 

@@ -5,6 +5,7 @@
 //   lantern-bench radiosity-noise [--frames N] [--resolution R] [--lights N]
 //   lantern-bench dirty-bins [--frames N] [--resolution R]
 //   lantern-bench baked [--chunks N] [--lights N] [--repeats N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
+//                       [--solver gather|seed002] [--falloff TILES] [--ambient E]
 //   lantern-bench accuracy [--quick] [--repeats N] [--out DIR] [--scenes A,B] [--maps DIR]
 //                          [--albedo A] [--target E] [--cache DIR | --no-cache] [--backend B]
 //                          [--images]
@@ -144,6 +145,9 @@ int baked_main(int argc, char** argv) {
     p.integer("--margin", "M", "the bake's margin in tiles (default 8: the game's)", o.margin, 0, 64);
     p.integer("--rays", "N", "ground rays (default 64: the game's)", o.rays, 1, 1024);
     p.integer("--face-rays", "N", "face rays (default 32: the game's)", o.face_rays, 1, 1024);
+    p.choice("--solver", "the bake's solver (default gather)", o.solver, {"gather", "seed002"});
+    p.number("--falloff", "TILES", "seed002: the falloff's half distance (default 4)", o.falloff, 1.0f / 64.0f, 4096.0f);
+    p.number("--ambient", "E", "seed002: the ambient fill (default 0)", o.ambient, 0.0f, 1000.0f);
     if (auto exit = p.parse(argc, argv, 2)) return *exit;
     return lantern::bench::baked(o);
 }
