@@ -239,7 +239,9 @@ bool WorldBaker::scan(ecs::World& world) {
             if (inside(p.position)) s.shadow_proxies.push_back(p);
         Hasher h;
         h.add_bytes(s.walls.cells.data(), s.walls.cells.size()).add(s.wall_height);
-        for (const auto& m : s.materials) h.add(m.albedo.r).add(m.albedo.g).add(m.albedo.b).add(m.emission.r).add(m.emission.g).add(m.emission.b);
+        for (const auto& m : s.materials)
+            h.add(m.albedo.r).add(m.albedo.g).add(m.albedo.b).add(m.emission.r).add(m.emission.g).add(m.emission.b)
+                .add(int(m.emission_gi)).add(m.opacity);
         for (double v : scene::gi_setting_values(s.gi)) h.add(v);
         for (const auto& l : s.point_lights) h.add(l.position.x).add(l.position.y).add(l.intensity).add(l.radius).add(int(l.mode)).add(l.color.r).add(l.color.g).add(l.color.b);
         for (const auto& l : s.emissive_lights) h.add(l.position.x).add(l.position.y).add(l.intensity).add(l.radius).add(int(l.mode)).add(l.color.r).add(l.color.g).add(l.color.b);

@@ -655,3 +655,43 @@ TEST(Bake, Seed002SettingsAreInTheKey) {
     b.ambient = 0.5f;
     EXPECT_NE(bake::chunk_key(s, {0, 0}, b), seed);
 }
+
+// Seed 004's emission GI modes: a `baked` glowing material is in the bake and leaves the live
+// scene; a `realtime` one is not baked and stays live; `none` lights nothing, baked or live,
+// though the tile keeps its emission (the game still draws it glowing).
+TEST(Bake, EmissionGiModesDecideWhereAGlowLights) {
+    scene::Scene s = world();
+    s.point_lights.clear(); // only the lava wall in chunk (0, 0) gives light
+    const glm::vec3 glow = s.materials[0].emission;
+    for (scene::EmissionGi mode : {scene::EmissionGi::baked, scene::EmissionGi::realtime, scene::EmissionGi::none}) {
+        s.materials[0].emission_gi = mode;
+        const bake::ChunkBake b = bake::bake_chunk(s, {0, 0}, quick());
+        const scene::Scene live = bake::live_scene(s);
+        const gi::GpuMaterial gpu = gi::pack_material(s.materials[0]);
+        EXPECT_EQ(live.materials[0].emission, mode == scene::EmissionGi::baked ? glm::vec3(0.0f) : glow) << int(mode);
+        EXPECT_EQ(b.empty, mode != scene::EmissionGi::baked) << int(mode);
+        EXPECT_EQ(glm::vec3(gpu.emission), mode == scene::EmissionGi::none ? glm::vec3(0.0f) : glow) << int(mode);
+    }
+}
+
+// Seed 004's opacity multiplies what a tile reflects and emits (the GI's material table and,
+// through it, the bake): half-opaque lava bakes about half the light (less its own bounce).
+TEST(Bake, OpacityScalesWhatATileReflectsAndEmits) {
+    scene::Scene s = world();
+    s.point_lights.clear();
+    scene::Material m = s.materials[0];
+    m.opacity = 0.5f;
+    const gi::GpuMaterial gpu = gi::pack_material(m);
+    EXPECT_EQ(glm::vec3(gpu.albedo), s.materials[0].albedo * 0.5f);
+    EXPECT_EQ(glm::vec3(gpu.emission), s.materials[0].emission * 0.5f);
+    const bake::ChunkBake full = bake::bake_chunk(s, {0, 0}, quick());
+    s.materials[0].opacity = 0.5f;
+    const bake::ChunkBake half = bake::bake_chunk(s, {0, 0}, quick());
+    EXPECT_NE(full.key, half.key);
+    double a = 0.0, b = 0.0;
+    for (std::size_t i = 0; i < full.ground.size(); ++i) a += full.ground[i], b += half.ground[i];
+    ASSERT_GT(a, 0.0);
+    std::printf("[ opacity ] ground light at opacity 0.5: %.4f of opacity 1\n", b / a);
+    EXPECT_GT(b / a, 0.45);
+    EXPECT_LE(b / a, 0.5 + 1e-3);
+}

@@ -696,7 +696,8 @@ TEST(SceneLoader, TheExampleInTheDocsLoads) {
 TEST(SceneLoader, MaterialsColourRowsByTheirSymbolsAndRegions) {
     const Scene s = parse_scene_ok(R"({"lantern_scene": 1,
         "materials": [{"name": "red_rock", "albedo": [0.8, 0.1, 0.1], "symbol": "R"},
-                      {"name": "lava", "albedo": [0.2, 0.05, 0.0], "emission": [4, 1, 0.2]}],
+                      {"name": "lava", "albedo": [0.2, 0.05, 0.0], "emission": [4, 1, 0.2], "gi": "realtime",
+                       "opacity": 0.25}],
         "material_regions": [{"material": "lava", "min": [11, 20], "max": [11, 21]},
                              {"material": "red_rock", "min": [-1000000, 21], "max": [1000000, 21]}],
         "world": {"rows": ["#R.#", "##.R", "#..#"], "origin": [10, 20]},
@@ -706,6 +707,10 @@ TEST(SceneLoader, MaterialsColourRowsByTheirSymbolsAndRegions) {
     EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.8f, 0.1f, 0.1f));
     EXPECT_EQ(s.materials[0].emission, glm::vec3(0.0f));
     EXPECT_EQ(s.materials[1].emission, glm::vec3(4.0f, 1.0f, 0.2f));
+    EXPECT_EQ(s.materials[0].emission_gi, EmissionGi::baked);
+    EXPECT_EQ(s.materials[0].opacity, 1.0f);
+    EXPECT_EQ(s.materials[1].emission_gi, EmissionGi::realtime);
+    EXPECT_EQ(s.materials[1].opacity, 0.25f);
     const std::uint8_t d = default_wall_cell, red = material_cell(0), lava = material_cell(1);
     // Row 0: the region made (11, 20) lava; row 1: the second region made every wall red,
     // after the first made (11, 21) lava; floor stays floor.
@@ -748,6 +753,10 @@ INSTANTIATE_TEST_SUITE_P(
                        "'.' and space, got \"ab\""},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "symbol": "x"}, {"name": "b", "symbol": "x"}])"),
                        "t.json:2:69: materials[1].symbol: symbol 'x' is taken by material \"a\""},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "gi": "live"}])"),
+                       "t.json:2:35: materials[0].gi: expected one of \"baked\", \"realtime\", \"none\", got \"live\""},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "opacity": 1.5}])"),
+                       "t.json:2:40: materials[0].opacity: must be in [0, 1], got 1.5"},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "glow": 1}])"),
                        "t.json:2:29: materials[0].glow: unknown key 'glow' in materials[0]"},
         SceneErrorCase{scene_with(R"("materials": {"name": "a"})"),

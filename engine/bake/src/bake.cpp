@@ -79,6 +79,8 @@ scene::Scene lights_of(const scene::Scene& s, const BakeSettings& b, Lights whic
         if (keeps(l.mode == LightMode::mixed ? LightMode::realtime : l.mode, which)) out.directional_lights.push_back(l);
     out.shadow_proxies = s.shadow_proxies;
     out.materials = s.materials;
+    for (scene::Material& m : out.materials) // realtime glow stays live: the bake leaves it out
+        if (m.emission_gi == scene::EmissionGi::realtime) m.emission = glm::vec3(0.0f);
     return out;
 }
 

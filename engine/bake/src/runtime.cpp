@@ -87,7 +87,8 @@ scene::Scene live_scene(const scene::Scene& s) {
     std::erase_if(out.point_lights, baked);
     std::erase_if(out.emissive_lights, baked);
     std::erase_if(out.directional_lights, baked);
-    for (scene::Material& m : out.materials) m.emission = glm::vec3(0.0f);
+    for (scene::Material& m : out.materials) // the bake holds the glow of `baked` materials
+        if (m.emission_gi == scene::EmissionGi::baked) m.emission = glm::vec3(0.0f);
     return out;
 }
 

@@ -126,7 +126,10 @@ void split_for_bake(FrameInputs& in, const scene::Scene& s) {
 }
 
 GpuMaterial pack_material(const scene::Material& m) {
-    return {glm::vec4(m.albedo, 0.0f), glm::vec4(m.emission, 0.0f)};
+    // Seed 004's meta pass: opacity scales what the tile reflects and emits; emission GI
+    // `none` keeps the glow out of the GI.
+    const glm::vec3 emission = m.emission_gi == scene::EmissionGi::none ? glm::vec3(0.0f) : m.emission * m.opacity;
+    return {glm::vec4(m.albedo * m.opacity, 0.0f), glm::vec4(emission, 0.0f)};
 }
 
 GpuMaterial material_of(const FrameInputs& in, std::uint8_t cell) {

@@ -49,6 +49,11 @@ constexpr std::array<EnumName<LightMode>, 3> light_modes{{
     {"mixed", LightMode::mixed},
     {"baked", LightMode::baked},
 }};
+constexpr std::array<EnumName<EmissionGi>, 3> emission_gi_modes{{
+    {"baked", EmissionGi::baked},
+    {"realtime", EmissionGi::realtime},
+    {"none", EmissionGi::none},
+}};
 constexpr std::array<EnumName<ProxyShape>, 2> proxy_shapes{{
     {"box", ProxyShape::box},
     {"circle", ProxyShape::circle},
@@ -286,10 +291,12 @@ void read_materials(Reader& reader, const Fields& top, std::vector<Material>& ou
         const std::string path = reading::index_path("materials", i);
         Material m;
         std::string symbol;
-        Fields fields(reader, items[i], path, {"name", "albedo", "emission", "symbol"});
+        Fields fields(reader, items[i], path, {"name", "albedo", "emission", "gi", "opacity", "symbol"});
         fields.required("name", m.name)
             .optional("albedo", m.albedo, between(0.0, 1.0))
             .optional("emission", m.emission, at_least(0.0))
+            .optional("gi", m.emission_gi, emission_gi_modes)
+            .optional("opacity", m.opacity, between(0.0, 1.0))
             .optional("symbol", symbol);
         if (!reader.ok()) return;
         const bool word = !m.name.empty() && m.name.size() <= 64 &&

@@ -185,7 +185,11 @@ Result<std::uint64_t> cache_key(const scene::Scene& scene, const TransportSettin
     if (!scene.materials.empty()) { // (keys of scenes without materials stay as they were)
         h.add(scene.materials.size());
         for (const scene::Material& m : scene.materials)
+        {
             h.add(m.albedo.r).add(m.albedo.g).add(m.albedo.b).add(m.emission.r).add(m.emission.g).add(m.emission.b);
+            // (keys of materials at the defaults stay as they were)
+            if (m.emission_gi != scene::EmissionGi::baked || m.opacity != 1.0f) h.add(int(m.emission_gi)).add(m.opacity);
+        }
     }
     return h.value();
 }

@@ -195,10 +195,20 @@ struct ShadowProxy {
 // A wall material (seed 004's meta pass; docs/scenes.md, "materials"): what a wall tile
 // reflects and emits where bounce light is physical (gi.method = gather, the transport
 // reference, the bake). A lit face leaves with radiosity B = albedo x E + emission.
+// Seed 004's emission GI mode: how a glowing material's light reaches the GI.
+//   baked     (default) held by the bake once a world's bake is used; live until then
+//   realtime  always live: the bake leaves it out (glow that changes at run time)
+//   none      lights nothing: the tile is drawn glowing, the GI never sees its emission
+enum class EmissionGi : std::uint8_t { baked, realtime, none };
+
 struct Material {
     std::string name;
     glm::vec3 albedo{0.5f};   // linear RGB reflectance, each in [0, 1]
     glm::vec3 emission{0.0f}; // linear RGB radiosity the faces leave with unlit (light units)
+    EmissionGi emission_gi = EmissionGi::baked;
+    // Seed 004's meta-pass opacity, [0, 1]: multiplies albedo and emission in the GI (the
+    // bounce and glow of see-through tiles: glass, ice, water). The tile still blocks light.
+    float opacity = 1.0f;
 
     friend bool operator==(const Material&, const Material&) = default;
 };
