@@ -695,3 +695,80 @@ TEST(Bake, OpacityScalesWhatATileReflectsAndEmits) {
     EXPECT_GT(b / a, 0.45);
     EXPECT_LE(b / a, 0.5 + 1e-3);
 }
+
+// Seed 004's indirect multiplier scales what the bake holds of a light's bounce and nothing
+// else: x2 doubles a mixed light's baked bounce (ground, faces and probes), 0 leaves none; a
+// baked light at 0 keeps its baked direct light.
+TEST(Bake, TheIndirectMultiplierScalesOnlyTheBakedBounce) {
+    scene::Scene s = world();
+    s.materials.clear();
+    for (auto& c : s.walls.cells) c = c != 0 ? 1 : 0;
+    s.point_lights = {s.point_lights[0]}; // the mixed light in chunk (1, 0)
+    const bake::ChunkBake one = bake::bake_chunk(s, {1, 0}, quick());
+    s.point_lights[0].indirect = 2.0f;
+    const bake::ChunkBake two = bake::bake_chunk(s, {1, 0}, quick());
+    s.point_lights[0].indirect = 0.0f;
+    const bake::ChunkBake none = bake::bake_chunk(s, {1, 0}, quick());
+    ASSERT_FALSE(one.empty);
+    EXPECT_NE(one.key, two.key);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < one.ground.size(); ++i) {
+        sum += one.ground[i];
+        ASSERT_NEAR(two.ground[i], 2.0f * one.ground[i], 1e-5f * (1.0f + one.ground[i])) << i;
+        ASSERT_EQ(none.ground[i], 0.0f) << i;
+    }
+    EXPECT_GT(sum, 1.0);
+    for (std::size_t i = 0; i < one.faces[0].size(); ++i) ASSERT_NEAR(two.faces[0][i], 2.0f * one.faces[0][i], 1e-5f * (1.0f + one.faces[0][i]));
+    for (std::size_t k = 0; k < one.probes.size(); ++k)
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(two.probes[k].c[0][c], 2.0f * one.probes[k].c[0][c], 1e-4f);
+
+    // A baked light with indirect 0: its direct light alone.
+    s.point_lights[0].mode = LightMode::baked;
+    const bake::ChunkBake direct_only = bake::bake_chunk(s, {1, 0}, quick());
+    s.point_lights[0].indirect = 1.0f;
+    const bake::ChunkBake both = bake::bake_chunk(s, {1, 0}, quick());
+    int less = 0;
+    for (std::size_t i = 0; i < both.ground.size(); ++i) {
+        ASSERT_NEAR(direct_only.ground[i], both.ground[i] - one.ground[i], 1e-4f * (1.0f + both.ground[i])) << i;
+        less += direct_only.ground[i] < both.ground[i];
+    }
+    EXPECT_GT(less, 1000);
+}
+
+// Seed 004's static flag: a moving shadow proxy does not shadow the baked light (nor change
+// the key); a static one does.
+TEST(Bake, OnlyStaticProxiesShadowTheBake) {
+    scene::Scene s = world();
+    s.point_lights = {s.point_lights[1]}; // the baked light at (44.5, 45.5), chunk (1, 1)
+    const bake::ChunkBake bare = bake::bake_chunk(s, {1, 1}, quick());
+    scene::ShadowProxy p;
+    p.position = {46.5f, 45.5f};
+    p.size = glm::vec2(0.6f);
+    p.is_static = false;
+    s.shadow_proxies = {p};
+    const bake::ChunkBake moving = bake::bake_chunk(s, {1, 1}, quick());
+    s.shadow_proxies[0].is_static = true;
+    const bake::ChunkBake placed = bake::bake_chunk(s, {1, 1}, quick());
+    EXPECT_EQ(moving, bare);
+    EXPECT_NE(placed.key, bare.key);
+    EXPECT_NE(placed.ground, bare.ground);
+}
+
+// Seed 004's directional and non-directional bakes: the same fluence, and the
+// non-directional probes hold nothing of the direction.
+TEST(Bake, NonDirectionalProbesKeepTheFluenceAlone) {
+    const scene::Scene s = world();
+    BakeSettings b = quick();
+    const bake::ChunkBake directional = bake::bake_chunk(s, {0, 0}, b);
+    b.directional = false;
+    const bake::ChunkBake flat = bake::bake_chunk(s, {0, 0}, b);
+    EXPECT_NE(flat.key, directional.key);
+    EXPECT_EQ(flat.ground, directional.ground);
+    int directed = 0;
+    for (std::size_t k = 0; k < flat.probes.size(); ++k) {
+        EXPECT_EQ(flat.probes[k].c[0], directional.probes[k].c[0]);
+        for (std::size_t h = 1; h < 5; ++h) EXPECT_EQ(flat.probes[k].c[h], glm::vec3(0.0f));
+        directed += glm::length(directional.probes[k].c[1]) > 1e-3f;
+    }
+    EXPECT_GT(directed, 10) << "the directional bake's probes beside the lava hold a direction";
+}

@@ -753,6 +753,16 @@ INSTANTIATE_TEST_SUITE_P(
                        "'.' and space, got \"ab\""},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "symbol": "x"}, {"name": "b", "symbol": "x"}])"),
                        "t.json:2:69: materials[1].symbol: symbol 'x' is taken by material \"a\""},
+        SceneErrorCase{scene_with(R"("point_lights": [{"position": [1, 1], "indirect": 0}])"),
+                       "t.json:2:51: point_lights[0].indirect: only a light whose bounce is baked takes an indirect "
+                       "multiplier (\"mode\": \"mixed\" or \"baked\"; a sun: \"baked\"): the live methods' bounce is not per light"},
+        SceneErrorCase{scene_with(R"("directional_lights": [{"direction": [0, -1, 0], "mode": "mixed", "indirect": 2}])"),
+                       "t.json:2:79: directional_lights[0].indirect: only a light whose bounce is baked takes an indirect "
+                       "multiplier (\"mode\": \"mixed\" or \"baked\"; a sun: \"baked\"): the live methods' bounce is not per light"},
+        SceneErrorCase{scene_with(R"("emissive_lights": [{"position": [1, 1], "mode": "baked", "indirect": -1}])"),
+                       "t.json:2:71: emissive_lights[0].indirect: must be in [0, 1000], got -1"},
+        SceneErrorCase{scene_with(R"("shadow_proxies": [{"position": [1, 1], "static": 1}])"),
+                       "t.json:2:51: shadow_proxies[0].static: expected true or false, got a number"},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "gi": "live"}])"),
                        "t.json:2:35: materials[0].gi: expected one of \"baked\", \"realtime\", \"none\", got \"live\""},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "opacity": 1.5}])"),

@@ -1,7 +1,7 @@
 // lantern-bake: bakes a world's static light into chunk cache files (docs/baked.md).
 //
 //   lantern-bake WORLD --out DIR [--shard I/N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
-//                [--solver gather|seed002] [--falloff TILES] [--ambient E]
+//                [--solver gather|seed002] [--falloff TILES] [--ambient E] [--non-directional]
 //                [--threads N] [--force] [--image FILE.png] [--bricks EPS,...]
 //
 // WORLD is a scene file (docs/scenes.md) or a Moving AI map (walls only: then only glowing

@@ -62,22 +62,33 @@ bool keeps(LightMode mode, Lights which) {
     return which == Lights::bounce ? mode != LightMode::realtime : mode == LightMode::baked;
 }
 
+// The light a solve sees of `l`: in the bounce solve, scaled by its indirect multiplier
+// (seed 004: 0 = no GI).
+template <typename Light>
+Light as_solved(Light l, Lights which) {
+    if (which == Lights::bounce) l.intensity *= l.indirect;
+    return l;
+}
+
 // The scene without its walls (the solve views the caller's), with the lights `which`
-// keeps and the bake's gi settings.
+// keeps, the static shadow proxies and the bake's gi settings.
 scene::Scene lights_of(const scene::Scene& s, const BakeSettings& b, Lights which) {
     scene::Scene out;
     out.wall_height = s.wall_height;
     out.gi = bake_gi(s, b);
     out.view = s.view;
     for (const auto& l : s.point_lights)
-        if (keeps(l.mode, which)) out.point_lights.push_back(l);
+        if (keeps(l.mode, which)) out.point_lights.push_back(as_solved(l, which));
     for (const auto& l : s.emissive_lights)
-        if (keeps(l.mode, which)) out.emissive_lights.push_back(l);
+        if (keeps(l.mode, which)) out.emissive_lights.push_back(as_solved(l, which));
     // A mixed sun is lit as a realtime one (the frame's mixed row carries point and emissive
     // lights only): its bounce stays live, so the bake leaves it out.
     for (const auto& l : s.directional_lights)
-        if (keeps(l.mode == LightMode::mixed ? LightMode::realtime : l.mode, which)) out.directional_lights.push_back(l);
-    out.shadow_proxies = s.shadow_proxies;
+        if (keeps(l.mode == LightMode::mixed ? LightMode::realtime : l.mode, which))
+            out.directional_lights.push_back(as_solved(l, which));
+    // Seed 004's static flag: moving proxies shadow the live light only.
+    for (const auto& p : s.shadow_proxies)
+        if (p.is_static) out.shadow_proxies.push_back(p);
     out.materials = s.materials;
     for (scene::Material& m : out.materials) // realtime glow stays live: the bake leaves it out
         if (m.emission_gi == scene::EmissionGi::realtime) m.emission = glm::vec3(0.0f);
@@ -314,6 +325,7 @@ std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& b)
     const std::string solver = std::string("lantern-bake/") + solver_name(b.solver);
     h.add_bytes(solver.c_str(), solver.size() + 1).add(bake_code_version).add(b.resolution).add(b.margin).add(b.rays).add(b.face_rays);
     if (b.solver == BakeSolver::seed002) h.add(b.falloff).add(b.ambient);
+    if (!b.directional) h.add(std::uint32_t(0x4e44)); // (directional keys stay as they were)
     h.add(c.x).add(c.z);
     for (double v : scene::gi_setting_values(bake_gi(s, b))) h.add(v);
     h.add(s.wall_height);
@@ -374,6 +386,8 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
             if (s.walls.is_wall_tile(tile.x, tile.y)) continue;
             const std::size_t k = std::size_t(j * chunk_probes + i);
             out.probes[k] = capture_probe(p, bounce ? &field : nullptr, sources, glm::vec2(tile) + 0.5f, b.rays);
+            if (!b.directional) // seed 004's non-directional bake: the fluence alone
+                for (std::size_t h = 1; h < out.probes[k].c.size(); ++h) out.probes[k].c[h] = glm::vec3(0.0f);
             out.probe_valid[k] = 1;
         }
     // Direct light of the baked lights, exactly as the live direct passes compute it.

@@ -35,6 +35,8 @@ void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& pr
              1.0f / 64.0f, 4096.0f);
     p.number(prefix + "ambient", "E", "seed002: ambient fill every hit wall receives (default 0)", s.ambient, 0.0f,
              1000.0f);
+    p.flag(prefix + "non-directional", "probes keep the light's amount, not its direction (seed 004's non-directional bake)",
+           [&s] { s.directional = false; });
 }
 
 std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,

@@ -508,42 +508,58 @@ void apply_temperature(Fields& fields, glm::vec3& color) {
     if (fields.ok() && fields.find("temperature")) color *= blackbody_rgb(kelvin);
 }
 
+// Seed 004's indirect multiplier scales what the bake holds of a light's bounce; a light whose
+// bounce is live (realtime; a mixed sun) cannot take one.
+void check_indirect(Fields& fields, LightMode mode, float indirect) {
+    if (fields.ok() && indirect != 1.0f && mode == LightMode::realtime)
+        fields.fail("indirect", "only a light whose bounce is baked takes an indirect multiplier (\"mode\": \"mixed\" "
+                                "or \"baked\"; a sun: \"baked\"): the live methods' bounce is not per light");
+}
+
 } // namespace
 
 void read_point_light(Reader& reader, const json::Value& value, const std::string& path,
                       PointLight& light) {
-    Fields fields(reader, value, path, {"position", "height", "color", "temperature", "intensity", "radius", "mode"});
+    Fields fields(reader, value, path,
+                  {"position", "height", "color", "temperature", "intensity", "radius", "mode", "indirect"});
     fields.required("position", light.position, world_coordinate)
         .optional("height", light.height, at_least(0.0))
         .optional("color", light.color, at_least(0.0))
         .optional("intensity", light.intensity, at_least(0.0))
         .optional("radius", light.radius, greater_than(0.0))
-        .optional("mode", light.mode, light_modes);
+        .optional("mode", light.mode, light_modes)
+        .optional("indirect", light.indirect, between(0.0, 1000.0));
     apply_temperature(fields, light.color);
+    check_indirect(fields, light.mode, light.indirect);
 }
 
 void read_emissive_light(Reader& reader, const json::Value& value, const std::string& path,
                          EmissiveLight& light) {
-    Fields fields(reader, value, path, {"position", "color", "temperature", "intensity", "radius", "mode"});
+    Fields fields(reader, value, path, {"position", "color", "temperature", "intensity", "radius", "mode", "indirect"});
     fields.required("position", light.position, world_coordinate)
         .optional("color", light.color, at_least(0.0))
         .optional("intensity", light.intensity, at_least(0.0))
         .optional("radius", light.radius, greater_than(0.0))
-        .optional("mode", light.mode, light_modes);
+        .optional("mode", light.mode, light_modes)
+        .optional("indirect", light.indirect, between(0.0, 1000.0));
     apply_temperature(fields, light.color);
+    check_indirect(fields, light.mode, light.indirect);
 }
 
 void read_directional_light(Reader& reader, const json::Value& value, const std::string& path,
                             DirectionalLight& light) {
     Fields fields(reader, value, path,
-                  {"direction", "color", "temperature", "intensity", "base_shadow_distance", "bounce_intensity", "mode"});
+                  {"direction", "color", "temperature", "intensity", "base_shadow_distance", "bounce_intensity", "mode",
+                   "indirect"});
     fields.required("direction", light.direction, any_number)
         .optional("color", light.color, at_least(0.0))
         .optional("intensity", light.intensity, at_least(0.0))
         .optional("base_shadow_distance", light.base_shadow_distance, at_least(0.0))
         .optional("bounce_intensity", light.bounce_intensity, at_least(0.0))
-        .optional("mode", light.mode, light_modes);
+        .optional("mode", light.mode, light_modes)
+        .optional("indirect", light.indirect, between(0.0, 1000.0));
     apply_temperature(fields, light.color);
+    check_indirect(fields, light.mode == LightMode::mixed ? LightMode::realtime : light.mode, light.indirect);
     if (!fields.ok()) return;
     // In double: the squares of tiny float components would underflow to 0 in float.
     const glm::dvec3 direction(light.direction);
@@ -558,7 +574,7 @@ void read_shadow_proxy(Reader& reader, const json::Value& value, const std::stri
                        ShadowProxy& proxy) {
     Fields(reader, value, path,
            {"position", "shape", "size", "max_length", "end_cap_blend", "penumbra_width",
-            "penumbra_length", "penumbra_power", "width_mode", "penumbra_mode"})
+            "penumbra_length", "penumbra_power", "width_mode", "penumbra_mode", "static"})
         .required("position", proxy.position, world_coordinate)
         .optional("shape", proxy.shape, proxy_shapes)
         .optional("size", proxy.size, greater_than(0.0))
@@ -568,7 +584,8 @@ void read_shadow_proxy(Reader& reader, const json::Value& value, const std::stri
         .optional("penumbra_length", proxy.penumbra_length, at_least(0.0))
         .optional("penumbra_power", proxy.penumbra_power, greater_than(0.0))
         .optional("width_mode", proxy.width_mode, width_modes)
-        .optional("penumbra_mode", proxy.penumbra_mode, penumbra_modes);
+        .optional("penumbra_mode", proxy.penumbra_mode, penumbra_modes)
+        .optional("static", proxy.is_static);
 }
 
 } // namespace reading

@@ -88,29 +88,32 @@ void originals(std::vector<ListEntry<T>>& out, const std::vector<T>& values, std
 } // namespace
 
 json::Value to_json(const PointLight& l) {
-    return Value(Value::Object{member("position", number(l.position)), member("height", number(l.height)),
-                               member("color", number(l.color)), member("intensity", number(l.intensity)),
-                               member("radius", number(l.radius)), member("mode", name(light_mode_names, l.mode))},
-                 {});
+    Value::Object o{member("position", number(l.position)), member("height", number(l.height)),
+                    member("color", number(l.color)),       member("intensity", number(l.intensity)),
+                    member("radius", number(l.radius)),     member("mode", name(light_mode_names, l.mode))};
+    if (l.indirect != 1.0f) o.push_back(member("indirect", number(l.indirect)));
+    return Value(std::move(o), {});
 }
 
 json::Value to_json(const EmissiveLight& l) {
-    return Value(Value::Object{member("position", number(l.position)), member("color", number(l.color)),
-                               member("intensity", number(l.intensity)), member("radius", number(l.radius)),
-                               member("mode", name(light_mode_names, l.mode))},
-                 {});
+    Value::Object o{member("position", number(l.position)), member("color", number(l.color)),
+                    member("intensity", number(l.intensity)), member("radius", number(l.radius)),
+                    member("mode", name(light_mode_names, l.mode))};
+    if (l.indirect != 1.0f) o.push_back(member("indirect", number(l.indirect)));
+    return Value(std::move(o), {});
 }
 
 json::Value to_json(const ShadowProxy& p) {
-    return Value(Value::Object{member("position", number(p.position)), member("shape", name(shape_names, p.shape)),
-                               member("size", number(p.size)), member("max_length", number(p.max_length)),
-                               member("end_cap_blend", number(p.end_cap_blend)),
-                               member("penumbra_width", number(p.penumbra_width)),
-                               member("penumbra_length", number(p.penumbra_length)),
-                               member("penumbra_power", number(p.penumbra_power)),
-                               member("width_mode", name(width_mode_names, p.width_mode)),
-                               member("penumbra_mode", name(penumbra_mode_names, p.penumbra_mode))},
-                 {});
+    Value::Object o{member("position", number(p.position)), member("shape", name(shape_names, p.shape)),
+                    member("size", number(p.size)), member("max_length", number(p.max_length)),
+                    member("end_cap_blend", number(p.end_cap_blend)),
+                    member("penumbra_width", number(p.penumbra_width)),
+                    member("penumbra_length", number(p.penumbra_length)),
+                    member("penumbra_power", number(p.penumbra_power)),
+                    member("width_mode", name(width_mode_names, p.width_mode)),
+                    member("penumbra_mode", name(penumbra_mode_names, p.penumbra_mode))};
+    if (!p.is_static) o.push_back(member("static", Value(false, {})));
+    return Value(std::move(o), {});
 }
 
 Result<SceneLists> scene_lists(std::string_view text, const std::string& path, const Scene& scene) {

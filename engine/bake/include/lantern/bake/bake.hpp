@@ -78,6 +78,9 @@ struct BakeSettings {
     BakeSolver solver = BakeSolver::gather;
     float falloff = 4.0f; // seed002: the falloff's half distance, tiles, (0, 4096]
     float ambient = 0.0f; // seed002: the ambient fill every hit face receives, [0, 1000]
+    // Seed 004's directional bake: probes keep the light's direction (circular harmonics of
+    // order 2); non-directional keeps the fluence alone (a0), lighting every side alike.
+    bool directional = true;
 
     friend bool operator==(const BakeSettings&, const BakeSettings&) = default;
 };
@@ -85,7 +88,7 @@ struct BakeSettings {
 Result<void> validate_settings(const BakeSettings& settings);
 // The settings as command-line options `<prefix>resolution`, `<prefix>margin`,
 // `<prefix>rays`, `<prefix>face-rays`, `<prefix>solver`, `<prefix>falloff`,
-// `<prefix>ambient` (lantern-bake: "--", lantern-render: "--bake-").
+// `<prefix>ambient`, `<prefix>non-directional` (lantern-bake: "--", lantern-render: "--bake-").
 void add_settings_options(cli::Parser& parser, BakeSettings& settings, const std::string& prefix);
 
 // Chunk (x, z) covers the tiles [32 x, 32 x + 32) x [32 z, 32 z + 32).

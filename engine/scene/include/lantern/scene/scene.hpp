@@ -148,6 +148,9 @@ struct PointLight {
     float intensity = 1.0f;   // multiplies color
     float radius = 8.0f;      // world units, > 0
     LightMode mode = LightMode::realtime;
+    // Seed 004's indirect multiplier: scales the light's baked bounce (0: no GI). Mixed and
+    // baked lights only: a realtime light's bounce is the live method's (the loader refuses it).
+    float indirect = 1.0f;
 
     friend bool operator==(const PointLight&, const PointLight&) = default;
 };
@@ -158,6 +161,7 @@ struct EmissiveLight {
     float intensity = 1.0f;
     float radius = 4.0f;
     LightMode mode = LightMode::realtime;
+    float indirect = 1.0f; // as PointLight::indirect
 
     friend bool operator==(const EmissiveLight&, const EmissiveLight&) = default;
 };
@@ -169,6 +173,7 @@ struct DirectionalLight {
     float base_shadow_distance = 4.0f; // world units, scaled by 1 / max(|direction.y|, 0.02)
     float bounce_intensity = 0.5f;
     LightMode mode = LightMode::realtime;
+    float indirect = 1.0f; // as PointLight::indirect (a baked sun's; mixed suns stay live)
 
     friend bool operator==(const DirectionalLight&, const DirectionalLight&) = default;
 };
@@ -188,6 +193,9 @@ struct ShadowProxy {
     float penumbra_power = 1.0f;
     WidthMode width_mode = WidthMode::projected;
     PenumbraMode penumbra_mode = PenumbraMode::both;
+    // Seed 004's static flag: a static proxy (a placed tree or lamp post) shadows the baked
+    // light too; a moving one only the live light.
+    bool is_static = true;
 
     friend bool operator==(const ShadowProxy&, const ShadowProxy&) = default;
 };
