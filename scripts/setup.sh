@@ -11,7 +11,7 @@ PACKAGES=(
     glslang-tools glslang-dev spirv-tools
     libglfw3-dev libglm-dev libimgui-dev libstb-dev nlohmann-json3-dev
     libxrandr-dev libxrender-dev
-    libopenal-dev
+    libopenal-dev zlib1g-dev
     xvfb xauth
     xdotool x11-apps
     graphviz

@@ -304,6 +304,27 @@ TEST(Bake, UnusableCacheFilesAreNamedAndRebaked) {
         EXPECT_NE(warnings[0].find(bake::chunk_file_name({0, 0})), std::string::npos) << warnings[0];
         EXPECT_TRUE(bytes_of(f00) == good) << fault.name << ": the re-bake gives the same file";
     }
+    // A stored size that promises more than the file holds, and a payload that does not inflate.
+    {
+        auto b = good;
+        b[56] ^= 1;
+        write_bytes(f00, b);
+        std::string why;
+        EXPECT_FALSE(bake::load_chunk(dir.path().string(), {0, 0}, bake::chunk_key(s, {0, 0}, quick()), &why));
+        EXPECT_NE(why.find("sizes do not match"), std::string::npos) << why;
+        b = good;
+        for (std::size_t i = 64; i < 80; ++i) b[i] = 0xff;
+        write_bytes(f00, b);
+        EXPECT_FALSE(bake::load_chunk(dir.path().string(), {0, 0}, bake::chunk_key(s, {0, 0}, quick()), &why));
+        EXPECT_NE(why.find("damaged"), std::string::npos) << why;
+        write_bytes(f00, good);
+    }
+    // Deflated on disk: the payload (five half-float textures and the probes) is far larger.
+    const std::size_t side = std::size_t(bake::chunk_tiles * quick().resolution);
+    const std::size_t payload = side * side * 3 * 2 * 5 + std::size_t(bake::chunk_probes * bake::chunk_probes) * (15 * 4 + 1);
+    std::printf("[ cache ] chunk (0, 0): %zu bytes on disk for a %zu-byte payload (%.1fx)\n", good.size(), payload,
+                double(payload) / double(good.size()));
+    EXPECT_LT(good.size() * 2, payload);
     // Stale: the lava glows brighter; the file is for other inputs.
     scene::Scene brighter = s;
     brighter.materials[0].emission *= 2.0f;

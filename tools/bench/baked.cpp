@@ -28,6 +28,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -124,6 +126,27 @@ int baked(const BakedOptions& o) {
         }
         std::printf("| %d | %d | %.2f | %.3f |\n", threads, report->chunks, report->seconds,
                     report->seconds / std::max(1, report->chunks));
+    }
+
+    // The cache files on disk (deflated) against their payloads.
+    {
+        std::uintmax_t disk = 0, raw = 0;
+        int files = 0, empty = 0;
+        for (const auto& e : fs::directory_iterator(dir / "t1")) {
+            if (e.path().extension() != ".lbk") continue;
+            disk += e.file_size();
+            ++files;
+            std::ifstream f(e.path(), std::ios::binary);
+            const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+            auto b = bake::decode_chunk(bytes);
+            if (b && b->empty) ++empty;
+            if (b && !b->empty) {
+                const std::size_t side = std::size_t(b->side());
+                raw += side * side * 3 * 2 * 5 + b->probes.size() * (15 * 4 + 1);
+            }
+        }
+        std::printf("\nCache files: %d (%d without baked light), %.3f MB on disk (deflated) for %.3f MB of payload: %.1fx\n",
+                    files, empty, double(disk) / 1e6, double(raw) / 1e6, disk ? double(raw) / double(disk) : 0.0);
     }
 
     // 2. Memory: dense against bricks.

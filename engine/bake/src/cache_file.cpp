@@ -1,20 +1,24 @@
 // Chunk cache files (bake.hpp, docs/baked.md "Cache files"). Layout, little-endian:
 //   char[8]  magic "LGIBAKE\0"
-//   u32      format version (bake_code_version)
+//   u32      file format version (file_format_version)
 //   u32      flags: 1 = holds textures (else an empty chunk: no payload)
 //   u64      key (chunk_key)
 //   i32 x 3  chunk x, chunk z, resolution (texels per tile)
 //   u32      reserved, 0
-//   u64      payload bytes
-//   u64      hash of the payload
+//   u64      payload bytes (inflated)
+//   u64      hash of the payload (inflated)
+//   u64      stored bytes: the payload deflated (zlib), what follows the header
 //   payload  ground, then faces +X, -X, +Z, -Z: (32 x resolution)^2 texels x RGB, IEEE half;
 //            then 16 x 16 light probes: 5 x RGB float32 each, then one validity byte each
+// The payload's size follows from the resolution, so a file cannot make the reader inflate
+// more than the largest chunk (resolution 16).
 #include "lantern/bake/bake.hpp"
 
 #include "lantern/core/file.hpp"
 #include "lantern/core/hash.hpp"
 
 #include <glm/gtc/packing.hpp>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +29,10 @@ namespace lantern::bake {
 namespace {
 
 constexpr char magic[8] = {'L', 'G', 'I', 'B', 'A', 'K', 'E', '\0'};
-constexpr std::size_t header_bytes = 8 + 4 + 4 + 8 + 4 * 3 + 4 + 8 + 8;
+// The file's layout (not the bake's: bake_code_version, in the key, says that): 2 stored the
+// payload as is, 3 deflates it.
+constexpr std::uint32_t file_format_version = 3;
+constexpr std::size_t header_bytes = 8 + 4 + 4 + 8 + 4 * 3 + 4 + 8 + 8 + 8;
 constexpr int texture_count = 5;
 
 template <typename T>
@@ -70,10 +77,20 @@ std::vector<std::byte> encode_chunk(const ChunkBake& b) {
                 for (int k = 0; k < 3; ++k) put(payload, v[k]);
         for (std::uint8_t valid : b.probe_valid) put(payload, valid);
     }
+    // Deflated: zero texels in rock and halves with low bits zero compress 5-17x.
+    std::vector<std::byte> stored;
+    if (!payload.empty()) {
+        uLongf length = compressBound(uLong(payload.size()));
+        stored.resize(length);
+        const int z = compress2(reinterpret_cast<Bytef*>(stored.data()), &length,
+                                reinterpret_cast<const Bytef*>(payload.data()), uLong(payload.size()), 6);
+        LANTERN_ASSERT(z == Z_OK, "zlib's compress2 with a compressBound buffer");
+        stored.resize(length);
+    }
     std::vector<std::byte> out;
-    out.reserve(header_bytes + payload.size());
+    out.reserve(header_bytes + stored.size());
     out.insert(out.end(), reinterpret_cast<const std::byte*>(magic), reinterpret_cast<const std::byte*>(magic) + 8);
-    put(out, bake_code_version);
+    put(out, file_format_version);
     put(out, std::uint32_t(b.empty ? 0 : 1));
     put(out, b.key);
     put(out, std::int32_t(b.id.x));
@@ -82,7 +99,8 @@ std::vector<std::byte> encode_chunk(const ChunkBake& b) {
     put(out, std::uint32_t(0));
     put(out, std::uint64_t(payload.size()));
     put(out, Hasher().add_bytes(payload.data(), payload.size()).value());
-    out.insert(out.end(), payload.begin(), payload.end());
+    put(out, std::uint64_t(stored.size()));
+    out.insert(out.end(), stored.begin(), stored.end());
     return out;
 }
 
@@ -91,9 +109,9 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
     const std::uint8_t* p = bytes.data();
     if (std::memcmp(p, magic, 8) != 0) return make_error("not a Lantern bake file");
     const auto version = get<std::uint32_t>(p + 8);
-    if (version != bake_code_version)
+    if (version != file_format_version)
         return make_error("format version " + std::to_string(version) + ", this build reads " +
-                          std::to_string(bake_code_version));
+                          std::to_string(file_format_version));
     const auto flags = get<std::uint32_t>(p + 12);
     ChunkBake b;
     b.key = get<std::uint64_t>(p + 16);
@@ -101,14 +119,22 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
     b.resolution = get<std::int32_t>(p + 32);
     const auto size = get<std::uint64_t>(p + 40);
     const auto hash = get<std::uint64_t>(p + 48);
+    const auto stored = get<std::uint64_t>(p + 56);
     if (flags > 1 || get<std::uint32_t>(p + 36) != 0) return make_error("unknown flags");
     if (b.resolution < 1 || b.resolution > 16) return make_error("resolution " + std::to_string(b.resolution));
     b.empty = flags == 0;
     const std::uint64_t expected = b.empty ? 0 : payload_bytes(b.resolution);
-    if (size != expected || bytes.size() - header_bytes != expected)
-        return make_error("sizes do not match (" + std::to_string(bytes.size()) + " bytes, expected " +
-                          std::to_string(header_bytes + expected) + ")");
-    const std::uint8_t* payload = p + header_bytes;
+    if (size != expected || bytes.size() - header_bytes != stored || (stored == 0) != (expected == 0))
+        return make_error("sizes do not match (" + std::to_string(bytes.size()) + " bytes, " + std::to_string(stored) +
+                          " stored after the header, payload " + std::to_string(size) + " for " +
+                          std::to_string(expected) + ")");
+    std::vector<std::uint8_t> inflated(static_cast<std::size_t>(expected));
+    if (expected > 0) {
+        uLongf length = uLongf(expected);
+        const int z = uncompress(inflated.data(), &length, p + header_bytes, uLong(stored));
+        if (z != Z_OK || length != expected) return make_error("damaged (the payload does not inflate)");
+    }
+    const std::uint8_t* payload = inflated.data();
     if (Hasher().add_bytes(payload, std::size_t(size)).value() != hash) return make_error("damaged (hash mismatch)");
     if (b.empty) return b;
     const std::size_t n = std::size_t(b.side()) * std::size_t(b.side()) * 3;
@@ -146,7 +172,8 @@ std::optional<ChunkBake> load_chunk(const std::string& dir, ChunkId c, std::uint
     };
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return fail("missing");
-    auto bytes = read_binary_file(path, header_bytes + payload_bytes(16));
+    // Deflate never grows data by more than 0.03 % plus a few bytes (compressBound).
+    auto bytes = read_binary_file(path, header_bytes + payload_bytes(16) + payload_bytes(16) / 1000 + 64);
     if (!bytes) return fail(bytes.error().message);
     auto b = decode_chunk(*bytes);
     if (!b) return fail(b.error().message);
