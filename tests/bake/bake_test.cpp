@@ -6,6 +6,7 @@
 #include "common/test_support.hpp"
 
 #include "lantern/bake/bake.hpp"
+#include "lantern/core/cli.hpp"
 #include "lantern/gi/frame_inputs.hpp"
 #include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/reference.hpp"
@@ -792,4 +793,34 @@ TEST(Bake, NonDirectionalProbesKeepTheFluenceAlone) {
         directed += glm::length(directional.probes[k].c[1]) > 1e-3f;
     }
     EXPECT_GT(directed, 10) << "the directional bake's probes beside the lava hold a direction";
+}
+
+// A world's own bake settings (its scene's "bake") under the options a command line gave:
+// given ones win, the rest stay the world's.
+TEST(Bake, GivenOptionsWinOverTheWorldsSettings) {
+    BakeSettings cli_values;
+    cli::Parser p("lantern-bake", "", "");
+    bake::add_settings_options(p, cli_values, "--");
+    const char* argv[] = {"lantern-bake", "--rays", "9", "--solver", "seed002", "--max-level", "1"};
+    ASSERT_FALSE(p.parse(7, argv));
+    BakeSettings world;
+    world.rays = 100;
+    world.margin = 7;
+    world.falloff = 2.5f;
+    world.eps = 0.2f;
+    const BakeSettings s = bake::given_settings(p, cli_values, "--").over(world);
+    EXPECT_EQ(s.rays, 9);
+    EXPECT_EQ(s.solver, bake::BakeSolver::seed002);
+    EXPECT_EQ(s.max_level, 1);
+    EXPECT_EQ(s.margin, 7);
+    EXPECT_EQ(s.falloff, 2.5f);
+    EXPECT_EQ(s.eps, 0.2f);
+    EXPECT_EQ(s.resolution, world.resolution);
+    // Nothing given: the world's settings as they are.
+    cli::Parser q("lantern-bake", "", "");
+    BakeSettings unused;
+    bake::add_settings_options(q, unused, "--");
+    const char* none[] = {"lantern-bake"};
+    ASSERT_FALSE(q.parse(1, none));
+    EXPECT_EQ(bake::given_settings(q, unused, "--").over(world), world);
 }

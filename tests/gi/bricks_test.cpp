@@ -48,6 +48,12 @@ TEST(Bricks, FlatLightTakesTheLargestBricksAndARampIsExact) {
     const BrickAtlas a = build_bricks(flat, 0.01f);
     EXPECT_EQ(a.bricks_per_level[3], 4); // two 32-texel cells a side
     EXPECT_EQ(a.bricks(), 4);
+    // Seed 002's maxLevel caps how coarse a brick may get: level 1 at most, 16-texel bricks.
+    const BrickAtlas capped = build_bricks(flat, 0.01f, 0, 1);
+    EXPECT_EQ(capped.bricks_per_level[1], 4 * 4 * 4);
+    EXPECT_EQ(capped.bricks(), 4 * 4 * 4);
+    for (int y = 0; y < 64; y += 7)
+        for (int x = 0; x < 64; x += 7) EXPECT_NEAR(sample_bricks(capped, float(x) + 0.5f, float(y) + 0.5f).r, 0.5f, 0.01f);
     // A linear ramp at eps 0 (every brick at level 0): bilinear filtering between probes
     // reproduces it up to RGBM's rounding.
     const Field ramp = field(64, 64, [](int x, int y) { return glm::vec3(0.01f * float(x), 0.02f * float(y), 0.5f); });

@@ -693,6 +693,26 @@ TEST(SceneLoader, TheExampleInTheDocsLoads) {
 
 // ---- materials (seed 004's meta pass; docs/scenes.md, "Materials") ----------------------
 
+TEST(SceneLoader, TheWorldKeepsItsBakeSettings) {
+    const Scene s = parse_scene_ok(R"({"lantern_scene": 1, "world": {"rows": ["#."]}, "view": {"center": [1, 0]},
+        "bake": {"resolution": 2, "margin": 8, "rays": 64, "face_rays": 32, "solver": "seed002", "falloff": 6,
+                 "ambient": 0.05, "directional": false, "eps": 0.05, "max_level": 2}})");
+    BakeSettings want;
+    want.resolution = 2;
+    want.margin = 8;
+    want.rays = 64;
+    want.face_rays = 32;
+    want.solver = BakeSolver::seed002;
+    want.falloff = 6.0f;
+    want.ambient = 0.05f;
+    want.directional = false;
+    want.eps = 0.05f;
+    want.max_level = 2;
+    EXPECT_EQ(s.bake, want);
+    EXPECT_EQ(parse_scene_ok(R"({"lantern_scene": 1, "world": {"rows": ["#."]}, "view": {"center": [1, 0]}})").bake,
+              BakeSettings{});
+}
+
 TEST(SceneLoader, MaterialsColourRowsByTheirSymbolsAndRegions) {
     const Scene s = parse_scene_ok(R"({"lantern_scene": 1,
         "materials": [{"name": "red_rock", "albedo": [0.8, 0.1, 0.1], "symbol": "R"},
@@ -763,6 +783,12 @@ INSTANTIATE_TEST_SUITE_P(
                        "t.json:2:71: emissive_lights[0].indirect: must be in [0, 1000], got -1"},
         SceneErrorCase{scene_with(R"("shadow_proxies": [{"position": [1, 1], "static": 1}])"),
                        "t.json:2:51: shadow_proxies[0].static: expected true or false, got a number"},
+        SceneErrorCase{scene_with(R"("bake": {"resolution": 17})"), "t.json:2:24: bake.resolution: must be an integer in [1, 16], got 17"},
+        SceneErrorCase{scene_with(R"("bake": {"solver": "radiosity"})"),
+                       "t.json:2:20: bake.solver: expected one of \"gather\", \"seed002\", got \"radiosity\""},
+        SceneErrorCase{scene_with(R"("bake": {"max_level": 4})"), "t.json:2:23: bake.max_level: must be an integer in [0, 3], got 4"},
+        SceneErrorCase{scene_with(R"("bake": {"falloff": 0})"), "t.json:2:21: bake.falloff: must be in [0.015625, 4096], got 0"},
+        SceneErrorCase{scene_with(R"("bake": {"spacing": 1})"), "t.json:2:10: bake.spacing: unknown key 'spacing' in bake"},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "gi": "live"}])"),
                        "t.json:2:35: materials[0].gi: expected one of \"baked\", \"realtime\", \"none\", got \"live\""},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "opacity": 1.5}])"),

@@ -1,8 +1,12 @@
 // lantern-bake: bakes a world's static light into chunk cache files (docs/baked.md).
 //
 //   lantern-bake WORLD --out DIR [--shard I/N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
-//                [--solver gather|seed002] [--falloff TILES] [--ambient E] [--non-directional]
+//                [--solver gather|seed002] [--falloff TILES] [--ambient E] [--non-directional] [--eps E]
+//                [--max-level L]
 //                [--threads N] [--force] [--image FILE.png] [--bricks EPS,...]
+//
+// The settings start from the scene's own "bake" section (seed 002: saved with the world);
+// options given here win.
 //
 // WORLD is a scene file (docs/scenes.md) or a Moving AI map (walls only: then only glowing
 // materials could light it, and a map has none, so every chunk is empty). A second run
@@ -200,6 +204,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", scene.error().message.c_str());
         return scene.error().exit_code;
     }
+    // The world's own settings (its scene file's "bake"), the options given here over them.
+    settings = bake::given_settings(p, settings, "--").over(scene->bake);
     jobs::JobSystem::Config config;
     config.worker_threads = threads - 1;
     jobs::JobSystem jobs(config);

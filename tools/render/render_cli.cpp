@@ -32,7 +32,8 @@ struct Options {
     std::string backend = "vulkan";
     std::vector<std::string> sets;
     std::string bake;
-    bake::BakeSettings bake_settings;
+    bake::BakeSettings bake_settings; // --bake-* as parsed
+    bake::GivenSettings bake_given;   // ... and which were given: laid over the scene's own "bake"
     int frames = 1;
     bool quiet = false;
     bool watch = false;
@@ -92,6 +93,7 @@ std::optional<int> parse_args(int argc, char** argv, Options& o) {
     p.epilog("Exit status: 0 ok, 1 runtime failure (e.g. no Vulkan device), 2 bad input. Nothing is\n"
              "written unless the frame succeeded; every file is written atomically.");
     if (auto exit = p.parse(argc, argv)) return exit;
+    o.bake_given = bake::given_settings(p, o.bake_settings, "--bake-");
     if (o.scene.empty()) {
         std::fprintf(stderr, "%s\n", p.message("no scene file given").c_str());
         return 2;
@@ -301,7 +303,7 @@ int render_file(const Options& o, jobs::JobSystem& jobs, KeptDevice& kept,
                 std::fprintf(stderr, "lantern-render: bake %d/%d chunks (%d reused) %.1f s\n", p.done, p.total, p.reused, p.seconds);
             };
         options.warn = [](const std::string& m) { std::fprintf(stderr, "lantern-render: %s\n", m.c_str()); };
-        auto light = bake::load_world_light(*scene, o.bake, o.bake_settings, options);
+        auto light = bake::load_world_light(*scene, o.bake, o.bake_given.over(scene->bake), options);
         if (!light) return fail(light.error().message, light.error().exit_code);
         baked = std::move(*light);
         *scene = bake::live_scene(*scene); // the bake holds the rest

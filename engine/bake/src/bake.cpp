@@ -300,6 +300,10 @@ Result<void> validate_settings(const BakeSettings& s) {
         return make_error("bake.falloff: must be a number in [0.015625, 4096] tiles, got " + std::to_string(s.falloff));
     if (!(s.ambient >= 0.0f && s.ambient <= 1000.0f))
         return make_error("bake.ambient: must be a number in [0, 1000], got " + std::to_string(s.ambient));
+    if (!(s.eps >= 0.0f && s.eps <= 1000.0f))
+        return make_error("bake.eps: must be a number in [0, 1000], got " + std::to_string(s.eps));
+    if (s.max_level < 0 || s.max_level > 3)
+        return make_error("bake.max_level: must be an integer in [0, 3], got " + std::to_string(s.max_level));
     return {};
 }
 

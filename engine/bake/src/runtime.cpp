@@ -37,15 +37,50 @@ void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& pr
              1000.0f);
     p.flag(prefix + "non-directional", "probes keep the light's amount, not its direction (seed 004's non-directional bake)",
            [&s] { s.directional = false; });
+    p.number(prefix + "eps", "E", "at run time: the bricks' colour range (seed 002's eps; default 0.01)", s.eps, 0.0f, 1000.0f);
+    p.integer(prefix + "max-level", "L", "at run time: the coarsest brick level, 0-3 (seed 002's maxLevel; default 3)",
+              s.max_level, 0, 3);
+}
+
+namespace {
+constexpr const char* setting_options[] = {"resolution", "margin",          "rays", "face-rays", "solver",
+                                           "falloff",    "ambient", "non-directional", "eps",  "max-level"};
+}
+
+GivenSettings given_settings(const cli::Parser& p, const BakeSettings& values, const std::string& prefix) {
+    GivenSettings g;
+    g.values = values;
+    for (const char* option : setting_options)
+        if (p.given(prefix + option)) g.given.emplace_back(option);
+    return g;
+}
+
+BakeSettings GivenSettings::over(const BakeSettings& world) const {
+    BakeSettings s = world;
+    auto take = [&](const char* option, auto member) {
+        if (std::find(given.begin(), given.end(), option) != given.end()) s.*member = values.*member;
+    };
+    take("resolution", &BakeSettings::resolution);
+    take("margin", &BakeSettings::margin);
+    take("rays", &BakeSettings::rays);
+    take("face-rays", &BakeSettings::face_rays);
+    take("solver", &BakeSettings::solver);
+    take("falloff", &BakeSettings::falloff);
+    take("ambient", &BakeSettings::ambient);
+    take("non-directional", &BakeSettings::directional);
+    take("eps", &BakeSettings::eps);
+    take("max-level", &BakeSettings::max_level);
+    return s;
 }
 
 std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,
-                                                    float eps) {
+                                                    float eps, int max_level) {
     if (chunks.empty()) return nullptr;
     const int res = chunks[0]->resolution;
     glm::ivec2 lo(INT_MAX), hi(INT_MIN);
     Hasher key;
     key.add(res).add(eps);
+    if (max_level != gi::brick_levels - 1) key.add(max_level);
     for (const ChunkBake* c : chunks) {
         LANTERN_ASSERT(c->resolution == res, "runtime_light: chunks of different resolutions");
         lo = glm::min(lo, glm::ivec2(c->id.x, c->id.z));
@@ -80,7 +115,7 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
             }
     }
     return std::make_shared<const gi::BakedLight>(
-        gi::make_baked_light(lo * chunk_tiles, res, layers, eps, key.value()));
+        gi::make_baked_light(lo * chunk_tiles, res, layers, eps, key.value(), max_level));
 }
 
 scene::Scene live_scene(const scene::Scene& s) {
@@ -107,7 +142,7 @@ Result<std::shared_ptr<const gi::BakedLight>> load_world_light(const scene::Scen
     }
     std::vector<const ChunkBake*> pointers;
     for (const ChunkBake& b : bakes) pointers.push_back(&b);
-    return runtime_light(pointers, gi::WallView::of(scene.walls));
+    return runtime_light(pointers, gi::WallView::of(scene.walls), settings.eps, settings.max_level);
 }
 
 } // namespace lantern::bake

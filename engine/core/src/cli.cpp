@@ -209,9 +209,16 @@ std::optional<int> Parser::parse(int argc, const char* const* argv, int first) {
             if (next_is_value) value = argv[++i];
             else if (!o->optional_value) return fail(std::string(name) + " needs a value (" + o->metavar + ")");
         }
+        o->given = true;
         if (auto problem = o->on(value)) return fail(std::string(name) + ": " + *problem);
     }
     return std::nullopt;
+}
+
+bool Parser::given(std::string_view name) const {
+    for (const Option& o : options_)
+        if (o.name == name) return o.given;
+    return false;
 }
 
 std::string Parser::help() const {

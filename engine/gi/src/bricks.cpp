@@ -59,6 +59,7 @@ struct Builder {
     std::vector<int>& cell_brick;                   // per level-0 cell of every layer; -1 empty
     std::vector<int>& cell_level;
     std::size_t cell_base = 0;
+    int max_level = brick_levels - 1;
 
     // The probe (i, j) of a level-`level` brick at grid origin o: the box mean of its s x s
     // texels (clamped to the field).
@@ -115,7 +116,7 @@ struct Builder {
         const int side = brick_probes << level;
         if (o.x >= f.width || o.y >= f.height) return;
         if (!near_air(o, side)) return; // wholly inside rock: empty
-        if (level == 0 || range(o, level) <= eps) {
+        if (level == 0 || (level <= max_level && range(o, level) <= eps)) {
             store(o, level);
             return;
         }
@@ -144,11 +145,11 @@ glm::vec3 decode_rgbm(const std::uint8_t in[4]) {
     return glm::vec3(in[0], in[1], in[2]) / 255.0f * (float(in[3]) / 255.0f) * rgbm_range;
 }
 
-BrickAtlas build_bricks(const Field& field, float eps, int bricks_per_row) {
-    return build_bricks(std::span<const Field>(&field, 1), eps, bricks_per_row);
+BrickAtlas build_bricks(const Field& field, float eps, int bricks_per_row, int max_level) {
+    return build_bricks(std::span<const Field>(&field, 1), eps, bricks_per_row, max_level);
 }
 
-BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row) {
+BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row, int max_level) {
     BrickAtlas out;
     LANTERN_ASSERT(!fields.empty(), "build_bricks needs a field");
     const int width = fields[0].width, height = fields[0].height;
@@ -165,7 +166,8 @@ BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per
     const int top = brick_probes << (brick_levels - 1);
     for (std::size_t layer = 0; layer < fields.size(); ++layer) {
         const Field f = dilated(fields[layer]);
-        Builder b{f, fields[layer], eps, out, bricks, cell_brick, cell_level, layer * layer_cells};
+        Builder b{f, fields[layer], eps, out, bricks, cell_brick, cell_level, layer * layer_cells,
+                  std::clamp(max_level, 0, brick_levels - 1)};
         for (int y = 0; y < height; y += top)
             for (int x = 0; x < width; x += top) b.visit({x, y}, brick_levels - 1);
     }

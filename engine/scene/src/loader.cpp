@@ -54,6 +54,10 @@ constexpr std::array<EnumName<EmissionGi>, 3> emission_gi_modes{{
     {"realtime", EmissionGi::realtime},
     {"none", EmissionGi::none},
 }};
+constexpr std::array<EnumName<BakeSolver>, 2> bake_solvers{{
+    {"gather", BakeSolver::gather},
+    {"seed002", BakeSolver::seed002},
+}};
 constexpr std::array<EnumName<ProxyShape>, 2> proxy_shapes{{
     {"box", ProxyShape::box},
     {"circle", ProxyShape::circle},
@@ -422,11 +426,27 @@ void read_version(Reader& reader, Fields& top) {
 }
 
 // Everything but the map import, in a fixed order; the first problem is kept.
+// "bake": the world's bake settings, in bake::validate_settings' ranges.
+void read_bake_settings(Reader& reader, const json::Value& value, BakeSettings& b) {
+    Fields(reader, value, "bake",
+           {"resolution", "margin", "rays", "face_rays", "solver", "falloff", "ambient", "directional", "eps", "max_level"})
+        .optional("resolution", b.resolution, IntRange{1, 16})
+        .optional("margin", b.margin, IntRange{0, 64})
+        .optional("rays", b.rays, IntRange{1, 1024})
+        .optional("face_rays", b.face_rays, IntRange{1, 1024})
+        .optional("solver", b.solver, bake_solvers)
+        .optional("falloff", b.falloff, between(1.0 / 64.0, 4096.0))
+        .optional("ambient", b.ambient, between(0.0, 1000.0))
+        .optional("directional", b.directional)
+        .optional("eps", b.eps, between(0.0, 1000.0))
+        .optional("max_level", b.max_level, IntRange{0, 3});
+}
+
 void read_scene(Reader& reader, const json::Value& root, Scene& scene, MapSpec& map,
                 std::vector<MaterialRegion>& regions) {
     Fields top(reader, root, "",
                {"lantern_scene", "world", "view", "camera", "gi", "point_lights", "emissive_lights",
-                "directional_lights", "shadow_proxies", "materials", "material_regions"});
+                "directional_lights", "shadow_proxies", "materials", "material_regions", "bake"});
     read_version(reader, top);
     std::vector<char> symbols;
     read_materials(reader, top, scene.materials, symbols);
@@ -435,6 +455,7 @@ void read_scene(Reader& reader, const json::Value& root, Scene& scene, MapSpec& 
         if (reader.ok()) read_world(reader, *world, row_legend(scene.materials, symbols), scene, map);
     read_view(reader, top, scene.view);
     if (const json::Value* gi = top.find("gi")) reading::read_gi_settings(reader, *gi, scene.gi);
+    if (const json::Value* bake = top.find("bake")) read_bake_settings(reader, *bake, scene.bake);
     check_gi_window(reader, top, scene);
     read_list<PointLight>(reader, top, "point_lights", read_point_light, scene.point_lights);
     read_list<EmissiveLight>(reader, top, "emissive_lights", read_emissive_light,

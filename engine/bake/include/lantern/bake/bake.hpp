@@ -58,7 +58,7 @@ inline constexpr int probe_spacing = 2;              // tiles between light prob
 inline constexpr int chunk_probes = chunk_tiles / probe_spacing; // probes a side
 inline constexpr std::uint32_t bake_code_version = 2; // raise when the bake's output changes
 
-// How the bounce light is solved.
+// How the bounce light is solved (scene::BakeSolver).
 //   gather   the converged physical method (gi.method = gather): every bounce, in the
 //            transport model's units, so the bake agrees with engine/transport.
 //   seed002  seed 002's own bake, stylised: one bounce, each ray's hit counted
@@ -67,29 +67,27 @@ inline constexpr std::uint32_t bake_code_version = 2; // raise when the bake's o
 //            light (the seed's ambient fill), misses adding nothing. Same rays and units as
 //            the gather (fluence: the seed's average over rays times pi), so with no falloff
 //            and no ambient it is the gather's first bounce.
-enum class BakeSolver : std::uint8_t { gather, seed002 };
+using BakeSolver = scene::BakeSolver;
 const char* solver_name(BakeSolver solver);
 
-struct BakeSettings {
-    int resolution = 4; // texels per tile, 1..16
-    int margin = 32;    // tiles around the chunk whose walls reflect or send light into it, 0..64
-    int rays = 256;      // gather rays per ground texel and light probe, 1..1024 (the live default is 32)
-    int face_rays = 128; // gather rays per face texel, 1..1024
-    BakeSolver solver = BakeSolver::gather;
-    float falloff = 4.0f; // seed002: the falloff's half distance, tiles, (0, 4096]
-    float ambient = 0.0f; // seed002: the ambient fill every hit face receives, [0, 1000]
-    // Seed 004's directional bake: probes keep the light's direction (circular harmonics of
-    // order 2); non-directional keeps the fluence alone (a0), lighting every side alike.
-    bool directional = true;
-
-    friend bool operator==(const BakeSettings&, const BakeSettings&) = default;
-};
+// The bake's settings (scene::BakeSettings: a world keeps its own in its scene file).
+using BakeSettings = scene::BakeSettings;
 // Errors read "bake.<field>: <what is wrong>" (exit status 2).
 Result<void> validate_settings(const BakeSettings& settings);
 // The settings as command-line options `<prefix>resolution`, `<prefix>margin`,
 // `<prefix>rays`, `<prefix>face-rays`, `<prefix>solver`, `<prefix>falloff`,
-// `<prefix>ambient`, `<prefix>non-directional` (lantern-bake: "--", lantern-render: "--bake-").
+// `<prefix>ambient`, `<prefix>non-directional`, `<prefix>eps`, `<prefix>max-level`
+// (lantern-bake: "--", lantern-render: "--bake-"), parsed into `settings`.
 void add_settings_options(cli::Parser& parser, BakeSettings& settings, const std::string& prefix);
+// The bake options a command line gave: their values (add_settings_options') and which
+// were given, to lay over a world's own settings (the command line wins).
+struct GivenSettings {
+    BakeSettings values;
+    std::vector<std::string> given; // option names without the prefix ("resolution", ...)
+    BakeSettings over(const BakeSettings& world) const;
+};
+// After parser.parse(): what it was given of the options add_settings_options declared.
+GivenSettings given_settings(const cli::Parser& parser, const BakeSettings& values, const std::string& prefix);
 
 // Chunk (x, z) covers the tiles [32 x, 32 x + 32) x [32 z, 32 z + 32).
 struct ChunkId {
@@ -198,11 +196,11 @@ Result<BakeReport> bake_world(const scene::Scene& scene, const std::string& dir,
 
 // The chunks' baked light over the rectangle of whole chunks they cover, as the frame reads
 // it (FrameInputs::baked): each chunk's ground and faces laid side by side and stored in
-// seed 002's bricks at `eps`. `walls` decides which texels hold light (open ground; the
-// exposed faces of wall tiles). A chunk without baked light (empty) holds zero. All chunks
-// have one resolution (asserted). Empty `chunks`: nullptr.
+// seed 002's bricks at `eps`, none coarser than `max_level`. `walls` decides which texels
+// hold light (open ground; the exposed faces of wall tiles). A chunk without baked light
+// (empty) holds zero. All chunks have one resolution (asserted). Empty `chunks`: nullptr.
 std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,
-                                                    float eps = gi::baked_eps);
+                                                    float eps = gi::baked_eps, int max_level = gi::brick_levels - 1);
 
 // The scene as the live passes light it once its bake is used: without the `baked` lights
 // and the materials' glow, which the baked light holds. (Mixed lights stay: their direct

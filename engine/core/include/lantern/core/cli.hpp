@@ -71,6 +71,9 @@ class Parser {
         return parse(argc, const_cast<const char* const*>(argv), first);
     }
 
+    // Whether the last parse() met option `name` ("--name").
+    bool given(std::string_view name) const;
+
     // The --help text.
     std::string help() const;
     // "<program>: <what> (see --help)": the one-line message parse() prints for `what`.
@@ -82,6 +85,7 @@ class Parser {
         bool takes_value = false;
         bool optional_value = false;
         bool repeatable = false;
+        bool given = false;
         Check on;
     };
     Option& add(std::string name, std::string metavar, std::string help, bool takes_value, Check on);

@@ -45,6 +45,6 @@ struct BakedLight {
 
 // The atlas of dense fields (each width x height texels, layer order as above) at `eps`.
 BakedLight make_baked_light(glm::ivec2 origin, int resolution, const std::array<Field, baked_layers>& layers,
-                            float eps, std::uint64_t key);
+                            float eps, std::uint64_t key, int max_level = brick_levels - 1);
 
 } // namespace lantern::gi

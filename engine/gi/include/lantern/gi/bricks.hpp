@@ -66,10 +66,12 @@ struct BrickAtlas {
 };
 
 // Builds the atlas of `field` (one layer) with colour range `eps` (light units, per channel).
-// Bricks go in rows of `bricks_per_row` (0: as square an atlas as fits them).
-BrickAtlas build_bricks(const Field& field, float eps, int bricks_per_row = 0);
+// Bricks go in rows of `bricks_per_row` (0: as square an atlas as fits them). No brick is
+// coarser than `max_level` (seed 002's maxLevel, 0..3).
+BrickAtlas build_bricks(const Field& field, float eps, int bricks_per_row = 0, int max_level = brick_levels - 1);
 // The same for several fields of one size in one atlas (layer k = fields[k]).
-BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row = 0);
+BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row = 0,
+                        int max_level = brick_levels - 1);
 
 // The field of `layer` as the atlas gives it back at grid position (x, y) (texel i's centre
 // at i + 0.5): indirection (nearest), then bilinear between the brick's probes on the stored

@@ -276,6 +276,34 @@ struct GroundArea {
 };
 std::optional<GroundArea> ground_footprint(const PerspectiveCamera& camera, std::string* reason = nullptr);
 
+// How the bake solves the bounce light (lantern/bake/bake.hpp says more).
+//   gather   the converged physical method (gi.method = gather)
+//   seed002  seed 002's own one-bounce bake with its falloff and ambient fill
+enum class BakeSolver : std::uint8_t { gather, seed002 };
+
+// A world's bake settings (seed 002's "saved with the world"; the scene file's "bake",
+// docs/scenes.md): lantern-bake and lantern-render --bake start from them, and their
+// command-line options win. Checked by bake::validate_settings.
+struct BakeSettings {
+    int resolution = 4; // texels per tile, 1..16 (seed 002's finest probe spacing: 1 / resolution tiles)
+    int margin = 32;    // tiles around the chunk whose walls reflect or send light into it, 0..64
+    int rays = 256;      // gather rays per ground texel and light probe, 1..1024 (the live default is 32)
+    int face_rays = 128; // gather rays per face texel, 1..1024
+    BakeSolver solver = BakeSolver::gather;
+    float falloff = 4.0f; // seed002: the falloff's half distance, tiles, [1/64, 4096]
+    float ambient = 0.0f; // seed002: the ambient fill every hit face receives, [0, 1000]
+    // Seed 004's directional bake: probes keep the light's direction (circular harmonics of
+    // order 2); non-directional keeps the fluence alone (a0), lighting every side alike.
+    bool directional = true;
+    // At run time (not in the cache key): seed 002's brick coarsening tolerance (colour range
+    // per channel, light units, [0, 1000]) and the largest brick level (0..3: a brick spans
+    // up to 2^max_level x 4 probes a side).
+    float eps = 0.01f;
+    int max_level = 3;
+
+    friend bool operator==(const BakeSettings&, const BakeSettings&) = default;
+};
+
 struct Scene {
     std::string source; // file the scene came from (for messages); empty if built in code
     WallGrid walls;
@@ -287,6 +315,7 @@ struct Scene {
     std::vector<DirectionalLight> directional_lights;
     std::vector<ShadowProxy> shadow_proxies;
     std::vector<Material> materials; // cell value 2 + k is materials[k]
+    BakeSettings bake;               // its bake's settings ("bake")
     // The other files the scene was read from (its world.map), as opened: what --watch looks
     // at besides the scene file. Empty for a scene built in code.
     std::vector<std::string> inputs;
