@@ -529,6 +529,57 @@ TEST(DrawList, FarModelsTakeTheCoarserLevelOfDetail) {
     }
 }
 
+// Seed 004's per-object anchor override: a tree with a ProbeAnchor takes the baked light's
+// probes at its anchor (plain boxes: one record for the object; texel-lit: one per part, all
+// at the anchor); one without takes them at its own position.
+TEST(DrawList, AProbeAnchorMovesWhereAnObjectSamplesTheProbes) {
+    StreamedWorld open({32, 32});
+    ecs::World& world = open.world;
+    const systems::Streaming& streaming = *open.streaming;
+    // Chunk (0, 0)'s probes hold their own x as fluence: what a record holds says where it
+    // was sampled.
+    auto chunk = std::make_shared<bake::ChunkBake>();
+    chunk->empty = false;
+    chunk->resolution = 1;
+    chunk->probes.resize(std::size_t(bake::chunk_probes * bake::chunk_probes));
+    chunk->probe_valid.assign(chunk->probes.size(), 1);
+    for (int j = 0; j < bake::chunk_probes; ++j)
+        for (int i = 0; i < bake::chunk_probes; ++i)
+            chunk->probes[std::size_t(j * bake::chunk_probes + i)].c[0] = glm::vec3(float(i * bake::probe_spacing) + 0.5f);
+    BakedChunks baked;
+    baked.chunks[chunk_id_key({0, 0})] = chunk;
+    spawn_player(world, {10.5f, 10.5f}, true);
+    const ecs::Entity plain = spawn_prop(world, PropKind::tree, {12.5f, 9.5f});
+    const ecs::Entity anchored = spawn_prop(world, PropKind::tree, {8.5f, 9.5f});
+    world.emplace<ProbeAnchor>(anchored, ProbeAnchor{{20.5f, 9.5f}});
+    (void)plain;
+    DrawContext ctx;
+    ctx.camera = follow_camera({10.5f, 0.0f, 10.5f}, CameraRig{});
+    ctx.probes = &baked;
+    DrawList list;
+    build_draw_list(world, streaming, ctx, list);
+    std::vector<float> sampled; // each lit_probes box's record's fluence (its x)
+    for (const BoxInstance& b : list.boxes)
+        if (int(b.material) == int(Material::lit_probes)) sampled.push_back(list.probes[std::size_t(b.emissive)].c[0].x);
+    ASSERT_EQ(sampled.size(), 4u); // two trees, trunk and crown each
+    EXPECT_EQ(std::count(sampled.begin(), sampled.end(), 12.5f), 2) << "the plain tree, at its position";
+    EXPECT_EQ(std::count(sampled.begin(), sampled.end(), 20.5f), 2) << "the anchored tree, at its anchor";
+    ctx.texel_lighting = true;
+    build_draw_list(world, streaming, ctx, list);
+    int at_anchor = 0;
+    for (const TexelPart& p : list.texel_parts) {
+        ASSERT_GE(p.probe, 0);
+        const float x = list.probes[std::size_t(p.probe)].c[0].x;
+        if (std::abs(p.center.x - 8.5f) < 0.01f) {
+            EXPECT_EQ(x, 20.5f);
+            ++at_anchor;
+        } else {
+            EXPECT_NEAR(x, p.center.x, 1e-4f) << "a part without an anchor samples at its centre";
+        }
+    }
+    EXPECT_EQ(at_anchor, 2);
+}
+
 // Issue 19: a scene file's lights were invisible (no light or shadow may come from nothing).
 // The draw list now carries a lamp for each point light that no torch, prop or player owns
 // and a glowing slab for each such emissive light, in the light's hue; the game's own

@@ -128,6 +128,9 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
         return make_error("sizes do not match (" + std::to_string(bytes.size()) + " bytes, " + std::to_string(stored) +
                           " stored after the header, payload " + std::to_string(size) + " for " +
                           std::to_string(expected) + ")");
+    // Deflate expands by at most 1032x: a stream shorter than that cannot hold the payload
+    // (and nothing is allocated for it).
+    if (stored * 1032 + 64 < expected) return make_error("damaged (too short to inflate to " + std::to_string(expected) + " bytes)");
     std::vector<std::uint8_t> inflated(static_cast<std::size_t>(expected));
     if (expected > 0) {
         uLongf length = uLongf(expected);

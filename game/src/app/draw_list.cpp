@@ -97,9 +97,14 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         out.probes.push_back(r);
         return int(out.probes.size() - 1);
     };
-    auto probe_lit = [&](glm::vec2 at) -> std::pair<Material, float> {
+    // Seed 004's anchor override: an object with a ProbeAnchor samples the probes there.
+    auto anchored = [&](ecs::Entity e, glm::vec2 at) {
+        const ProbeAnchor* a = world.try_get<ProbeAnchor>(e);
+        return a ? a->position : at;
+    };
+    auto probe_lit = [&](ecs::Entity e, glm::vec2 at) -> std::pair<Material, float> {
         if (!ctx.probes || ctx.texel_lighting) return {Material::prop, 0.0f}; // texel lit: a record per part, below
-        return {Material::lit_probes, float(probe_record(at))};
+        return {Material::lit_probes, float(probe_record(anchored(e, at)))};
     };
 
     // A part of a model that is lit per texel with texel lighting on (its model's box, white:
@@ -116,7 +121,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         // The baked light's probes at the part, for its side faces (the texel pass has the
         // direct light, the GI textures the baked light's ground part).
         TexelPart p{e.bits() * 8u + std::uint64_t(index), int(model), center, texel_lod_for(center, view_target),
-                    probe_record({center.x, center.z})};
+                    probe_record(anchored(e, {center.x, center.z}))};
         p.glow = glow;
         out.texel_parts.push_back(p);
         into.push_back(box(center, extent, tint, Material::texel_lit, float(out.texel_parts.size() - 1)));
@@ -138,13 +143,13 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
             break;
         }
         case PropKind::tree: {
-            const auto lit = probe_lit(p.position);
+            const auto lit = probe_lit(e, p.position);
             part(e, 0, TexelModel::tree_trunk, at + glm::vec3(0, 0.45f, 0), {0.36f, 0.23f, 0.12f}, lit, out.boxes);
             part(e, 1, TexelModel::tree_crown, at + glm::vec3(0, 1.25f, 0), {0.2f, 0.42f, 0.16f}, lit, out.boxes);
             break;
         }
         case PropKind::lamp_post: {
-            part(e, 0, TexelModel::lamp_post, at + glm::vec3(0, 0.7f, 0), {0.2f, 0.2f, 0.23f}, probe_lit(p.position),
+            part(e, 0, TexelModel::lamp_post, at + glm::vec3(0, 0.7f, 0), {0.2f, 0.2f, 0.23f}, probe_lit(e, p.position),
                  out.boxes);
             out.boxes.push_back(box(at + glm::vec3(0, 1.5f, 0), {0.14f, 0.12f, 0.14f}, {1.0f, 0.9f, 0.7f}, Material::glow, 2.0f));
             break;
@@ -187,7 +192,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     // The player.
     world.view<Player, Transform>().each([&](ecs::Entity e, const Player& p, const Transform& t) {
         const glm::vec3 at(t.position.x, 0.0f, t.position.z);
-        const auto lit = probe_lit({t.position.x, t.position.z});
+        const auto lit = probe_lit(e, {t.position.x, t.position.z});
         // Its parts are drawn after the x-ray pass (DrawList::late): only the world hides it.
         part(e, 0, TexelModel::player_body, at + glm::vec3(0, 0.42f, 0), {0.22f, 0.36f, 0.72f}, lit, out.late);
         part(e, 1, TexelModel::player_head, at + glm::vec3(0, 1.04f, 0), {0.9f, 0.72f, 0.56f}, lit, out.late);

@@ -34,6 +34,13 @@ struct Prop {
     glm::vec2 position{0.0f};
 };
 
+// Seed 004's per-object anchor override: the point where an object (a prop, the player)
+// samples the baked light's probes, instead of its own position or each part's centre (an
+// object half in shadow, a tall object whose base is not where its light is).
+struct ProbeAnchor {
+    glm::vec2 position{0.0f}; // world x, z
+};
+
 // The sun (with a DirectionalLight on the same entity).
 struct Sun {};
 
