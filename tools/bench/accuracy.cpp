@@ -3,6 +3,8 @@
 #include "accuracy.hpp"
 #include "bench.hpp"
 
+#include "lantern/bake/bake.hpp"
+#include "lantern/core/clock.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/machine.hpp"
 #include "lantern/core/png.hpp"
@@ -367,6 +369,102 @@ std::vector<SweepSetting> sweep(bool quick) {
     return out;
 }
 
+namespace {
+
+// --baked: the bake against the reference (docs/baked.md, "Accuracy against the reference").
+// Every point and emissive light is mixed, so the frame is Lantern's live direct light plus
+// the baked bounce as the run time reads it (cache file, bricks at the settings' eps, RGBM,
+// bilinear); suns stay live (a mixed sun is realtime). The live gather at the scene's own
+// settings, all lights realtime, is the row beside it.
+int baked_accuracy(const AccuracyOptions& o, std::vector<AccuracyScene>& scenes, LanternRunner& lantern,
+                   jobs::JobSystem& jobs, const std::string& machine) {
+    std::string md = "# The bake against the transport reference\n\n";
+    md += "`" + o.command + "`; " + machine + "; " + lantern.device_name() + ".\n\n";
+    md += "Relative RMSE against the reference over the visible view (docs/accuracy.md, \"Metrics\"); "
+          "\"fit\": after the least-squares exposure fit.\n\n";
+    md += "| scene | bake (s) | bake: total | indirect | indirect, fit | live gather: total | indirect | indirect, fit | "
+          "reference noise (indirect) |\n|---|---|---|---|---|---|---|---|---|\n";
+    const auto dir = std::filesystem::temp_directory_path() / ("lantern-bench-baked-accuracy-" + std::to_string(now_ns()));
+    for (const AccuracyScene& s : scenes) {
+        auto ref = solve_reference(s, reference_settings(o), o, jobs);
+        if (!ref) {
+            std::fprintf(stderr, "lantern-bench: %s\n", ref.error().message.c_str());
+            return ref.error().exit_code;
+        }
+        scene::Scene lit = s.scene;
+        lit.gi.method = scene::GiMethod::gather;
+        lit.gi.wall_albedo = o.albedo; // the reference's
+        const ReferenceNoise noise = reference_noise(*ref, lit);
+        std::string why;
+        auto window = gi::compute_window(lit.view, lit.gi, &why);
+        if (!window) {
+            std::fprintf(stderr, "lantern-bench: %s: no GI window: %s\n", s.name.c_str(), why.c_str());
+            return 1;
+        }
+        // The live gather, every light realtime, converged over its frames as a player sees it.
+        const gi::FrameInputs live_in = gi::gather_frame_inputs(lit, *window);
+        auto live = lantern.converged(live_in, lit.gi.gather.frames);
+        if (!live) {
+            std::fprintf(stderr, "lantern-bench: %s: %s\n", s.name.c_str(), live.error().message.c_str());
+            return 1;
+        }
+        const ErrorMetrics live_err = compare_to_reference(*ref, lit, live_in, *live);
+        // The bake at the frame's resolution, everything else at the bake's defaults.
+        scene::Scene mixed = lit;
+        for (auto& l : mixed.point_lights) l.mode = scene::LightMode::mixed;
+        for (auto& l : mixed.emissive_lights) l.mode = scene::LightMode::mixed;
+        bake::BakeSettings settings = mixed.bake;
+        settings.resolution = lit.gi.resolution;
+        bake::BakeOptions options;
+        options.jobs = &jobs;
+        transport::ProgressBar bar("bake " + s.name);
+        options.progress = [&](const bake::BakeProgress& p) {
+            bar.update(p.total ? double(p.done) / double(p.total) : 1.0, std::to_string(p.done) + "/" + std::to_string(p.total) + " chunks");
+        };
+        const std::int64_t t0 = now_ns();
+        auto light = bake::load_world_light(mixed, (dir / s.name).string(), settings, options);
+        const double bake_s = double(now_ns() - t0) * 1e-9;
+        if (!light) {
+            std::fprintf(stderr, "lantern-bench: %s: %s\n", s.name.c_str(), light.error().message.c_str());
+            return light.error().exit_code;
+        }
+        bar.finish(std::to_string(bake::scene_chunks(mixed).size()) + " chunks in " + std::to_string(int(bake_s)) + " s");
+        const scene::Scene live_part = bake::live_scene(mixed);
+        gi::FrameInputs in = gi::gather_frame_inputs(live_part, *window);
+        in.baked = *light;
+        gi::split_for_bake(in, live_part);
+        auto frame = lantern.converged(in, lit.gi.gather.frames);
+        if (!frame) {
+            std::fprintf(stderr, "lantern-bench: %s: %s\n", s.name.c_str(), frame.error().message.c_str());
+            return 1;
+        }
+        const ErrorMetrics err = compare_to_reference(*ref, lit, in, *frame);
+        char row[512];
+        std::snprintf(row, sizeof(row), "| %s | %.1f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% |\n",
+                      s.name.c_str(), bake_s, 100.0 * err.total_rmse, 100.0 * err.indirect_rmse,
+                      100.0 * err.indirect_rmse_fit, 100.0 * live_err.total_rmse, 100.0 * live_err.indirect_rmse,
+                      100.0 * live_err.indirect_rmse_fit, 100.0 * noise.indirect);
+        md += row;
+        std::fputs(row, stderr);
+    }
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+    if (auto ok = ensure_directory(o.out_dir); !ok) {
+        std::fprintf(stderr, "lantern-bench: %s\n", ok.error().message.c_str());
+        return 1;
+    }
+    const std::string path = (std::filesystem::path(o.out_dir) / "baked_accuracy.md").string();
+    if (auto ok = write_file_atomic(path, md); !ok) {
+        std::fprintf(stderr, "lantern-bench: %s\n", ok.error().message.c_str());
+        return 1;
+    }
+    std::fputs(md.c_str(), stdout);
+    std::fprintf(stderr, "lantern-bench: wrote %s\n", path.c_str());
+    return 0;
+}
+
+} // namespace
+
 int accuracy(const AccuracyOptions& o) {
     jobs::JobSystem jobs;
     ReportContext context;
@@ -390,6 +488,7 @@ int accuracy(const AccuracyOptions& o) {
                                          std::to_string(o.repeats) + " frames";
     for (const std::string& note : context.notes)
         std::fprintf(stderr, "lantern-bench: note: %s\n", note.c_str());
+    if (o.baked) return baked_accuracy(o, scenes, lantern, jobs, context.machine);
     std::vector<SceneReport> reports;
     for (const AccuracyScene& s : scenes) {
         auto r = run_scene(s, o, lantern, jobs);

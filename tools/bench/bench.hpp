@@ -28,6 +28,7 @@ struct AccuracyOptions {
     bool use_cache = true;
     std::string backend = "vulkan"; // "vulkan" (C++ reference when no device) or "cpu"
     bool images = false;            // also DIR/<scene>_reference.png and _lantern.png (defaults)
+    bool baked = false;             // instead of the sweep: the bake against the reference (docs/baked.md)
     std::string command;            // the command line, for the report
 };
 int accuracy(const AccuracyOptions& options);

@@ -103,6 +103,11 @@ int accuracy_main(int argc, char** argv) {
     p.flag("--no-cache", "compute every reference image again", [&] { o.use_cache = false; });
     p.choice("--backend", "the GI backend (default vulkan; the C++ reference when no device)", o.backend, {"vulkan", "cpu"});
     p.flag("--images", "add each scene's reference and Lantern images at Lantern's defaults", o.images);
+    p.flag("--baked",
+           "instead of the sweep: the bake's light against the reference (every point and emissive light\n"
+           "mixed: its direct light live, its bounce baked and read back through the bricks), beside the\n"
+           "live gather; writes DIR/baked_accuracy.md",
+           o.baked);
     if (auto exit = p.parse(argc, argv, 2)) return *exit;
     o.albedo = float(albedo);
     return lantern::bench::accuracy(o);

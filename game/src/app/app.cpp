@@ -233,7 +233,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         build_draw_list(w, streaming, r.context, r.list);
         gather_texel_lights(w, r.context, r.texel_lights);
     })
-        .reads<Player, Transform, Prop, Torch, PointLight, EmissiveLight, Camera>()
+        .reads<Player, Transform, Prop, Torch, PointLight, EmissiveLight, Camera, ProbeAnchor>()
         .reads_resource<Controls, GameClock, systems::GiConfig, systems::Streaming, BakedChunks, BakeStatus>()
         .reads_resource<GameTables>() // the lights' ambient colours
         .writes_resource<DrawListResource>();
