@@ -98,6 +98,30 @@ SurfaceKind classify_surface(const WallView& walls, const GiWindow& w, glm::vec3
     return surface_ground;
 }
 
+namespace {
+
+// A wall face's ambient occlusion at `pos` (1 without wall AO): the AO texel just outside it.
+float wall_face_ao(const ShadingInputs& in, glm::vec2 inside, glm::vec3 pos, int face) {
+    const FrameInputs& f = *in.frame;
+    if (!f.settings.ao.walls || !in.ao) return 1.0f;
+    const glm::ivec2 outside = texel_at(f.window, face_ao_position(f.window, inside, {pos.x, pos.z}, face));
+    return in.ao->at(outside.x, outside.y)[0];
+}
+
+// A ground texel's bounce light: the indirect texture plus the suns' bounce, which fills
+// their own shadows by bounce_intensity.
+glm::vec3 ground_bounce(const ShadingInputs& in, glm::ivec2 t) {
+    const FrameInputs& f = *in.frame;
+    glm::vec3 indirect = fetch_rgb(in.indirect, t);
+    const float sun_visibility = in.shadow ? in.shadow->at(t.x, t.y)[1] : 0.0f;
+    for (const GpuDirectionalLight& sun : f.directional_lights)
+        indirect += glm::vec3(sun.color_multiplier) * sun_angle(sun, f.settings.directional_angle_scale) *
+                    sun.bounce.x * (1.0f - sun_visibility);
+    return indirect;
+}
+
+} // namespace
+
 glm::vec3 surface_light(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
     const FrameInputs& f = *in.frame;
     const GiWindow& w = f.window;
@@ -111,13 +135,7 @@ glm::vec3 surface_light(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
             const float* u = upper->at(t.x, t.y);
             if (pos.y >= u[3]) direct = glm::vec3(u[0], u[1], u[2]);
         }
-        glm::vec3 light = direct + fetch_rgb(in.wall_indirect[face], t);
-        if (f.settings.ao.walls && in.ao)
-        {
-            const glm::ivec2 outside = texel_at(w, face_ao_position(w, inside, {pos.x, pos.z}, face));
-            light *= in.ao->at(outside.x, outside.y)[0];
-        }
-        return light;
+        return (direct + fetch_rgb(in.wall_indirect[face], t)) * wall_face_ao(in, inside, pos, face);
     }
     case surface_wall_top: {
         glm::vec3 direct(0.0f);
@@ -128,13 +146,7 @@ glm::vec3 surface_light(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
     case surface_ground: break;
     }
     const glm::ivec2 t = texel_at(w, {pos.x, pos.z});
-    glm::vec3 indirect = fetch_rgb(in.indirect, t);
-    // Directional bounce: sunlight fills the sun's own shadows by bounce_intensity.
-    const float sun_visibility = in.shadow ? in.shadow->at(t.x, t.y)[1] : 0.0f;
-    for (const GpuDirectionalLight& sun : f.directional_lights)
-        indirect += glm::vec3(sun.color_multiplier) * sun_angle(sun, f.settings.directional_angle_scale) *
-                    sun.bounce.x * (1.0f - sun_visibility);
-    glm::vec3 combined = fetch_rgb(in.direct, t) + indirect;
+    glm::vec3 combined = fetch_rgb(in.direct, t) + ground_bounce(in, t);
     if (in.ao) combined *= in.ao->at(t.x, t.y)[0];
     combined *= wall_at(f.walls, {pos.x, pos.z}) ? 0.0f : 1.0f; // conduction
     return combined;
@@ -147,22 +159,13 @@ glm::vec3 surface_bounce(const ShadingInputs& in, glm::vec3 pos, glm::vec3 n) {
     case surface_wall_face: {
         const glm::vec2 inside = wall_sample_position(w, pos, n);
         const int face = dominant_face(n);
-        glm::vec3 light = fetch_rgb(in.wall_indirect[face], texel_at(w, inside));
-        if (f.settings.ao.walls && in.ao) {
-            const glm::ivec2 outside = texel_at(w, face_ao_position(w, inside, {pos.x, pos.z}, face));
-            light *= in.ao->at(outside.x, outside.y)[0];
-        }
-        return light;
+        return fetch_rgb(in.wall_indirect[face], texel_at(w, inside)) * wall_face_ao(in, inside, pos, face);
     }
     case surface_wall_top: return ground_indirect_average(in, {pos.x, pos.z});
     case surface_ground: break;
     }
     const glm::ivec2 t = texel_at(w, {pos.x, pos.z});
-    glm::vec3 indirect = fetch_rgb(in.indirect, t);
-    const float sun_visibility = in.shadow ? in.shadow->at(t.x, t.y)[1] : 0.0f;
-    for (const GpuDirectionalLight& sun : f.directional_lights)
-        indirect += glm::vec3(sun.color_multiplier) * sun_angle(sun, f.settings.directional_angle_scale) *
-                    sun.bounce.x * (1.0f - sun_visibility);
+    glm::vec3 indirect = ground_bounce(in, t);
     if (in.ao) indirect *= in.ao->at(t.x, t.y)[0];
     return wall_at(f.walls, {pos.x, pos.z}) ? glm::vec3(0.0f) : indirect;
 }
