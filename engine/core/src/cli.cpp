@@ -119,34 +119,30 @@ Parser& Parser::integer(std::string name, std::string metavar, std::string help,
     return *this;
 }
 
+namespace {
+// --name X: a finite number of type T in [min, max].
+template <typename T>
+Parser::Check number_check(T& out, T min, T max) {
+    return [&out, min, max](std::string_view v) -> std::optional<std::string> {
+        T x = 0;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+        if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !std::isfinite(x) || x < min || x > max)
+            return "must be a number in [" + format_bound(double(min)) + ", " + format_bound(double(max)) + "], got " +
+                   quote(v);
+        out = x;
+        return std::nullopt;
+    };
+}
+} // namespace
+
 Parser& Parser::number(std::string name, std::string metavar, std::string help, double& out, double min,
                        double max) {
-    add(std::move(name), std::move(metavar), std::move(help), true,
-        [&out, min, max](std::string_view v) -> std::optional<std::string> {
-            double x = 0.0;
-            const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
-            if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !std::isfinite(x) || x < min ||
-                x > max)
-                return "must be a number in [" + format_bound(min) + ", " + format_bound(max) + "], got " +
-                       quote(v);
-            out = x;
-            return std::nullopt;
-        });
+    add(std::move(name), std::move(metavar), std::move(help), true, number_check(out, min, max));
     return *this;
 }
 
 Parser& Parser::number(std::string name, std::string metavar, std::string help, float& out, float min, float max) {
-    add(std::move(name), std::move(metavar), std::move(help), true,
-        [&out, min, max](std::string_view v) -> std::optional<std::string> {
-            float x = 0.0f;
-            const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
-            if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !std::isfinite(x) || x < min ||
-                x > max)
-                return "must be a number in [" + format_bound(double(min)) + ", " + format_bound(double(max)) +
-                       "], got " + quote(v);
-            out = x;
-            return std::nullopt;
-        });
+    add(std::move(name), std::move(metavar), std::move(help), true, number_check(out, min, max));
     return *this;
 }
 
