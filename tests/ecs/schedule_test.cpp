@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 using namespace ecs_test;
 using lantern::ecs::Entity;
 using lantern::ecs::Schedule;
@@ -119,6 +121,41 @@ TEST(Schedule, CommandsApplyAtTheSyncPointAndTickAdvances) {
     s.run(w);
     EXPECT_EQ(seen_during, 1u);
     EXPECT_EQ(w.count<Name>(), 2u);
+}
+
+// Regression (TSan, stop 36): two independent systems viewed components no entity had yet,
+// so each created its pool from a worker thread while the other read the pool table. The
+// schedule now makes every declared pool and resource slot before the systems start: a
+// system sees them already there, and the table does not grow while systems run.
+TEST(Schedule, DeclaredPoolsAndResourceSlotsExistBeforeAnySystemRuns) {
+    struct Unused {
+        int v = 0;
+    };
+    struct LaterResource {
+        int v = 0;
+    };
+    lantern::jobs::JobSystem jobs(workers(2));
+    World w;
+    Schedule s(jobs);
+    std::atomic<int> pools_seen{0};
+    s.add("views_missing_pools", [&](SystemContext& ctx) {
+         if (ctx.world.find_pool<Velocity>() && ctx.world.find_pool<Unused>()) ++pools_seen;
+         ctx.world.view<Velocity, Unused>().each([](Velocity&, Unused&) {});
+     }).reads<Velocity, Unused>();
+    s.add("sets_a_resource", [&](SystemContext& ctx) {
+         if (ctx.world.find_pool<Name>()) ++pools_seen;
+         ctx.world.set_resource<LaterResource>(LaterResource{7});
+     })
+        .reads<Name>()
+        .writes_resource<LaterResource>();
+    // Independent systems: nothing orders them, so they may run at the same time.
+    ASSERT_FALSE(s.ordered(0, 1));
+    ASSERT_EQ(w.find_pool<Unused>(), nullptr);
+    s.run(w);
+    EXPECT_EQ(pools_seen.load(), 2);
+    EXPECT_NE(w.find_pool<Unused>(), nullptr);
+    ASSERT_NE(w.try_resource<LaterResource>(), nullptr);
+    EXPECT_EQ(w.resource<LaterResource>().v, 7);
 }
 
 #if defined(LANTERN_ENABLE_ASSERTS)

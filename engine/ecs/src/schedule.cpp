@@ -9,13 +9,16 @@
 
 namespace lantern::ecs {
 
-void SystemBuilder::add(bool write, AccessKey k, const char* type_name) {
+void SystemBuilder::add(bool write, AccessKey k, const char* type_name, PoolMaker make) {
     Schedule::System& s = schedule_.systems_[index_];
     std::vector<AccessKey>& v = write ? s.writes : s.reads;
     if (std::find(v.begin(), v.end(), k) == v.end()) v.push_back(k);
     auto& names = schedule_.type_names_;
-    if (std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.first == k; }) == names.end())
+    if (std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.first == k; }) == names.end()) {
         names.emplace_back(k, type_name);
+        if (make) schedule_.pool_makers_.push_back(make);
+    }
+    if (k.kind == AccessKey::resource) schedule_.resource_slots_ = std::max(schedule_.resource_slots_, k.id + 1);
     schedule_.dirty_ = true;
 }
 
@@ -305,6 +308,9 @@ void Schedule::run(World& world) {
         world_ = &world;
         queues_ = std::make_unique<CommandQueues>(world, jobs_.thread_count());
     }
+    // Every table a system may touch exists before any system starts (see the header).
+    for (auto make : pool_makers_) make(world);
+    world.reserve_resource_slots(resource_slots_);
     graph_.run(jobs_);
     {
         profile::Scope scope("ecs.sync_point");

@@ -8,6 +8,15 @@
 #include <mutex>
 #include <string>
 
+#if defined(__linux__)
+#include <linux/futex.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <ctime>
+#endif
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #define LANTERN_CPU_PAUSE() _mm_pause()
@@ -24,11 +33,51 @@ struct JobSystem::ThreadState {
     std::uint32_t free_count = 0;
     std::uint32_t index = 0;
     std::uint32_t steal_cursor = 0;
+    // Set when this thread leaves idle_sleep (which clears wake_pending_), cleared when it
+    // next takes a job: until then it owes the others a wake-up (see wake_one).
+    bool owes_wake = false;
     JobSystem* system = nullptr;
     std::atomic<std::uint64_t> jobs_run{0};
     std::atomic<std::uint64_t> steals{0};
     std::atomic<std::uint64_t> overflows{0};
+    std::atomic<std::uint64_t> backstop_wakeups{0};
 };
+
+namespace {
+
+// The epoch's futex, called directly rather than through std::atomic::wait/notify: the idle
+// sleep needs a timeout (its backstop), which atomic::wait lacks, and libstdc++'s notify
+// skips the system call unless its own waiter count is set, so the epoch uses these only.
+static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));
+static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
+
+// Sleeps while `word` holds `expected`, for at most `timeout_us`; returns false on timeout.
+bool futex_wait(std::atomic<std::uint32_t>& word, std::uint32_t expected, std::uint32_t timeout_us) {
+#if defined(__linux__)
+    timespec ts{static_cast<time_t>(timeout_us / 1000000u), static_cast<long>(timeout_us % 1000000u) * 1000L};
+    long r = syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAIT_PRIVATE, expected,
+                     timeout_us ? &ts : nullptr, nullptr, 0);
+    return !(r == -1 && errno == ETIMEDOUT);
+#else
+    (void)timeout_us;
+    word.wait(expected, std::memory_order_seq_cst);
+    return true;
+#endif
+}
+
+void futex_wake(std::atomic<std::uint32_t>& word, bool all) {
+#if defined(__linux__)
+    syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAKE_PRIVATE, all ? INT32_MAX : 1, nullptr,
+            nullptr, 0);
+#else
+    if (all)
+        word.notify_all();
+    else
+        word.notify_one();
+#endif
+}
+
+} // namespace
 
 // Jobs move between threads (spawned on one, freed on another), so free lists rebalance
 // through this pool in batches: one lock per `batch` jobs, never per job.
@@ -102,7 +151,7 @@ JobSystem::~JobSystem() {
     while (Job* job = find_job(t)) execute(job, t);
     running_.store(false, std::memory_order_seq_cst);
     epoch_.fetch_add(1, std::memory_order_seq_cst);
-    epoch_.notify_all();
+    futex_wake(epoch_, true);
     for (auto& th : os_threads_) th.join();
     tls_binding = {};
 }
@@ -202,17 +251,25 @@ void JobSystem::submit(Job* job, ThreadState& t) {
 // the next clear; some thread reaches that clear (the woken one, or one that left the sleep
 // on its own) and then searches, at the latest in idle_sleep's seq_cst re-check. A burst of
 // spawns faster than a wake-up thus wakes one thread; that thread wakes the next when it
-// finds more work than it took (run_or_idle), so the wake-ups fan out.
+// takes a job and still sees work and a sleeper (run_or_idle), so the wake-ups fan out.
+// The duty to pass it on belongs to every thread that cleared the flag, that is every
+// thread that left idle_sleep (ThreadState::owes_wake), and it lasts until that thread
+// takes a job, not only its first search: a woken thread can lose each steal to a thread
+// that never slept (one that left idle_sleep on its re-check, clearing the flag on its
+// way out). When only the woken thread owed the wake-up and only on its first search, the
+// rest of a burst could sit in a deque beside sleeping workers while every awake thread
+// was busy (TSan caught it in CI, stop 36: JobSystem.ABurstOfSpawnsWakesEverySleepingWorker).
+// A thread that runs job after job without sleeping owes nothing and never scans.
 void JobSystem::wake_one() {
     if (wake_pending_.load(std::memory_order_seq_cst) || wake_pending_.exchange(true, std::memory_order_seq_cst))
         return;
     epoch_.fetch_add(1, std::memory_order_seq_cst);
-    epoch_.notify_one();
+    futex_wake(epoch_, false);
 }
 
 void JobSystem::signal_all() {
     epoch_.fetch_add(1, std::memory_order_seq_cst);
-    if (sleepers_.load(std::memory_order_seq_cst) != 0) epoch_.notify_all();
+    if (sleepers_.load(std::memory_order_seq_cst) != 0) futex_wake(epoch_, true);
 }
 
 // A counter reached zero: only threads sleeping in wait() care (idle workers do not), and
@@ -222,7 +279,7 @@ void JobSystem::signal_all() {
 void JobSystem::signal_waiters() {
     if (waiters_.load(std::memory_order_seq_cst) == 0) return;
     epoch_.fetch_add(1, std::memory_order_seq_cst);
-    epoch_.notify_all();
+    futex_wake(epoch_, true);
 }
 
 JobSystem::Job* JobSystem::find_job(ThreadState& t) {
@@ -276,7 +333,7 @@ void JobSystem::execute(Job* job, ThreadState& t) {
     if (counter && counter->value_.fetch_sub(1, std::memory_order_seq_cst) == 1) signal_waiters();
 }
 
-// Sleeps until the epoch moves. Lost wake-ups are impossible. The sleeper announces itself
+// Sleeps until the epoch moves, or for at most the backstop. The sleeper announces itself
 // (sleepers_ RMW), reads the epoch, then re-checks every deque (seq_cst loads). A spawner
 // publishes its job (seq_cst store of the deque's bottom), then reads sleepers_ (seq_cst).
 // In the single total order of seq_cst operations, either the spawner's read comes before
@@ -285,23 +342,46 @@ void JobSystem::execute(Job* job, ThreadState& t) {
 // against the value read before the re-check (or finds a wake-up pending, see wake_one).
 // A thread waiting for a counter also announces itself in waiters_ (see signal_waiters);
 // main-thread jobs always bump the epoch (signal_all).
+//
+// The pending flag that spares spawners a system call per job (wake_one) leaves one known
+// window: a wake-up can find its sleeper between the announcement and the futex call, a
+// second spawner skip its own because the flag is still set, and the sleeper's re-check
+// miss that second job. The sleep is therefore bounded (Config::sleep_backstop_us): the
+// thread then searches again, so such a job waits at most the backstop, never forever, and
+// Stats::backstop_wakeups counts sleeps that ended so with work queued (on a loaded
+// machine most are wake-ups still on their way, which the backstop merely overtook).
 bool JobSystem::idle_sleep(ThreadState& t, const Counter* counter) {
     wake_pending_.store(false, std::memory_order_seq_cst);
     sleepers_.fetch_add(1, std::memory_order_seq_cst);
     if (counter) waiters_.fetch_add(1, std::memory_order_seq_cst);
     std::uint32_t epoch = epoch_.load(std::memory_order_seq_cst);
     bool wake = !running_.load(std::memory_order_seq_cst) || has_visible_work(t) || (counter && counter->done());
-    if (!wake) epoch_.wait(epoch, std::memory_order_seq_cst);
+    if (!wake) {
+        // The futex returns when the epoch moves (or spuriously): either way the caller
+        // searches again. A sleep that runs to the backstop with work queued is counted: a
+        // wake-up missed (above) or late, which then costs at most the backstop.
+        while (epoch_.load(std::memory_order_seq_cst) == epoch) {
+            if (!futex_wait(epoch_, epoch, config_.sleep_backstop_us)) {
+                if (has_visible_work(t)) t.backstop_wakeups.fetch_add(1, std::memory_order_relaxed);
+                break;
+            }
+        }
+    }
     if (counter) waiters_.fetch_sub(1, std::memory_order_seq_cst);
     sleepers_.fetch_sub(1, std::memory_order_seq_cst);
     wake_pending_.store(false, std::memory_order_seq_cst);
+    t.owes_wake = true;
     return !wake;
 }
 
 void JobSystem::run_or_idle(ThreadState& t, std::uint32_t& idle, const Counter* counter) {
     if (Job* job = find_job(t)) {
-        // Woken from a sleep and there is more: pass the wake-up on (see wake_one).
-        if (idle == woken && sleepers_.load(std::memory_order_seq_cst) != 0 && has_visible_work(t)) wake_one();
+        // Left a sleep since the last job, and there is more work and a thread asleep:
+        // pass the wake-up on (see wake_one).
+        if (t.owes_wake) {
+            t.owes_wake = false;
+            if (sleepers_.load(std::memory_order_seq_cst) != 0 && has_visible_work(t)) wake_one();
+        }
         execute(job, t);
         idle = 0;
     } else if (idle == woken) {
@@ -369,6 +449,7 @@ JobSystem::Stats JobSystem::stats() const {
         s.jobs_run += t->jobs_run.load(std::memory_order_relaxed);
         s.steals += t->steals.load(std::memory_order_relaxed);
         s.inline_overflows += t->overflows.load(std::memory_order_relaxed);
+        s.backstop_wakeups += t->backstop_wakeups.load(std::memory_order_relaxed);
     }
     std::lock_guard lock(pool_->mutex);
     s.pool_blocks = pool_->blocks.size();

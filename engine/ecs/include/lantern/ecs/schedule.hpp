@@ -11,6 +11,11 @@
 // Change detection: ctx.last_run is the world tick when this system last ran (0 the first
 // time); compare component ticks against it (View::each_changed).
 //
+// Pools and resource slots are made before the systems start: every component type a
+// system declares gets its pool and every declared resource its slot at the top of run(),
+// so no system grows the World's tables while others read them (a view of a component no
+// entity has yet would otherwise create its pool from a worker thread).
+//
 // Declared access is enforced: with asserts on, a system that touches (through the World)
 // a component or resource type it did not declare stops with its name (world.hpp,
 // SystemAccess).
@@ -50,12 +55,12 @@ class SystemBuilder {
   public:
     template <typename... T>
     SystemBuilder& reads() {
-        (add(false, AccessKey{AccessKey::component, component_id<T>()}, detail::type_name<T>()), ...);
+        (add(false, AccessKey{AccessKey::component, component_id<T>()}, detail::type_name<T>(), &make_pool<T>), ...);
         return *this;
     }
     template <typename... T>
     SystemBuilder& writes() {
-        (add(true, AccessKey{AccessKey::component, component_id<T>()}, detail::type_name<T>()), ...);
+        (add(true, AccessKey{AccessKey::component, component_id<T>()}, detail::type_name<T>(), &make_pool<T>), ...);
         return *this;
     }
     template <typename... T>
@@ -77,7 +82,12 @@ class SystemBuilder {
   private:
     friend class Schedule;
     SystemBuilder(Schedule& s, std::uint32_t index) : schedule_(s), index_(index) {}
-    void add(bool write, AccessKey k, const char* type_name);
+    using PoolMaker = void (*)(World&);
+    template <typename T>
+    static void make_pool(World& w) {
+        w.assure<T>();
+    }
+    void add(bool write, AccessKey k, const char* type_name, PoolMaker make = nullptr);
     Schedule& schedule_;
     std::uint32_t index_;
 };
@@ -160,6 +170,8 @@ class Schedule {
     jobs::JobSystem& jobs_;
     std::vector<System> systems_;
     std::vector<std::pair<AccessKey, const char*>> type_names_; // for describe()
+    std::vector<void (*)(World&)> pool_makers_; // one per declared component type
+    TypeId resource_slots_ = 0;                 // 1 + the largest declared resource id
     jobs::JobGraph graph_;
     bool dirty_ = true;
     World* world_ = nullptr;

@@ -242,6 +242,11 @@ class World {
         if (id >= resources_.size() || !resources_[id]) return nullptr;
         return static_cast<T*>(resources_[id]->get());
     }
+    // Grows the resource table to `count` slots (set_resource then never grows it for ids
+    // below that; Schedule::run calls it before the systems start).
+    void reserve_resource_slots(TypeId count) {
+        if (count > resources_.size()) resources_.resize(count);
+    }
     template <typename T>
     bool has_resource() const {
         TypeId id = resource_id<T>();

@@ -67,6 +67,11 @@ class JobSystem {
         int worker_threads = -1;
         // Idle spin iterations before a thread sleeps (each is a CPU pause, ~10-40 ns).
         std::uint32_t spin_iterations = 2000;
+        // Longest futex sleep of an idle thread before it searches the deques again
+        // (Linux). Wake-ups are event-driven; this bound only caps the delay if one is
+        // ever missed (see idle_sleep), at the cost of ~1/backstop idle wake-ups a second.
+        // 0: no bound.
+        std::uint32_t sleep_backstop_us = 2000;
     };
 
     static constexpr std::size_t inline_payload_size = 80;
@@ -116,6 +121,9 @@ class JobSystem {
         std::uint64_t steals = 0;
         std::uint64_t inline_overflows = 0;
         std::uint64_t pool_blocks = 0; // job blocks allocated so far (grows during warm-up only)
+        // Sleeps that ran to the backstop and found work queued: a wake-up the protocol
+        // missed, or one still on its way on a loaded machine (see idle_sleep).
+        std::uint64_t backstop_wakeups = 0;
     };
     Stats stats() const;
 
