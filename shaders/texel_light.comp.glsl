@@ -2,7 +2,10 @@
 // Per-texel lighting, the light pass (seed 001's DynamicLight and Apply kernels;
 // engine/texel/texel.hpp): one invocation per atlas texel sums every light in range (the
 // seed's term, the wall grid's and the other models' shadows, the light's ambient), then
-// writes the raw sum (mode 0: bake) or saturate(sum + baked) (mode 1: realtime).
+// writes the raw sum (mode 0: bake) or saturate(sum + baked) (mode 1: realtime). The bake
+// leaves placements that move out, as receivers (0) and as occluders; the realtime pass
+// skips baked lights (blur.w 1) on still placements, whose baked light holds them
+// (texel::LightPass).
 #extension GL_GOOGLE_include_directive : require
 #include "lantern/texel.glsl"
 
@@ -113,6 +116,9 @@ bool segment_meets_sphere(vec3 a, vec3 dir, float len, vec4 sphere) {
     return dot(d, d) <= r * r;
 }
 
+// Placement k moves (its triangles' uv3.w, texel::Placement::moves).
+bool placement_moves(uvec4 ranges) { return ranges.y > 0u && triangles[ranges.x].uv3.w > 0.5; }
+
 float occluder_visibility(uint l, vec3 origin, vec3 point, int own) {
     precise vec3 to_point = point - origin;
     const float lr = texel_length(to_point);
@@ -123,6 +129,7 @@ float occluder_visibility(uint l, vec3 origin, vec3 point, int own) {
     for (uint k = 0u; k < pc.counts.y; ++k) {
         if (!segment_meets_sphere(origin, dir, lr, placements[k].bounds)) continue;
         const uvec4 ranges = placements[k].ranges;
+        if (pc.counts.w == 0u && placement_moves(ranges)) continue; // the bake: still occluders only
         for (uint i = ranges.x; i < ranges.x + ranges.y; ++i) {
             if (int(i) == own) continue;
             const vec3 n = triangles[i].normal.xyz;
@@ -173,8 +180,15 @@ void main() {
     }
     const vec3 p = s.position_used.xyz, n = s.normal_triangle.xyz, g = s.geo_normal.xyz;
     const int own = int(s.normal_triangle.w + 0.5);
+    const bool bake = pc.counts.w == 0u;
+    const bool moves = triangles[own].uv3.w > 0.5;
+    if (bake && moves) { // all of its light is realtime
+        result[texel] = vec4(0.0);
+        return;
+    }
     precise vec3 sum = vec3(0.0);
     for (uint l = 0u; l < pc.counts.z; ++l) {
+        if (!bake && !moves && lights[l].blur.w > 0.5) continue; // in baked[]
         const bool shadowed = int(lights[l].color_type.w + 0.5) != 0;
         if (lights[l].blur.z > 0.5) { // a sun
             const vec3 sun_dir = lights[l].position_range.xyz;

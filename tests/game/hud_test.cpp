@@ -479,6 +479,48 @@ TEST(DrawList, TexelLightingMakesModelsTexelLitParts) {
     }
 }
 
+// Seed 001's static lights in the game: under a bake (context.probes), the crystal's light
+// (baked mode) is marked to be baked into the models' texels; the player's lantern and the
+// torch stay live (realtime), as does the lamp post's (mixed: its direct light is live).
+// The player's parts are the ones that move.
+TEST(DrawList, BakedModeLightsAreBakedIntoTheTexelsUnderABakeAndThePlayerMoves) {
+    StreamedWorld open({20, 20});
+    ecs::World& world = open.world;
+    const systems::Streaming& streaming = *open.streaming;
+    spawn_player(world, {10.5f, 10.5f}, true);
+    spawn_torch(world, {8.5f, 9.5f}, 0.0f);
+    spawn_prop(world, PropKind::crystal, {9.5f, 11.5f});
+    spawn_prop(world, PropKind::lamp_post, {11.5f, 8.5f});
+    DrawContext ctx;
+    ctx.camera = follow_camera({10.5f, 0.0f, 10.5f}, CameraRig{});
+    ctx.texel_lighting = true;
+    std::vector<texel::TexelLight> lights;
+    gather_texel_lights(world, ctx, lights);
+    ASSERT_EQ(lights.size(), 4u);
+    for (const texel::TexelLight& l : lights) EXPECT_FALSE(texel::is_baked(l)) << "no bake in use: every light is live";
+    const BakedChunks baked;
+    ctx.probes = &baked;
+    gather_texel_lights(world, ctx, lights);
+    ASSERT_EQ(lights.size(), 4u);
+    int marked = 0;
+    for (const texel::TexelLight& l : lights) {
+        if (!texel::is_baked(l)) continue;
+        ++marked;
+        EXPECT_EQ(int(l.color_type.w), int(texel::ShadowType::none)); // the crystal's
+    }
+    EXPECT_EQ(marked, 1);
+    DrawList list;
+    build_draw_list(world, streaming, ctx, list);
+    int moving = 0;
+    for (const TexelPart& p : list.texel_parts) {
+        const bool player = p.model == int(TexelModel::player_body) || p.model == int(TexelModel::player_head) ||
+                            p.model == int(TexelModel::backpack);
+        EXPECT_EQ(p.moves, player) << "model " << p.model;
+        moving += p.moves;
+    }
+    EXPECT_EQ(moving, 3);
+}
+
 // Issue 19: a lower level of detail for far models. A part farther than texel_lod_distance
 // from the point the camera looks at takes LOD 1: the same box, its art at half the texels per
 // unit (a quarter of the texels to light), painted on every face texel.

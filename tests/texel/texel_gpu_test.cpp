@@ -25,7 +25,8 @@ struct World {
     std::vector<Placement> placements;
     TexelScene scene;
 
-    World() {
+    // `player_moves`: the player is a placement that moves (Placement::moves).
+    explicit World(bool player_moves = false) {
         grid.width = 16;
         grid.height = 12;
         grid.origin = glm::ivec2(-2, -2);
@@ -74,6 +75,7 @@ struct World {
         };
         placements = {{&player, at(3.5f, 3.5f, 0.3f)}, {&tree, at(8.5f, 2.5f)}, {&tree, at(9.5f, 6.5f, 1.0f)},
                       {&crate, at(2.5f, 6.5f)},         {&shards, at(7.0f, 5.0f)}};
+        placements[0].moves = player_moves;
         scene = build_scene(placements, gi::WallView::of(grid), 2.0f, 10.0f);
     }
 };
@@ -188,6 +190,40 @@ TEST_F(TexelGpu, BakeAndRealtimeLightMatchTheReference) {
     EXPECT_GT(wall_shadowed, 500);
     EXPECT_GT(model_shadowed, 20);
     EXPECT_GT(blurred, 150);
+}
+
+// Seed 001's static lights with a model that moves: the bake leaves the player out (as a
+// receiver and as an occluder), the realtime pass adds the baked light to the player only.
+TEST_F(TexelGpu, BakedLightsLeaveMovingModelsToTheRealtimePass) {
+    World w(true);
+    const std::vector<TexelLight> baked_lights = static_lights();
+    std::vector<TexelLight> lights = live_lights();
+    for (const TexelLight& l : baked_lights) lights.push_back(as_baked(l));
+    gpu::CommandList cmd = device().begin("texel light, a moving model");
+    passes->upload_scene(cmd, w.scene);
+    passes->record_uv_to_world(cmd);
+    passes->record_light(cmd, baked_lights, vk::TexelPasses::Mode::bake);
+    passes->record_light(cmd, lights, vk::TexelPasses::Mode::realtime);
+    device().wait(device().submit(std::move(cmd)));
+    const std::size_t n = w.scene.texel_count;
+    const auto surfaces = uv_to_world(w.scene);
+    const auto ref_baked = reference_light(w.scene, surfaces, baked_lights);
+    const auto ref_lit = reference_light(w.scene, surfaces, lights, ref_baked);
+    auto gpu_baked = test::read_back_as<glm::vec4>(device(), passes->baked());
+    auto gpu_lit = test::read_back_as<glm::vec4>(device(), passes->lit());
+    gpu_baked.resize(n);
+    gpu_lit.resize(n);
+    EXPECT_GT(expect_light(gpu_baked, ref_baked, "baked"), 1000);
+    EXPECT_GT(expect_light(gpu_lit, ref_lit, "realtime + baked"), 1000);
+    // The player's texels have no bake and are lit all the same.
+    const GpuPlacement& player = w.scene.placements[0];
+    int player_lit = 0;
+    for (std::uint32_t i = player.ranges.z; i < player.ranges.z + player.ranges.w * player.ranges.w; ++i) {
+        if (surfaces[i].position_used.w == 0.0f) continue;
+        EXPECT_EQ(gpu_baked[i], glm::vec4(0.0f)) << "texel " << i;
+        player_lit += gpu_lit[i].r + gpu_lit[i].g + gpu_lit[i].b > 0.0f;
+    }
+    EXPECT_GT(player_lit, 100);
 }
 
 TEST_F(TexelGpu, AMovedPlacementIsCarriedAgain) {

@@ -398,6 +398,51 @@ TEST(TexelLight, ApplyAddsTheBakeAndSaturates) {
     EXPECT_TRUE(saturated); // the case the clamp is for was met
 }
 
+// Seed 001's static lights beside a model that moves: baked once for still models, without
+// the moving model's shadow, and live on the moving model (its bake is 0), never twice.
+TEST(TexelLight, ABakedLightIsInTheBakeOnStillModelsAndLiveOnMovingOnes) {
+    const Model crate = box_model(glm::vec3(-0.5f, 0.0f, -0.5f), glm::vec3(0.5f, 1.0f, 0.5f), 4);
+    const Model slab = box_model(glm::vec3(-0.4f, 0.0f, -0.4f), glm::vec3(0.4f, 0.2f, 0.4f), 4);
+    // The slab (the mover) hovers over the crate, under the lamp.
+    std::vector<Placement> placements = {{&crate, glm::mat4(1.0f)},
+                                         {&slab, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.6f, 0.0f)), true}};
+    const TexelScene scene = scene_of(placements);
+    const TexelScene crate_alone = scene_of({placements[0]});
+    const std::vector<TexelSurface> s = uv_to_world(scene);
+    const TexelLight lamp = make_light(glm::vec3(0.0f, 3.0f, 0.0f), glm::vec3(0.8f, 0.6f, 0.4f), 1.0f, 8.0f);
+    const TexelLight torch = make_light(glm::vec3(2.0f, 0.5f, 0.0f), glm::vec3(0.3f, 0.3f, 0.1f), 1.0f, 5.0f);
+    const std::vector<glm::vec4> baked = reference_light(scene, s, std::span(&lamp, 1));
+    const std::vector<TexelLight> frame = {torch, as_baked(lamp)};
+    const std::vector<glm::vec4> lit = reference_light(scene, s, frame, baked);
+    const std::uint32_t first_slab = scene.placements[1].ranges.z;
+    int crate_top_lit = 0, slab_texels = 0;
+    for (std::uint32_t i = 0; i < s.size(); ++i) {
+        if (s[i].position_used.w == 0.0f) continue;
+        if (i >= first_slab) { // the mover: no bake; the lamp and the torch live, with all shadows
+            ++slab_texels;
+            EXPECT_EQ(baked[i], glm::vec4(0.0f));
+            const glm::vec3 live = texel_light(scene, std::span(&lamp, 1), s[i]) + texel_light(scene, std::span(&torch, 1), s[i]);
+            EXPECT_EQ(lit[i], glm::clamp(glm::vec4(live, 1.0f), glm::vec4(0.0f), glm::vec4(1.0f)));
+            continue;
+        }
+        // The crate: the bake as if the mover were not there (its shadow is not frozen in)...
+        EXPECT_EQ(baked[i], glm::vec4(texel_light(crate_alone, std::span(&lamp, 1), s[i]), 1.0f)) << "texel " << i;
+        crate_top_lit += s[i].geo_normal.y > 0.5f && baked[i].r > 0.0f;
+        // ...and the realtime pass adds the torch alone to it: the lamp is not counted twice.
+        const glm::vec4 want = glm::clamp(glm::vec4(texel_light(scene, std::span(&torch, 1), s[i]), 1.0f) + baked[i],
+                                          glm::vec4(0.0f), glm::vec4(1.0f));
+        EXPECT_EQ(lit[i], want) << "texel " << i;
+    }
+    EXPECT_GT(slab_texels, 10);
+    EXPECT_GT(crate_top_lit, 8); // under the mover, lit in the bake
+    // Live, the mover does shade the crate's top from the lamp.
+    int shaded_live = 0;
+    for (std::uint32_t i = 0; i < first_slab; ++i)
+        if (s[i].position_used.w != 0.0f && s[i].geo_normal.y > 0.5f)
+            shaded_live += texel_light(scene, std::span(&lamp, 1), s[i]).r < baked[i].r;
+    EXPECT_GT(shaded_live, 8);
+}
+
 TEST(TexelScene, MovingAPlacementMovesItsTexels) {
     const Model box = box_model(glm::vec3(-0.5f, 0.0f, -0.5f), glm::vec3(0.5f, 1.0f, 0.5f), 4);
     const std::vector<Placement> placements = {{&box, glm::mat4(1.0f)}, {&box, glm::mat4(1.0f)}};

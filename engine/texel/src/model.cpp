@@ -26,7 +26,7 @@ glm::vec3 perpendicular(glm::vec3 n) {
     return safe_normalize(glm::cross(n, axis), glm::vec3(0, 0, 1));
 }
 
-GpuTriangle world_triangle(const ModelTriangle& t, const glm::mat4& transform, std::uint32_t placement) {
+GpuTriangle world_triangle(const ModelTriangle& t, const glm::mat4& transform, std::uint32_t placement, bool moves) {
     glm::vec3 p[3];
     for (int i = 0; i < 3; ++i) p[i] = glm::vec3(transform * glm::vec4(t.p[i], 1.0f));
     GpuTriangle g;
@@ -34,7 +34,7 @@ GpuTriangle world_triangle(const ModelTriangle& t, const glm::mat4& transform, s
     g.p2 = glm::vec4(p[1], 0.0f);
     g.p3 = glm::vec4(p[2], 0.0f);
     g.uv12 = glm::vec4(t.uv[0], t.uv[1]);
-    g.uv3 = glm::vec4(t.uv[2], float(placement), 0.0f);
+    g.uv3 = glm::vec4(t.uv[2], float(placement), moves ? 1.0f : 0.0f);
     const glm::vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
     const glm::vec3 n = safe_normalize(glm::cross(e1, e2), glm::vec3(0, 1, 0));
     const glm::vec2 d1 = t.uv[1] - t.uv[0], d2 = t.uv[2] - t.uv[0];
@@ -178,7 +178,8 @@ TexelScene build_scene(std::span<const Placement> placements, const gi::WallView
         GpuPlacement p;
         p.ranges = glm::uvec4(std::uint32_t(scene.triangles.size()), std::uint32_t(m.triangles.size()),
                               scene.texel_count, std::uint32_t(std::max(m.size, 0)));
-        for (const ModelTriangle& t : m.triangles) scene.triangles.push_back(world_triangle(t, placements[k].transform, k));
+        for (const ModelTriangle& t : m.triangles)
+            scene.triangles.push_back(world_triangle(t, placements[k].transform, k, placements[k].moves));
         p.bounds = placement_bounds(std::span(scene.triangles).subspan(p.ranges.x, p.ranges.y));
         const std::size_t texels = std::size_t(p.ranges.w) * p.ranges.w;
         for (std::size_t i = 0; i < texels; ++i)
@@ -213,9 +214,14 @@ TexelScene build_scene(std::span<const Placement> placements, const gi::WallView
 
 void move_placement(TexelScene& scene, std::uint32_t index, const Model& model, const glm::mat4& transform) {
     GpuPlacement& p = scene.placements.at(index);
+    const bool moves = p.ranges.y > 0 && placement_moves(scene, p);
     for (std::uint32_t i = 0; i < p.ranges.y && i < model.triangles.size(); ++i)
-        scene.triangles[p.ranges.x + i] = world_triangle(model.triangles[i], transform, index);
+        scene.triangles[p.ranges.x + i] = world_triangle(model.triangles[i], transform, index, moves);
     p.bounds = placement_bounds(std::span(scene.triangles).subspan(p.ranges.x, p.ranges.y));
+}
+
+bool placement_moves(const TexelScene& scene, const GpuPlacement& p) {
+    return p.ranges.y > 0 && scene.triangles[p.ranges.x].uv3.w > 0.5f;
 }
 
 } // namespace lantern::texel

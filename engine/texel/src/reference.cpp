@@ -189,7 +189,7 @@ float wall_visibility(const WallPatch& walls, float wall_height, glm::vec3 light
 }
 
 float occluder_visibility(const TexelScene& scene, const TexelLight& light, glm::vec3 origin, glm::vec3 point,
-                          int own) {
+                          int own, bool still_only) {
     const glm::vec3 to_point = point - origin;
     const float lr = length3(to_point);
     if (!(lr > 0.0f)) return 1.0f;
@@ -198,6 +198,7 @@ float occluder_visibility(const TexelScene& scene, const TexelLight& light, glm:
     float nearest = -1.0f; // NLR: the nearest hit's distance to the texel
     for (const GpuPlacement& p : scene.placements) {
         if (!segment_meets_sphere(origin, dir, lr, p.bounds)) continue;
+        if (still_only && placement_moves(scene, p)) continue;
         for (std::uint32_t i = p.ranges.x; i < p.ranges.x + p.ranges.y; ++i) {
             if (int(i) == own) continue;
             const GpuTriangle& t = scene.triangles[i];
@@ -220,7 +221,7 @@ float occluder_visibility(const TexelScene& scene, const TexelLight& light, glm:
     return std::clamp(blur, 0.0f, 1.0f);
 }
 
-float sun_visibility(const TexelScene& scene, const TexelLight& sun, glm::vec3 point, int own) {
+float sun_visibility(const TexelScene& scene, const TexelLight& sun, glm::vec3 point, int own, bool still_only) {
     const glm::vec3 dir(sun.position_range);
     const float reach = sun.position_range.w;
     // Walls: towards the sun until the ray clears their tops (or the reach ends).
@@ -228,22 +229,27 @@ float sun_visibility(const TexelScene& scene, const TexelLight& sun, glm::vec3 p
     if (dir.y < 0.0f) clear = std::min(reach, std::max((scene.wall_height - point.y) / -dir.y, 0.0f));
     if (clear > 0.0f && wall_visibility(scene.walls, scene.wall_height, point - dir * clear, point) == 0.0f)
         return 0.0f;
-    return occluder_visibility(scene, sun, point - dir * reach, point, own);
+    return occluder_visibility(scene, sun, point - dir * reach, point, own, still_only);
 }
 
-glm::vec3 texel_light(const TexelScene& scene, std::span<const TexelLight> lights, const TexelSurface& s) {
+glm::vec3 texel_light(const TexelScene& scene, std::span<const TexelLight> lights, const TexelSurface& s,
+                      LightPass pass) {
     glm::vec3 sum(0.0f);
     if (s.position_used.w == 0.0f) return sum;
     const glm::vec3 p(s.position_used), n(s.normal_triangle), g(s.geo_normal);
     const int own = int(s.normal_triangle.w + 0.5f);
+    const bool bake = pass == LightPass::bake;
+    const bool moves = scene.triangles[std::size_t(own)].uv3.w > 0.5f;
+    if (bake && moves) return sum; // all of its light is realtime
     for (const TexelLight& light : lights) {
+        if (!bake && !moves && is_baked(light)) continue; // in baked()
         const bool shadowed = int(light.color_type.w + 0.5f) != int(ShadowType::none);
         if (is_directional(light)) {
             const glm::vec3 dir(light.position_range);
             sum += glm::vec3(light.ambient);
             const float c = dot3(dir, n);
             if (!(c < 0.0f) || !(dot3(dir, g) < 0.0f)) continue;
-            const float shade = shadowed ? sun_visibility(scene, light, p, own) : 1.0f;
+            const float shade = shadowed ? sun_visibility(scene, light, p, own, bake) : 1.0f;
             const float value = std::abs(c);
             sum += glm::vec3(light.color_type) * (shade * value * value);
             continue;
@@ -262,7 +268,7 @@ glm::vec3 texel_light(const TexelScene& scene, std::span<const TexelLight> light
         float shade = 1.0f;
         if (shadowed) {
             shade = wall_visibility(scene.walls, scene.wall_height, glm::vec3(light.position_range), p);
-            if (shade > 0.0f) shade = occluder_visibility(scene, light, glm::vec3(light.position_range), p, own);
+            if (shade > 0.0f) shade = occluder_visibility(scene, light, glm::vec3(light.position_range), p, own, bake);
         }
         const float value = falloff * std::abs(c);
         sum += glm::vec3(light.color_type) * (shade * value * value);
@@ -275,8 +281,14 @@ std::vector<glm::vec4> reference_light(const TexelScene& scene, std::span<const 
     std::vector<glm::vec4> out(surfaces.size(), glm::vec4(0.0f));
     for (std::size_t i = 0; i < surfaces.size(); ++i) {
         if (surfaces[i].position_used.w == 0.0f) continue;
-        const glm::vec4 sum(texel_light(scene, lights, surfaces[i]), 1.0f);
-        out[i] = baked.empty() ? sum : glm::clamp(sum + baked[i], glm::vec4(0.0f), glm::vec4(1.0f));
+        if (baked.empty()) { // the bake
+            const int own = int(surfaces[i].normal_triangle.w + 0.5f);
+            if (scene.triangles[std::size_t(own)].uv3.w > 0.5f) continue; // a moving placement's: 0
+            out[i] = glm::vec4(texel_light(scene, lights, surfaces[i], LightPass::bake), 1.0f);
+            continue;
+        }
+        const glm::vec4 sum(texel_light(scene, lights, surfaces[i], LightPass::realtime), 1.0f);
+        out[i] = glm::clamp(sum + baked[i], glm::vec4(0.0f), glm::vec4(1.0f));
     }
     return out;
 }

@@ -107,6 +107,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         return {Material::lit_probes, float(probe_record(anchored(e, at)))};
     };
 
+    bool moving_parts = false; // the player's parts (TexelPart::moves)
     // A part of a model that is lit per texel with texel lighting on (its model's box, white:
     // the texture has the colours), else the box it always was.
     // `tint` and `glow`: a glowing part's colour and strength (a crystal), lit per texel too.
@@ -123,6 +124,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         TexelPart p{e.bits() * 8u + std::uint64_t(index), int(model), center, texel_lod_for(center, view_target),
                     probe_record(anchored(e, {center.x, center.z}))};
         p.glow = glow;
+        p.moves = moving_parts;
         out.texel_parts.push_back(p);
         into.push_back(box(center, extent, tint, Material::texel_lit, float(out.texel_parts.size() - 1)));
     };
@@ -194,6 +196,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         const glm::vec3 at(t.position.x, 0.0f, t.position.z);
         const auto lit = probe_lit(e, {t.position.x, t.position.z});
         // Its parts are drawn after the x-ray pass (DrawList::late): only the world hides it.
+        moving_parts = true;
         part(e, 0, TexelModel::player_body, at + glm::vec3(0, 0.42f, 0), {0.22f, 0.36f, 0.72f}, lit, out.late);
         part(e, 1, TexelModel::player_head, at + glm::vec3(0, 1.04f, 0), {0.9f, 0.72f, 0.56f}, lit, out.late);
         // Its silhouette where walls (or trees) hide it: body and head only (the backpack
@@ -204,6 +207,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         const glm::vec2 back = -p.facing * 0.2f;
         part(e, 2, TexelModel::backpack, at + glm::vec3(back.x * 1.3f, 0.55f, back.y * 1.3f), {0.45f, 0.3f, 0.15f}, lit,
              out.late);
+        moving_parts = false;
     });
 
     // The cursor: a thin glowing frame on the tile (on the wall's top for a wall).
@@ -238,6 +242,9 @@ void gather_texel_lights(ecs::World& world, const DrawContext& ctx, std::vector<
     const auto ambient = [](const ItemLight& item, float intensity) {
         return item.intensity > 0.0f ? item.ambient * (intensity / item.intensity) : item.ambient;
     };
+    // Seed 001's static lights: a baked-mode light, while the frame uses a bake (as the GI
+    // honours modes), is baked into the models' texels once (TexelWorld).
+    const auto baked_mode = [&](scene::LightMode mode) { return ctx.probes && mode == scene::LightMode::baked; };
     std::vector<std::pair<float, texel::TexelLight>> near;
     world.view<PointLight>().each([&](ecs::Entity e, const PointLight& l) {
         if (!reaches_view(l.position, l.radius)) return;
@@ -247,17 +254,18 @@ void gather_texel_lights(ecs::World& world, const DrawContext& ctx, std::vector<
         if (lamp) fill = ambient(tables.lamp_post, l.intensity);
         else if (world.try_get<Torch>(e)) fill = ambient(tables.torch, l.intensity);
         else if (world.try_get<Player>(e)) fill = ambient(tables.player, l.intensity);
-        near.emplace_back(glm::distance(l.position, centre),
-                          texel::make_light({l.position.x, l.height, l.position.y}, l.color, l.intensity, l.radius,
-                                            lamp ? texel::ShadowType::blurred : texel::ShadowType::hard, 1.0f, 1.0f, fill));
+        texel::TexelLight light = texel::make_light({l.position.x, l.height, l.position.y}, l.color, l.intensity,
+                                                    l.radius, lamp ? texel::ShadowType::blurred : texel::ShadowType::hard,
+                                                    1.0f, 1.0f, fill);
+        near.emplace_back(glm::distance(l.position, centre), baked_mode(l.mode) ? texel::as_baked(light) : light);
     });
     world.view<EmissiveLight>().each([&](ecs::Entity e, const EmissiveLight& l) {
         if (!reaches_view(l.position, l.radius)) return;
         const Prop* prop = world.try_get<Prop>(e);
         const glm::vec3 fill = prop && prop->kind == PropKind::crystal ? ambient(tables.crystal, l.intensity) : glm::vec3(0.0f);
-        near.emplace_back(glm::distance(l.position, centre),
-                          texel::make_light({l.position.x, 0.3f, l.position.y}, l.color, l.intensity, l.radius,
-                                            texel::ShadowType::none, 1.0f, 1.0f, fill));
+        const texel::TexelLight light = texel::make_light({l.position.x, 0.3f, l.position.y}, l.color, l.intensity,
+                                                          l.radius, texel::ShadowType::none, 1.0f, 1.0f, fill);
+        near.emplace_back(glm::distance(l.position, centre), baked_mode(l.mode) ? texel::as_baked(light) : light);
     });
     constexpr std::size_t cap = 32;
     if (near.size() > cap) {

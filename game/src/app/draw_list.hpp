@@ -35,7 +35,8 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
 // The lights the texel passes light the models by this frame (nothing without
 // context.texel_lighting): point lights and emissive lights whose range reaches the view (the
 // 32 nearest the view's centre), at their height (emissive lights at 0.3, without shadows;
-// lamp posts' shadows blurred, the rest hard). The frame's suns are the GI's (record_world).
+// lamp posts' shadows blurred, the rest hard). Baked-mode lights are marked texel::as_baked
+// while a bake is in use (context.probes). The frame's suns are the GI's (record_world).
 void gather_texel_lights(ecs::World& world, const DrawContext& context, std::vector<texel::TexelLight>& out);
 
 // The tile the cursor points at, as interaction picks it (wall first, else ground), when

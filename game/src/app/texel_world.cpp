@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <mutex>
 
 namespace lantern::game {
@@ -162,7 +163,7 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
     placements.reserve(parts.size());
     for (const TexelPart& p : parts) {
         const int model = std::clamp(p.model, 0, int(TexelModel::count) - 1);
-        placements.push_back({&texel_model(TexelModel(model), p.lod), glm::translate(glm::mat4(1.0f), p.center)});
+        placements.push_back({&texel_model(TexelModel(model), p.lod), glm::translate(glm::mat4(1.0f), p.center), p.moves});
     }
     // Walls are copied as far as the longest light (or the sun's shadow search) reaches.
     float reach = 1.0f;
@@ -171,7 +172,18 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
 
     const bool same_parts = parts.size() == last_parts_.size() &&
                             std::equal(parts.begin(), parts.end(), last_parts_.begin(), [](const TexelPart& a, const TexelPart& b) {
-                                return a.key == b.key && a.model == b.model && a.lod == b.lod;
+                                return a.key == b.key && a.model == b.model && a.lod == b.lod && a.moves == b.moves;
+                            });
+    // Seed 001's static lights (the baked-mode lights, texel::as_baked) are baked into the
+    // atlas once, for the parts that stay still, and baked again only when the layout, the
+    // walls, those lights or a still part change; the realtime pass adds them to moving parts.
+    std::vector<texel::TexelLight> baked_lights;
+    for (const texel::TexelLight& l : lights)
+        if (texel::is_baked(l)) baked_lights.push_back(l);
+    bool bake = !same_parts || baked_lights.size() != last_baked_lights_.size() ||
+                !std::equal(baked_lights.begin(), baked_lights.end(), last_baked_lights_.begin(),
+                            [](const texel::TexelLight& a, const texel::TexelLight& b) {
+                                return std::memcmp(&a, &b, sizeof(a)) == 0;
                             });
     if (!same_parts) {
         // Parts came into view or left it: the atlas is laid out again.
@@ -184,13 +196,25 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
         passes_->upload_albedo(cmd, albedo_);
         passes_->record_uv_to_world(cmd);
     } else {
-        if (!same_walls(scene.walls, scene_.walls)) passes_->upload_walls(cmd, scene);
+        if (!same_walls(scene.walls, scene_.walls)) {
+            passes_->upload_walls(cmd, scene);
+            bake = true;
+        }
         bool moved = false;
-        for (std::size_t k = 0; k < parts.size() && !moved; ++k) moved = parts[k].center != last_parts_[k].center;
+        for (std::size_t k = 0; k < parts.size(); ++k) {
+            if (parts[k].center == last_parts_[k].center) continue;
+            moved = true;
+            bake |= !parts[k].moves; // a still part moved: its bake (and its shadow in others') is stale
+        }
         if (moved) { // the player walked: its texels are carried into the world again
             passes_->upload_triangles(cmd, scene);
             passes_->record_uv_to_world(cmd);
         }
+    }
+    if (bake) {
+        passes_->record_light(cmd, baked_lights, texel::vk::TexelPasses::Mode::bake);
+        last_baked_lights_ = std::move(baked_lights);
+        ++bakes_;
     }
     passes_->record_light(cmd, lights, texel::vk::TexelPasses::Mode::realtime);
 

@@ -52,12 +52,16 @@ class TexelWorld {
     static Result<std::unique_ptr<TexelWorld>> create(gpu::Device& device);
 
     // Records this frame's texel passes into `cmd` for `parts` (the draw list's) under
-    // `lights`, the walls from `walls` (the GI's view of them; none: open ground).
+    // `lights`, the walls from `walls` (the GI's view of them; none: open ground). Lights
+    // marked texel::as_baked are baked for the still parts when they, the layout, the walls
+    // or a still part change (bakes()), and lit live on parts that move (TexelPart::moves).
     void record(gpu::CommandList& cmd, std::span<const TexelPart> parts, std::span<const texel::TexelLight> lights,
                 const gi::WallView& walls, float wall_height);
 
     // The draw list's parts' records (same order), and the buffers the raster reads.
     std::span<const TexelRecord> records() const { return records_; }
+    // How many times the static lights were baked so far.
+    std::uint64_t bakes() const { return bakes_; }
     const gpu::Buffer& lit() const { return passes_->lit(); }
     const gpu::Buffer& surfaces() const { return passes_->surfaces(); }
     const gpu::Buffer& albedo() const { return passes_->albedo(); }
@@ -67,6 +71,8 @@ class TexelWorld {
     std::unique_ptr<texel::vk::TexelPasses> passes_;
     texel::TexelScene scene_;
     std::vector<TexelPart> last_parts_;
+    std::vector<texel::TexelLight> last_baked_lights_; // what baked() holds
+    std::uint64_t bakes_ = 0;
     std::vector<TexelRecord> records_;
     std::vector<glm::vec4> albedo_;
 };

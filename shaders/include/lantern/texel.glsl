@@ -10,7 +10,7 @@
 struct TexelTriangle {
     vec4 p1, p2, p3;
     vec4 uv12; // xy uv of p1, zw uv of p2
-    vec4 uv3;  // xy uv of p3, z its placement
+    vec4 uv3;  // xy uv of p3, z its placement, w 1 when it moves (texel::Placement::moves)
     vec4 normal, tangent, binormal;
 };
 struct TexelPlacement {

@@ -119,6 +119,9 @@ struct TexelPart {
     // Light of its own (a crystal): the raster adds albedo x tint x glow to what the texel
     // passes lit (the box's colour is the tint), as a glowing box adds colour x emissive.
     float glow = 0.0f;
+    // It moves between frames (the player): baked lights reach it in the realtime texel
+    // pass, and it neither receives nor casts anything in the bake (TexelWorld).
+    bool moves = false;
 };
 
 struct DrawList {

@@ -81,7 +81,7 @@ void append_triangles(Model& a, const Model& b, const glm::mat4& transform, glm:
 struct alignas(16) GpuTriangle {
     glm::vec4 p1{0.0f}, p2{0.0f}, p3{0.0f}; // xyz world; w unused
     glm::vec4 uv12{0.0f};                   // xy uv of p1, zw uv of p2
-    glm::vec4 uv3{0.0f};                    // xy uv of p3; z its placement; w unused
+    glm::vec4 uv3{0.0f};                    // xy uv of p3; z its placement; w 1: it moves (Placement::moves)
     glm::vec4 normal{0.0f};                 // unit, from the winding: cross(p2 - p1, p3 - p1)
     glm::vec4 tangent{0.0f};                // unit, along +u in the world
     glm::vec4 binormal{0.0f};               // unit, along +v (down the texture) in the world
@@ -112,7 +112,8 @@ enum class ShadowType : int { none = 0, hard = 1, blurred = 2 };
 struct alignas(16) TexelLight {
     glm::vec4 position_range{0.0f}; // see above
     glm::vec4 color_type{0.0f};     // rgb colour x intensity; w float(ShadowType)
-    glm::vec4 blur{1.0f, 1.0f, 0.0f, 0.0f}; // x multiplier, y power (blurred shadows); z 1: directional
+    glm::vec4 blur{1.0f, 1.0f, 0.0f, 0.0f}; // x multiplier, y power (blurred shadows); z 1: directional;
+                                            // w 1: baked (see as_baked)
     glm::vec4 ambient{0.0f};        // rgb ambient colour at the light (point: falling to 0 at range)
 };
 static_assert(sizeof(TexelLight) == 64);
@@ -126,6 +127,14 @@ TexelLight make_light(glm::vec3 position, glm::vec3 color, float intensity, floa
 TexelLight make_sun(glm::vec3 direction, glm::vec3 color, float intensity, ShadowType shadow = ShadowType::hard,
                     float reach = 48.0f, glm::vec3 ambient = glm::vec3(0.0f));
 bool is_directional(const TexelLight& light);
+// The seed's static light: baked into baked() by the bake pass (for still placements), so
+// the realtime pass skips it there and adds it only on placements that move. The bake pass
+// reads every light it is given, marked or not.
+inline TexelLight as_baked(TexelLight light) {
+    light.blur.w = 1.0f;
+    return light;
+}
+inline bool is_baked(const TexelLight& light) { return light.blur.w > 0.5f; }
 
 // The wall grid as the light pass reads it: a plain (untoroidal) rectangle of cells, four
 // per 32-bit word (byte i of word i / 4), tiles outside it air.
@@ -150,12 +159,18 @@ struct Placement {
     const Model* model = nullptr;
     glm::mat4 transform{1.0f}; // object to world (rigid or scaled; normals are transformed
                                // as directions and renormalised)
+    // A placement that moves between bakes (the player): the bake leaves it out, as a
+    // receiver (its baked light stays 0) and as an occluder, and the realtime pass lights it
+    // with every light, baked ones included. Still placements take baked lights from the bake.
+    bool moves = false;
 };
 
 // Places the models; `walls` is copied over the placements' bounds grown by `reach` tiles
 // (the longest light range the frames will use: every cell a shadow ray can cross).
 TexelScene build_scene(std::span<const Placement> placements, const gi::WallView& walls, float wall_height,
                        float reach);
+// Whether placement `p` of `scene` moves (its triangles carry Placement::moves).
+bool placement_moves(const TexelScene& scene, const GpuPlacement& p);
 // Replaces placement `index`'s triangles for a new transform (its texels' surfaces must then
 // be recomputed: uv_to_world_placement / record_uv_to_world).
 void move_placement(TexelScene& scene, std::uint32_t index, const Model& model, const glm::mat4& transform);
@@ -184,15 +199,24 @@ float wall_visibility(const WallPatch& walls, float wall_height, glm::vec3 light
 // blurred: clamp((NLR / LR)^power x multiplier, 0, 1), NLR the distance from `point` to the
 // nearest hit, LR the distance to `origin`. Occluders that face away from the light (or are
 // edge-on) and hits at or beyond the texel are skipped. `light` gives the shadow type and blur.
-float occluder_visibility(const TexelScene& scene, const TexelLight& light, glm::vec3 origin, glm::vec3 point, int own);
+// `still_only`: placements that move cast no shadow (the bake's rule).
+float occluder_visibility(const TexelScene& scene, const TexelLight& light, glm::vec3 origin, glm::vec3 point, int own,
+                          bool still_only = false);
 // A sun's grid and occluder shadow at `point` (1 lit, 0 shadowed, between: blurred).
-float sun_visibility(const TexelScene& scene, const TexelLight& sun, glm::vec3 point, int own);
+float sun_visibility(const TexelScene& scene, const TexelLight& sun, glm::vec3 point, int own, bool still_only = false);
 
-// The light (rgb) at one texel from `lights` (realtime or static alike), ambient included.
-glm::vec3 texel_light(const TexelScene& scene, std::span<const TexelLight> lights, const TexelSurface& s);
+// Which pass a texel's light is summed for. bake: placements that move receive nothing and
+// cast no shadow (their light is all realtime); realtime: baked lights (as_baked) are left out
+// on still placements, whose baked() holds them.
+enum class LightPass { bake, realtime };
 
-// Every texel's light: with `baked` empty the raw sums (mode bake: rgb, a 1 on used texels),
-// else saturate(sum + baked) (the seed's Apply). Unused texels are 0.
+// The light (rgb) at one texel from `lights`, ambient included.
+glm::vec3 texel_light(const TexelScene& scene, std::span<const TexelLight> lights, const TexelSurface& s,
+                      LightPass pass = LightPass::realtime);
+
+// Every texel's light: with `baked` empty the bake's raw sums (rgb, a 1 on used texels of
+// still placements), else the realtime pass's saturate(sum + baked) (the seed's Apply).
+// Unused texels are 0.
 std::vector<glm::vec4> reference_light(const TexelScene& scene, std::span<const TexelSurface> surfaces,
                                        std::span<const TexelLight> lights, std::span<const glm::vec4> baked = {});
 
