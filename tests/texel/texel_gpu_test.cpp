@@ -137,6 +137,28 @@ class TexelGpu : public test::GpuTest {
         EXPECT_EQ(differ, 0) << what;
         return lit;
     }
+    // Uploads `w`, bakes `baked_lights`, runs the realtime pass with `lights`, and checks both
+    // results against the reference, texel by texel. Returns the reference's surfaces.
+    std::vector<TexelSurface> bake_and_light(const World& w, const std::vector<TexelLight>& baked_lights,
+                                             const std::vector<TexelLight>& lights) {
+        gpu::CommandList cmd = device().begin("texel light");
+        passes->upload_scene(cmd, w.scene);
+        passes->record_uv_to_world(cmd);
+        passes->record_light(cmd, baked_lights, vk::TexelPasses::Mode::bake);
+        passes->record_light(cmd, lights, vk::TexelPasses::Mode::realtime);
+        device().wait(device().submit(std::move(cmd)));
+        const std::size_t n = w.scene.texel_count;
+        std::vector<TexelSurface> surfaces = uv_to_world(w.scene);
+        const auto ref_baked = reference_light(w.scene, surfaces, baked_lights);
+        const auto ref_lit = reference_light(w.scene, surfaces, lights, ref_baked);
+        auto gpu_baked = test::read_back_as<glm::vec4>(device(), passes->baked());
+        auto gpu_lit = test::read_back_as<glm::vec4>(device(), passes->lit());
+        gpu_baked.resize(n);
+        gpu_lit.resize(n);
+        EXPECT_GT(expect_light(gpu_baked, ref_baked, "baked"), 1000);
+        EXPECT_GT(expect_light(gpu_lit, ref_lit, "realtime + baked"), 1000);
+        return surfaces;
+    }
 };
 
 TEST_F(TexelGpu, UvToWorldMatchesTheSeedsBruteForce) {
@@ -153,22 +175,7 @@ TEST_F(TexelGpu, UvToWorldMatchesTheSeedsBruteForce) {
 TEST_F(TexelGpu, BakeAndRealtimeLightMatchTheReference) {
     World w;
     const std::vector<TexelLight> baked_lights = static_lights(), lights = live_lights();
-    gpu::CommandList cmd = device().begin("texel light");
-    passes->upload_scene(cmd, w.scene);
-    passes->record_uv_to_world(cmd);
-    passes->record_light(cmd, baked_lights, vk::TexelPasses::Mode::bake);
-    passes->record_light(cmd, lights, vk::TexelPasses::Mode::realtime);
-    device().wait(device().submit(std::move(cmd)));
-    const std::size_t n = w.scene.texel_count;
-    const auto surfaces = uv_to_world(w.scene);
-    const auto ref_baked = reference_light(w.scene, surfaces, baked_lights);
-    const auto ref_lit = reference_light(w.scene, surfaces, lights, ref_baked);
-    auto gpu_baked = test::read_back_as<glm::vec4>(device(), passes->baked());
-    auto gpu_lit = test::read_back_as<glm::vec4>(device(), passes->lit());
-    gpu_baked.resize(n);
-    gpu_lit.resize(n);
-    EXPECT_GT(expect_light(gpu_baked, ref_baked, "baked"), 1000);
-    EXPECT_GT(expect_light(gpu_lit, ref_lit, "realtime + baked"), 1000);
+    const std::vector<TexelSurface> surfaces = bake_and_light(w, baked_lights, lights);
     // The scene has what the comparison is for: texels in the walls' and the models' shadows.
     int wall_shadowed = 0, model_shadowed = 0, blurred = 0;
     for (const TexelSurface& s : surfaces) {
@@ -199,22 +206,9 @@ TEST_F(TexelGpu, BakedLightsLeaveMovingModelsToTheRealtimePass) {
     const std::vector<TexelLight> baked_lights = static_lights();
     std::vector<TexelLight> lights = live_lights();
     for (const TexelLight& l : baked_lights) lights.push_back(as_baked(l));
-    gpu::CommandList cmd = device().begin("texel light, a moving model");
-    passes->upload_scene(cmd, w.scene);
-    passes->record_uv_to_world(cmd);
-    passes->record_light(cmd, baked_lights, vk::TexelPasses::Mode::bake);
-    passes->record_light(cmd, lights, vk::TexelPasses::Mode::realtime);
-    device().wait(device().submit(std::move(cmd)));
-    const std::size_t n = w.scene.texel_count;
-    const auto surfaces = uv_to_world(w.scene);
-    const auto ref_baked = reference_light(w.scene, surfaces, baked_lights);
-    const auto ref_lit = reference_light(w.scene, surfaces, lights, ref_baked);
-    auto gpu_baked = test::read_back_as<glm::vec4>(device(), passes->baked());
-    auto gpu_lit = test::read_back_as<glm::vec4>(device(), passes->lit());
-    gpu_baked.resize(n);
-    gpu_lit.resize(n);
-    EXPECT_GT(expect_light(gpu_baked, ref_baked, "baked"), 1000);
-    EXPECT_GT(expect_light(gpu_lit, ref_lit, "realtime + baked"), 1000);
+    const std::vector<TexelSurface> surfaces = bake_and_light(w, baked_lights, lights);
+    const auto gpu_baked = test::read_back_as<glm::vec4>(device(), passes->baked());
+    const auto gpu_lit = test::read_back_as<glm::vec4>(device(), passes->lit());
     // The player's texels have no bake and are lit all the same.
     const GpuPlacement& player = w.scene.placements[0];
     int player_lit = 0;
