@@ -214,7 +214,7 @@ TexelScene build_scene(std::span<const Placement> placements, const gi::WallView
 
 void move_placement(TexelScene& scene, std::uint32_t index, const Model& model, const glm::mat4& transform) {
     GpuPlacement& p = scene.placements.at(index);
-    const bool moves = p.ranges.y > 0 && placement_moves(scene, p);
+    const bool moves = placement_moves(scene, p);
     for (std::uint32_t i = 0; i < p.ranges.y && i < model.triangles.size(); ++i)
         scene.triangles[p.ranges.x + i] = world_triangle(model.triangles[i], transform, index, moves);
     p.bounds = placement_bounds(std::span(scene.triangles).subspan(p.ranges.x, p.ranges.y));

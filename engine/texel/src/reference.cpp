@@ -80,6 +80,11 @@ bool segment_meets_sphere(glm::vec3 a, glm::vec3 dir, float len, glm::vec4 spher
     return dot3(d, d) <= r * r;
 }
 
+// The texel lies on a placement that moves (its triangle's Placement::moves).
+bool on_mover(const TexelScene& scene, const TexelSurface& s) {
+    return scene.triangles[std::size_t(int(s.normal_triangle.w + 0.5f))].uv3.w > 0.5f;
+}
+
 } // namespace
 
 std::vector<TexelSurface> uv_to_world_brute(const TexelScene& scene) {
@@ -239,7 +244,7 @@ glm::vec3 texel_light(const TexelScene& scene, std::span<const TexelLight> light
     const glm::vec3 p(s.position_used), n(s.normal_triangle), g(s.geo_normal);
     const int own = int(s.normal_triangle.w + 0.5f);
     const bool bake = pass == LightPass::bake;
-    const bool moves = scene.triangles[std::size_t(own)].uv3.w > 0.5f;
+    const bool moves = on_mover(scene, s);
     if (bake && moves) return sum; // all of its light is realtime
     for (const TexelLight& light : lights) {
         if (!bake && !moves && is_baked(light)) continue; // in baked()
@@ -281,9 +286,8 @@ std::vector<glm::vec4> reference_light(const TexelScene& scene, std::span<const 
     std::vector<glm::vec4> out(surfaces.size(), glm::vec4(0.0f));
     for (std::size_t i = 0; i < surfaces.size(); ++i) {
         if (surfaces[i].position_used.w == 0.0f) continue;
-        if (baked.empty()) { // the bake
-            const int own = int(surfaces[i].normal_triangle.w + 0.5f);
-            if (scene.triangles[std::size_t(own)].uv3.w > 0.5f) continue; // a moving placement's: 0
+        if (baked.empty()) {                           // the bake
+            if (on_mover(scene, surfaces[i])) continue; // a moving placement's: 0
             out[i] = glm::vec4(texel_light(scene, lights, surfaces[i], LightPass::bake), 1.0f);
             continue;
         }
