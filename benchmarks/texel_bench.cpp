@@ -136,14 +136,21 @@ int main(int argc, char** argv) {
                 std::min(frames, 3));
     time_gpu("uv to world, every model", [&](gpu::CommandList& cmd) { passes.record_uv_to_world(cmd); });
     std::vector<TexelSurface> surfaces;
+    const std::vector<glm::vec4> nothing_baked(scene.texel_count, glm::vec4(0.0f)); // the realtime pass's
     time_cpu("uv to world, every model", [&] { surfaces = uv_to_world(scene); });
     time_cpu("uv to world, every model (brute)", [&] { surfaces = uv_to_world_brute(scene); });
-    // One player moving: its triangles re-uploaded and its texels carried again. The pass
-    // still covers the atlas (one dispatch): a per-placement dispatch is the next step.
+    // One player moving: its triangles re-uploaded and its texels carried again, over the
+    // whole atlas (one dispatch) and over its own texels (what the pass table plans).
     time_gpu("player moved (upload + uv to world)", [&](gpu::CommandList& cmd) {
         move_placement(scene, 0, player, glm::translate(glm::mat4(1.0f), glm::vec3(open[0].x + 0.1f, 0.0f, open[0].y)));
         passes.upload_triangles(cmd, scene);
         passes.record_uv_to_world(cmd);
+    });
+    const std::uint32_t moved[] = {0u};
+    time_gpu("player moved (upload + its texels)", [&](gpu::CommandList& cmd) {
+        move_placement(scene, 0, player, glm::translate(glm::mat4(1.0f), glm::vec3(open[0].x + 0.1f, 0.0f, open[0].y)));
+        passes.upload_triangles(cmd, scene);
+        passes.record_uv_to_world(cmd, moved);
     });
     time_cpu("player moved (uv to world)", [&] { uv_to_world_placement(scene, 0, surfaces); });
     for (int count : {1, 8, 32}) {
@@ -151,7 +158,7 @@ int main(int argc, char** argv) {
         char name[64];
         std::snprintf(name, sizeof name, "light pass, %d lights", count);
         time_gpu(name, [&](gpu::CommandList& cmd) { passes.record_light(cmd, some, vk::TexelPasses::Mode::realtime); });
-        time_cpu(name, [&] { (void)reference_light(scene, surfaces, some); });
+        time_cpu(name, [&] { (void)reference_light(scene, surfaces, some, nothing_baked); });
     }
     // Static lights: the first 24 baked (players move: they take those 24 live).
     const std::span<const TexelLight> static_lights(lights.data(), 24);
@@ -162,6 +169,18 @@ int main(int argc, char** argv) {
     });
     time_gpu("light pass, 32 lights, 24 baked", [&](gpu::CommandList& cmd) {
         passes.record_light(cmd, marked, vk::TexelPasses::Mode::realtime);
+    });
+    // The pass table's planning (pass_table.hpp), each frame on the CPU: the inputs' keys
+    // (hashes of the scene and the lights) and the rows to run.
+    // Without a layout key it hashes the atlas's normal maps; the game gives one.
+    TexelHistory history;
+    time_cpu("plan a frame (pass table)", [&] {
+        const TexelFrame frame{scene, marked};
+        (void)plan_texel_frame(frame, history);
+    });
+    time_cpu("plan a frame, with a layout key", [&] {
+        const TexelFrame frame{scene, marked, 42u};
+        (void)plan_texel_frame(frame, history);
     });
     dev.wait_idle();
     return 0;

@@ -1,11 +1,11 @@
 #version 450
 // Per-texel lighting, the light pass (seed 001's DynamicLight and Apply kernels;
-// engine/texel/texel.hpp): one invocation per atlas texel sums every light in range (the
-// seed's term, the wall grid's and the other models' shadows, the light's ambient), then
-// writes the raw sum (mode 0: bake) or saturate(sum + baked) (mode 1: realtime). The bake
-// leaves placements that move out, as receivers (0) and as occluders; the realtime pass
-// skips baked lights (blur.w 1) on still placements, whose baked light holds them
-// (texel::LightPass).
+// engine/texel/texel.hpp): one invocation per atlas texel sums the lights in its placement's
+// light list (texel::light_lists: those in reach): the seed's term, the wall grid's and the
+// other models' shadows, the light's ambient. It then writes the raw sum (mode 0: bake) or
+// saturate(sum + baked) (mode 1: realtime). The bake leaves placements that move out, as
+// receivers (0) and as occluders; the realtime pass skips baked lights (blur.w 1) on still
+// placements, whose baked light holds them (texel::LightPass; their lists leave them out).
 #extension GL_GOOGLE_include_directive : require
 #include "lantern/texel.glsl"
 
@@ -18,6 +18,10 @@ layout(std430, set = 0, binding = 3) readonly buffer Lights { TexelLight lights[
 layout(std430, set = 0, binding = 4) readonly buffer Walls { uint wall_words[]; };
 layout(std430, set = 0, binding = 5) readonly buffer Baked { vec4 baked[]; };
 layout(std430, set = 0, binding = 6) writeonly buffer Result { vec4 result[]; };
+// Per placement the lights that can reach it (texel::light_lists): words 2k, 2k + 1 its first
+// index and count, the indices after the 2 x placements words. In the lights' order: every
+// sum is the one over all lights.
+layout(std430, set = 0, binding = 7) readonly buffer LightLists { uint light_lists[]; };
 
 const float RAY_BIAS = 1e-4;
 const float DIR_EPS = 1e-6;
@@ -187,8 +191,12 @@ void main() {
         return;
     }
     precise vec3 sum = vec3(0.0);
-    for (uint l = 0u; l < pc.counts.z; ++l) {
-        if (!bake && !moves && lights[l].blur.w > 0.5) continue; // in baked[]
+    // The placement's lights: those in reach, without baked ones on still placements in the
+    // realtime pass (in baked[]: texel::light_lists).
+    const uint placement = uint(triangles[own].uv3.z + 0.5);
+    const uint first = 2u * pc.counts.y + light_lists[2u * placement], count = light_lists[2u * placement + 1u];
+    for (uint j = 0u; j < count; ++j) {
+        const uint l = light_lists[first + j];
         const bool shadowed = int(lights[l].color_type.w + 0.5) != 0;
         if (lights[l].blur.z > 0.5) { // a sun
             const vec3 sun_dir = lights[l].position_range.xyz;

@@ -1,6 +1,6 @@
 #version 450
 // Per-texel lighting, UV to world (seed 001's UvToWorld kernel; engine/texel/texel.hpp): one
-// invocation per atlas texel finds its placement, then the first of the placement's
+// invocation per atlas texel of the span asked for (pc.span: all, or placements that moved) finds its placement, then the first of the placement's
 // triangles that holds the texel's centre in UV space, and writes the texel's world
 // position, normal-mapped normal and geometric normal (or an unused texel).
 #extension GL_GOOGLE_include_directive : require
@@ -14,7 +14,8 @@ layout(std430, set = 0, binding = 2) readonly buffer NormalMaps { vec4 normal_ma
 layout(std430, set = 0, binding = 3) writeonly buffer Surfaces { TexelSurface surfaces[]; };
 
 void main() {
-    const uint texel = gl_GlobalInvocationID.x;
+    if (gl_GlobalInvocationID.x >= pc.span.y) return;
+    const uint texel = pc.span.x + gl_GlobalInvocationID.x; // the texels of the placements asked for
     if (texel >= pc.counts.x) return;
     // The placement: the last whose first texel is <= texel (first texels ascend).
     uint lo = 0u, hi = pc.counts.y;

@@ -1,4 +1,5 @@
 // The texel passes on Vulkan (lavapipe in CI) against the C++ reference, texel by texel.
+#include "lantern/texel/pass_table.hpp"
 #include "lantern/texel/texel.hpp"
 #include "lantern/texel/vulkan/texel_passes.hpp"
 
@@ -244,6 +245,47 @@ TEST_F(TexelGpu, AMovedPlacementIsCarriedAgain) {
     // Nothing baked: the realtime light alone, saturated.
     const std::vector<glm::vec4> zero(w.scene.texel_count, glm::vec4(0.0f));
     expect_light(gpu_lit, reference_light(w.scene, surfaces, lights, zero), "after the move");
+}
+
+// The pass table's frames (pass_table.hpp) recorded on Vulkan equal the reference backend's,
+// frame after frame: the player walks (its texels only), a light flickers, the static lamp
+// dims (a bake), a tree is replanted, a wall mined. Every frame's light is compared.
+TEST_F(TexelGpu, PlannedFramesEqualTheReferenceBackend) {
+    World w(true);
+    std::vector<TexelLight> lights = live_lights();
+    for (const TexelLight& l : static_lights()) lights.push_back(as_baked(l));
+    TexelHistory history;
+    TexelReferenceStore store;
+    const auto frame = [&](const char* what) {
+        const TexelFrame f{w.scene, lights};
+        const TexelPlan plan = plan_texel_frame(f, history);
+        gpu::CommandList cmd = device().begin("texel plan");
+        passes->record_plan(cmd, f, plan);
+        device().wait(device().submit(std::move(cmd)));
+        execute_reference(f, plan, store);
+        auto gpu_lit = test::read_back_as<glm::vec4>(device(), passes->lit());
+        gpu_lit.resize(w.scene.texel_count);
+        EXPECT_GT(expect_light(gpu_lit, store.lit, what), 1000);
+        return plan;
+    };
+    frame("the first frame");
+    const auto move = [&](std::uint32_t k, const Model& m, glm::mat4 to) {
+        w.placements[k].transform = to;
+        move_placement(w.scene, k, m, to);
+    };
+    move(0, w.player, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(4.2f, 0.0f, 5.0f)), 2.0f, glm::vec3(0, 1, 0)));
+    EXPECT_EQ(frame("the player walked").moved, std::vector<std::uint32_t>{0u});
+    lights[0].color_type *= 0.8f;
+    EXPECT_FALSE(frame("a light flickered").runs(TexelPass::bake));
+    lights.back().color_type *= 0.5f;
+    EXPECT_TRUE(frame("the static lamp dimmed").runs(TexelPass::bake));
+    move(1, w.tree, glm::translate(glm::mat4(1.0f), glm::vec3(8.0f, 0.0f, 3.0f)));
+    const TexelPlan replanted = frame("a tree replanted");
+    EXPECT_EQ(replanted.moved, std::vector<std::uint32_t>{1u});
+    EXPECT_TRUE(replanted.runs(TexelPass::bake));
+    w.grid.cells[std::size_t(5 - w.grid.origin.x) + std::size_t(4 - w.grid.origin.y) * w.grid.width] = 0;
+    w.scene = build_scene(w.placements, gi::WallView::of(w.grid), 2.0f, 10.0f);
+    EXPECT_TRUE(frame("a wall mined").upload_walls);
 }
 
 } // namespace

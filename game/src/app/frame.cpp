@@ -178,16 +178,23 @@ void Game::record_world(gpu::CommandList& cmd, Session& s) {
     if (texel_world_ && !draws.list.texel_parts.empty()) {
         // The models' light per texel (docs/texel.md, "In the game"), under the gathered lights
         // and the GI's suns, against the GI's view of the walls.
-        if (timer_) region = timer_->begin(cmd, "texel light");
         std::vector<texel::TexelLight>& lights = texel_lights_;
         lights.assign(draws.texel_lights.begin(), draws.texel_lights.end());
         if (view.gi)
             for (const gi::GpuDirectionalLight& sun : view.gi->directional_lights)
                 lights.push_back(texel::make_sun(glm::vec3(sun.direction_base), glm::vec3(sun.color_multiplier), 1.0f,
                                                  texel::ShadowType::hard, 24.0f));
+        // Each texel row the plan runs is a region of the pass timer, named by its row.
+        struct RowTimer final : texel::vk::TexelRowTimer {
+            render::PassTimer& timer;
+            explicit RowTimer(render::PassTimer& t) : timer(t) {}
+            std::uint32_t begin(gpu::CommandList& c, const char* row) override { return timer.begin(c, row); }
+            void end(gpu::CommandList& c, std::uint32_t r) override { timer.end(c, r); }
+        };
+        std::optional<RowTimer> rows;
+        if (timer_) rows.emplace(*timer_);
         texel_world_->record(cmd, draws.list.texel_parts, lights, view.gi ? view.gi->walls : gi::WallView{},
-                             draws.context.wall_height);
-        if (timer_) timer_->end(cmd, region);
+                             draws.context.wall_height, rows ? &*rows : nullptr);
         view.texel_lit = &texel_world_->lit();
         view.texel_surfaces = &texel_world_->surfaces();
         view.texel_albedo = &texel_world_->albedo();

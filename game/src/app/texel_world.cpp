@@ -1,6 +1,7 @@
 // The game's per-texel lit models: their boxes, pixel-art textures, and the passes per frame.
 #include "app/texel_world.hpp"
 
+#include "lantern/core/hash.hpp"
 #include "lantern/gpu/command_list.hpp"
 #include "lantern/gpu/device.hpp"
 
@@ -9,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <mutex>
 
 namespace lantern::game {
@@ -121,10 +121,6 @@ texel::Model make_model(TexelModel model, int lod) {
     return m;
 }
 
-bool same_walls(const texel::WallPatch& a, const texel::WallPatch& b) {
-    return a.origin == b.origin && a.width == b.width && a.height == b.height && a.words == b.words;
-}
-
 } // namespace
 
 glm::vec3 texel_model_half(TexelModel model) { return halves[std::size_t(model)]; }
@@ -158,65 +154,42 @@ Result<std::unique_ptr<TexelWorld>> TexelWorld::create(gpu::Device& device) {
 }
 
 void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts, std::span<const texel::TexelLight> lights,
-                        const gi::WallView& walls, float wall_height) {
+                        const gi::WallView& walls, float wall_height, texel::vk::TexelRowTimer* timer) {
     std::vector<texel::Placement> placements;
     placements.reserve(parts.size());
+    // The layout's key: the parts' models and levels of detail (which art, so which normal
+    // maps and albedo), cheaper than hashing the atlas's normal maps each frame.
+    Hasher models;
     for (const TexelPart& p : parts) {
         const int model = std::clamp(p.model, 0, int(TexelModel::count) - 1);
-        placements.push_back({&texel_model(TexelModel(model), p.lod), glm::translate(glm::mat4(1.0f), p.center), p.moves});
+        const texel::Model& art = texel_model(TexelModel(model), p.lod);
+        placements.push_back({&art, glm::translate(glm::mat4(1.0f), p.center), p.moves});
+        models.add(model).add(art.size);
     }
     // Walls are copied as far as the longest light (or the sun's shadow search) reaches.
     float reach = 1.0f;
     for (const texel::TexelLight& l : lights) reach = std::max(reach, l.position_range.w);
     texel::TexelScene scene = texel::build_scene(placements, walls, wall_height, reach);
 
-    const bool same_parts = parts.size() == last_parts_.size() &&
-                            std::equal(parts.begin(), parts.end(), last_parts_.begin(), [](const TexelPart& a, const TexelPart& b) {
-                                return a.key == b.key && a.model == b.model && a.lod == b.lod && a.moves == b.moves;
-                            });
-    // Seed 001's static lights (the baked-mode lights, texel::as_baked) are baked into the
-    // atlas once, for the parts that stay still, and baked again only when the layout, the
-    // walls, those lights or a still part change; the realtime pass adds them to moving parts.
-    std::vector<texel::TexelLight> baked_lights;
-    for (const texel::TexelLight& l : lights)
-        if (texel::is_baked(l)) baked_lights.push_back(l);
-    bool bake = !same_parts || baked_lights.size() != last_baked_lights_.size() ||
-                !std::equal(baked_lights.begin(), baked_lights.end(), last_baked_lights_.begin(),
-                            [](const texel::TexelLight& a, const texel::TexelLight& b) {
-                                return std::memcmp(&a, &b, sizeof(a)) == 0;
-                            });
-    if (!same_parts) {
-        // Parts came into view or left it: the atlas is laid out again.
-        passes_->upload_scene(cmd, scene);
+    // The texel pass table plans the frame (docs/texel.md, "The pass table"): UV to world for
+    // a new layout or the placements that moved (the walking player); seed 001's static lights
+    // (the baked-mode lights, texel::as_baked) baked once for the still parts, again only when
+    // the layout, the walls, those lights or a still part change; the realtime pass when
+    // anything it reads changed.
+    const texel::TexelFrame frame{scene, lights, models.value() | 1u}; // never 0 (0: hash the maps)
+    const texel::TexelPlan plan = texel::plan_texel_frame(frame, history_);
+    // The albedo (the raster's; the passes do not read it) follows the layout.
+    if (plan.upload_layout) {
         albedo_.assign(scene.texel_count, glm::vec4(0.0f));
         for (std::size_t k = 0; k < placements.size(); ++k) {
             const texel::Model& m = *placements[k].model;
             std::copy(m.albedo.begin(), m.albedo.end(), albedo_.begin() + scene.placements[k].ranges.z);
         }
-        passes_->upload_albedo(cmd, albedo_);
-        passes_->record_uv_to_world(cmd);
-    } else {
-        if (!same_walls(scene.walls, scene_.walls)) {
-            passes_->upload_walls(cmd, scene);
-            bake = true;
-        }
-        bool moved = false;
-        for (std::size_t k = 0; k < parts.size(); ++k) {
-            if (parts[k].center == last_parts_[k].center) continue;
-            moved = true;
-            bake |= !parts[k].moves; // a still part moved: its bake (and its shadow in others') is stale
-        }
-        if (moved) { // the player walked: its texels are carried into the world again
-            passes_->upload_triangles(cmd, scene);
-            passes_->record_uv_to_world(cmd);
-        }
     }
-    if (bake) {
-        passes_->record_light(cmd, baked_lights, texel::vk::TexelPasses::Mode::bake);
-        last_baked_lights_ = std::move(baked_lights);
-        ++bakes_;
-    }
-    passes_->record_light(cmd, lights, texel::vk::TexelPasses::Mode::realtime);
+    passes_->record_plan(cmd, frame, plan, timer);
+    if (plan.upload_layout) passes_->upload_albedo(cmd, albedo_);
+    if (plan.runs(texel::TexelPass::bake)) ++bakes_;
+    last_plan_ = plan;
 
     records_.resize(parts.size());
     for (std::size_t k = 0; k < parts.size(); ++k) {
@@ -225,8 +198,6 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
         r.texture = glm::vec4(float(scene.placements[k].ranges.z), float(m.size), float(parts[k].probe + 1), parts[k].glow);
         for (std::size_t f = 0; f < 5; ++f) r.faces[f] = glm::vec4(m.faces[f]);
     }
-    scene_ = std::move(scene);
-    last_parts_.assign(parts.begin(), parts.end());
 }
 
 } // namespace lantern::game

@@ -11,6 +11,7 @@
 #include "lantern/core/result.hpp"
 #include "lantern/game/world_renderer.hpp"
 #include "lantern/gi/frame_inputs.hpp"
+#include "lantern/texel/pass_table.hpp"
 #include "lantern/texel/texel.hpp"
 #include "lantern/texel/vulkan/texel_passes.hpp"
 
@@ -52,16 +53,19 @@ class TexelWorld {
     static Result<std::unique_ptr<TexelWorld>> create(gpu::Device& device);
 
     // Records this frame's texel passes into `cmd` for `parts` (the draw list's) under
-    // `lights`, the walls from `walls` (the GI's view of them; none: open ground). Lights
+    // `lights`, the walls from `walls` (the GI's view of them; none: open ground), as the
+    // texel pass table plans them (last_plan()), each row between `timer`'s marks. Lights
     // marked texel::as_baked are baked for the still parts when they, the layout, the walls
     // or a still part change (bakes()), and lit live on parts that move (TexelPart::moves).
     void record(gpu::CommandList& cmd, std::span<const TexelPart> parts, std::span<const texel::TexelLight> lights,
-                const gi::WallView& walls, float wall_height);
+                const gi::WallView& walls, float wall_height, texel::vk::TexelRowTimer* timer = nullptr);
 
     // The draw list's parts' records (same order), and the buffers the raster reads.
     std::span<const TexelRecord> records() const { return records_; }
     // How many times the static lights were baked so far.
     std::uint64_t bakes() const { return bakes_; }
+    // What the last record() ran, and why the rest did not.
+    const texel::TexelPlan& last_plan() const { return last_plan_; }
     const gpu::Buffer& lit() const { return passes_->lit(); }
     const gpu::Buffer& surfaces() const { return passes_->surfaces(); }
     const gpu::Buffer& albedo() const { return passes_->albedo(); }
@@ -69,9 +73,8 @@ class TexelWorld {
   private:
     explicit TexelWorld(std::unique_ptr<texel::vk::TexelPasses> passes) : passes_(std::move(passes)) {}
     std::unique_ptr<texel::vk::TexelPasses> passes_;
-    texel::TexelScene scene_;
-    std::vector<TexelPart> last_parts_;
-    std::vector<texel::TexelLight> last_baked_lights_; // what baked() holds
+    texel::TexelHistory history_;
+    texel::TexelPlan last_plan_;
     std::uint64_t bakes_ = 0;
     std::vector<TexelRecord> records_;
     std::vector<glm::vec4> albedo_;

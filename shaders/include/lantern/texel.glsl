@@ -34,6 +34,7 @@ layout(push_constant) uniform TexelPush {
     ivec4 walls;  // the wall patch: origin x, z, width, height
     vec4 params;  // x wall height
     uvec4 counts; // x texels, y placements, z lights, w mode (light pass: 0 bake, 1 realtime)
+    uvec4 span;   // uv_to_world: x first texel, y texels
 } pc;
 
 const float TEXEL_INSIDE_EPS = 1e-3;

@@ -20,8 +20,9 @@ struct TexelPush {
     glm::ivec4 walls{0};
     glm::vec4 params{0.0f};
     glm::uvec4 counts{0u};
+    glm::uvec4 span{0u}; // uv_to_world: x first texel, y texels
 };
-static_assert(sizeof(TexelPush) == 48);
+static_assert(sizeof(TexelPush) == 64);
 
 constexpr std::uint32_t group_size = 64; // local_size_x of both shaders
 constexpr std::uint32_t spec_exact_rounding = 10; // gi_exact.glsl's EXACT_ROUNDING
@@ -37,7 +38,10 @@ struct TexelPasses::Impl {
     gpu::Device* device = nullptr;
     gpu::ComputePipeline uv_to_world, light;
     // Scene buffers (grown, never shrunk).
-    gpu::Buffer triangles, placements, normal_maps, walls, lights_bake, lights_live;
+    gpu::Buffer triangles, placements, normal_maps, walls, lights_bake, lights_live, lists_bake, lists_live;
+    // The uploaded placements and which of them move (the light lists' input).
+    std::vector<GpuPlacement> placed;
+    std::vector<std::uint8_t> moving;
     // Atlas buffers.
     gpu::Buffer surfaces, baked, lit, albedo;
     std::uint32_t atlas_capacity = 0; // texels the atlas buffers hold
@@ -71,7 +75,14 @@ struct TexelPasses::Impl {
             cmd.update_buffer(buffer, at, bytes.subspan(at, std::min<std::size_t>(65536, bytes.size() - at)));
     }
 
-    std::uint32_t groups() const { return (push.counts.x + group_size - 1) / group_size; }
+    std::uint32_t groups() const { return groups_for(push.counts.x); }
+    static std::uint32_t groups_for(std::uint32_t texels) { return (texels + group_size - 1) / group_size; }
+    void dispatch_uv_to_world(gpu::CommandList& cmd, std::uint32_t first, std::uint32_t texels) {
+        TexelPush p = push;
+        p.span = glm::uvec4(first, texels, 0u, 0u);
+        cmd.push_constants(p);
+        cmd.dispatch(groups_for(texels));
+    }
 
     // Before anything here is overwritten: earlier passes' writes and reads, and on a raster
     // device earlier frames' vertex and fragment shaders reading the results, come first.
@@ -107,13 +118,16 @@ Result<std::unique_ptr<TexelPasses>> TexelPasses::create(gpu::Device& device, co
     };
     const BindingType sb = BindingType::storage_buffer;
     impl->uv_to_world = make("texel_uv_to_world.comp", {sb, sb, sb, sb});
-    impl->light = make("texel_light.comp", {sb, sb, sb, sb, sb, sb, sb});
+    impl->light = make("texel_light.comp", {sb, sb, sb, sb, sb, sb, sb, sb});
     if (!impl->uv_to_world || !impl->light) return make_error("texel passes: a compute pipeline could not be created");
     Impl& m = *impl;
     m.ensure(m.triangles, VkDeviceSize(reserve.triangles) * sizeof(GpuTriangle), "texel triangles");
     m.ensure(m.placements, VkDeviceSize(reserve.placements) * sizeof(GpuPlacement), "texel placements");
     m.ensure(m.lights_bake, VkDeviceSize(reserve.lights) * sizeof(TexelLight), "texel static lights");
     m.ensure(m.lights_live, VkDeviceSize(reserve.lights) * sizeof(TexelLight), "texel lights");
+    const VkDeviceSize list_words = 2 * VkDeviceSize(reserve.placements) + VkDeviceSize(reserve.placements) * reserve.lights;
+    m.ensure(m.lists_bake, list_words * 4, "texel static light lists");
+    m.ensure(m.lists_live, list_words * 4, "texel light lists");
     m.ensure(m.walls, (VkDeviceSize(reserve.wall_cells) + 3) / 4 * 4, "texel walls");
     m.ensure(m.normal_maps, VkDeviceSize(reserve.texels) * sizeof(glm::vec4), "texel normal maps");
     if (reserve.texels > 0) {
@@ -136,6 +150,9 @@ void TexelPasses::upload_triangles(gpu::CommandList& cmd, const TexelScene& scen
     m.write(cmd, m.triangles, scene.triangles, "texel triangles");
     m.write(cmd, m.placements, scene.placements, "texel placements");
     m.push.counts.y = std::uint32_t(scene.placements.size());
+    m.placed = scene.placements;
+    m.moving.clear();
+    for (const GpuPlacement& p : scene.placements) m.moving.push_back(placement_moves(scene, p) ? 1 : 0);
     cmd.barrier_transfer_to_compute();
 }
 
@@ -193,9 +210,57 @@ void TexelPasses::record_uv_to_world(gpu::CommandList& cmd) {
                              .storage_buffer(1, m.placements)
                              .storage_buffer(2, m.normal_maps)
                              .storage_buffer(3, m.surfaces));
-    cmd.push_constants(m.push);
-    cmd.dispatch(m.groups());
+    m.dispatch_uv_to_world(cmd, 0u, m.push.counts.x);
     cmd.barrier_compute_to_compute();
+}
+
+void TexelPasses::record_uv_to_world(gpu::CommandList& cmd, std::span<const std::uint32_t> placements) {
+    Impl& m = *impl_;
+    if (m.push.counts.x == 0 || placements.empty()) return;
+    m.before_writes(cmd);
+    cmd.bind(m.uv_to_world);
+    cmd.push_descriptors(gpu::DescriptorWrites()
+                             .storage_buffer(0, m.triangles)
+                             .storage_buffer(1, m.placements)
+                             .storage_buffer(2, m.normal_maps)
+                             .storage_buffer(3, m.surfaces));
+    // One dispatch per run of neighbouring placements (the player's parts are one).
+    for (std::size_t i = 0; i < placements.size();) {
+        std::size_t j = i + 1;
+        while (j < placements.size() && placements[j] == placements[j - 1] + 1) ++j;
+        if (placements[j - 1] >= m.placed.size()) break; // not uploaded
+        const glm::uvec4 first = m.placed[placements[i]].ranges, last = m.placed[placements[j - 1]].ranges;
+        const std::uint32_t begin = first.z, end = last.z + last.w * last.w;
+        m.dispatch_uv_to_world(cmd, begin, std::min(end, m.push.counts.x) - std::min(begin, m.push.counts.x));
+        i = j;
+    }
+    cmd.barrier_compute_to_compute();
+}
+
+void TexelPasses::record_plan(gpu::CommandList& cmd, const TexelFrame& frame, const TexelPlan& plan,
+                              TexelRowTimer* timer) {
+    if (plan.upload_layout) upload_scene(cmd, frame.scene);
+    else {
+        if (plan.upload_walls) upload_walls(cmd, frame.scene);
+        if (plan.upload_triangles) upload_triangles(cmd, frame.scene);
+    }
+    const auto row = [&](TexelPass pass, auto&& record) {
+        if (!plan.runs(pass)) return;
+        const std::uint32_t region = timer ? timer->begin(cmd, texel_row(pass).name.data()) : 0u;
+        record();
+        if (timer) timer->end(cmd, region);
+    };
+    row(TexelPass::uv_to_world, [&] {
+        if (plan.moved.empty()) record_uv_to_world(cmd);
+        else record_uv_to_world(cmd, plan.moved);
+    });
+    row(TexelPass::bake, [&] {
+        std::vector<TexelLight> fixed;
+        for (const TexelLight& l : frame.lights)
+            if (is_baked(l)) fixed.push_back(l);
+        record_light(cmd, fixed, Mode::bake);
+    });
+    row(TexelPass::light, [&] { record_light(cmd, frame.lights, Mode::realtime); });
 }
 
 void TexelPasses::record_light(gpu::CommandList& cmd, std::span<const TexelLight> lights, Mode mode) {
@@ -203,8 +268,12 @@ void TexelPasses::record_light(gpu::CommandList& cmd, std::span<const TexelLight
     if (m.push.counts.x == 0) return;
     const std::size_t count = std::min<std::size_t>(lights.size(), 65536);
     gpu::Buffer& buffer = mode == Mode::bake ? m.lights_bake : m.lights_live;
+    gpu::Buffer& lists = mode == Mode::bake ? m.lists_bake : m.lists_live;
+    const std::vector<std::uint32_t> list =
+        light_lists(m.placed, m.moving, lights.first(count), mode == Mode::bake ? LightPass::bake : LightPass::realtime);
     m.before_writes(cmd);
     m.ensure(buffer, count * sizeof(TexelLight), mode == Mode::bake ? "texel static lights" : "texel lights");
+    m.write(cmd, lists, list, mode == Mode::bake ? "texel static light lists" : "texel light lists");
     Impl::upload(cmd, buffer, bytes_of(lights.first(count)));
     cmd.barrier_transfer_to_compute();
     TexelPush push = m.push;
@@ -220,7 +289,8 @@ void TexelPasses::record_light(gpu::CommandList& cmd, std::span<const TexelLight
                              .storage_buffer(3, buffer)
                              .storage_buffer(4, m.walls)
                              .storage_buffer(5, mode == Mode::bake ? m.lit : m.baked)
-                             .storage_buffer(6, mode == Mode::bake ? m.baked : m.lit));
+                             .storage_buffer(6, mode == Mode::bake ? m.baked : m.lit)
+                             .storage_buffer(7, lists));
     cmd.push_constants(push);
     cmd.dispatch(m.groups());
     cmd.barrier_compute_to_compute();

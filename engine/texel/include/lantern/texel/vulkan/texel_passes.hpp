@@ -4,6 +4,9 @@
 //
 //   auto passes = TexelPasses::create(device);
 //   gpu::CommandList cmd = device.begin("texels");
+//   passes->record_plan(cmd, frame, plan_texel_frame(frame, history)); // the pass table's way
+//
+// or the passes one by one:
 //   passes->upload_scene(cmd, scene);                    // triangles, placements, maps, walls
 //   passes->record_uv_to_world(cmd);                     // surfaces(), once per layout/move
 //   passes->record_light(cmd, static_lights, Mode::bake); // baked(), when static lights change
@@ -24,6 +27,7 @@
 #include "lantern/core/result.hpp"
 #include "lantern/gpu/buffer.hpp"
 #include "lantern/gpu/pipeline.hpp"
+#include "lantern/texel/pass_table.hpp"
 #include "lantern/texel/texel.hpp"
 
 #include <memory>
@@ -42,6 +46,14 @@ struct TexelCapacity {
     std::uint32_t texels = 0, triangles = 0, placements = 0, lights = 0, wall_cells = 0;
 };
 
+// Where record_plan marks each row it records (a GPU timer's regions, named by the row).
+class TexelRowTimer {
+  public:
+    virtual ~TexelRowTimer() = default;
+    virtual std::uint32_t begin(gpu::CommandList& cmd, const char* row) = 0;
+    virtual void end(gpu::CommandList& cmd, std::uint32_t region) = 0;
+};
+
 class TexelPasses {
   public:
     enum class Mode { bake, realtime };
@@ -52,6 +64,10 @@ class TexelPasses {
     ~TexelPasses();
     TexelPasses(const TexelPasses&) = delete;
     TexelPasses& operator=(const TexelPasses&) = delete;
+
+    // The plan's uploads and rows (pass_table.hpp), each row between `timer`'s marks.
+    void record_plan(gpu::CommandList& cmd, const TexelFrame& frame, const TexelPlan& plan,
+                     TexelRowTimer* timer = nullptr);
 
     // Writes the scene's triangles, placements, normal maps and wall patch (when this list
     // runs). A scene with more texels than the atlas holds reallocates it (doubling), which
@@ -65,10 +81,13 @@ class TexelPasses {
     // The colour of every atlas texel (texel_count() of them), for the raster: albedo().
     // The passes do not read it; it lives here so the atlas is one owner's.
     void upload_albedo(gpu::CommandList& cmd, std::span<const glm::vec4> albedo);
-    // UV to world for every texel of the uploaded scene: surfaces().
+    // UV to world for every texel of the uploaded scene: surfaces(); with `placements`
+    // (ascending), for their texels only.
     void record_uv_to_world(gpu::CommandList& cmd);
+    void record_uv_to_world(gpu::CommandList& cmd, std::span<const std::uint32_t> placements);
     // The light pass over every texel: bake writes baked() (raw sums of `lights`), realtime
-    // writes lit() = saturate(sums + baked()). At most 65536 lights.
+    // writes lit() = saturate(sums + baked()). At most 65536 lights. Each texel loops over its
+    // placement's light list (light_lists: the lights that reach it).
     void record_light(gpu::CommandList& cmd, std::span<const TexelLight> lights, Mode mode);
 
     const gpu::Buffer& surfaces() const;
