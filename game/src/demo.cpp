@@ -55,11 +55,12 @@ bool DemoScript::is_walking(int frame) const {
     return (t >= 0.08f && t < 0.45f) || t >= 0.57f;
 }
 
-std::optional<glm::vec2> DemoScript::cursor_on_wall(glm::vec2 player, const scene::PerspectiveCamera& camera,
-                                                    const IsWall& is_wall) const {
+std::optional<std::pair<glm::vec2, glm::ivec2>> DemoScript::cursor_on_wall(glm::vec2 player,
+                                                                           const scene::PerspectiveCamera& camera,
+                                                                           const IsWall& is_wall) const {
     // The nearest wall within reach whose top the cursor can point at.
     const glm::ivec2 p(int(std::floor(player.x)), int(std::floor(player.y)));
-    std::optional<glm::vec2> best;
+    std::optional<std::pair<glm::vec2, glm::ivec2>> best;
     float best_d = 1e9f;
     for (int dz = -3; dz <= 3; ++dz)
         for (int dx = -3; dx <= 3; ++dx) {
@@ -73,7 +74,7 @@ std::optional<glm::vec2> DemoScript::cursor_on_wall(glm::vec2 player, const scen
             // Only a wall the cursor ray meets first (not hidden behind another).
             const auto hit = pick_wall(camera_ray(camera, *ndc), wall_height_, is_wall);
             if (!hit || *hit != t) continue;
-            best = *ndc, best_d = d;
+            best = std::pair{*ndc, t}, best_d = d;
         }
     return best;
 }
@@ -107,8 +108,20 @@ std::optional<glm::vec2> DemoScript::cursor_on_ground(glm::vec2 player, glm::vec
 Controls DemoScript::controls(int frame, glm::vec2 player, const scene::PerspectiveCamera& camera, const IsWall& is_wall) {
     Controls c;
     const float t = float(frame) / float(std::max(frames_, 1));
+    // Collecting: a mined wall's block lies on its tile (DroppedItem); the walk first goes to
+    // it, until the block glides over (or two seconds pass), then back to the path.
+    while (!pickups_.empty() && (frame - pickups_.front().second > 120 ||
+                                 glm::distance(glm::vec2(pickups_.front().first) + 0.5f, player) < 1.0f))
+        pickups_.pop_front();
+    if (is_walking(frame) && !pickups_.empty()) {
+        const glm::vec2 d = glm::vec2(pickups_.front().first) + 0.5f - player;
+        if (glm::length(d) > 0.05f) {
+            c.move = glm::normalize(d);
+            last_facing_ = c.move;
+        }
+    }
     // Walking: out along the path, then back to the start.
-    if (is_walking(frame) && path_.size() > 1) {
+    else if (is_walking(frame) && path_.size() > 1) {
         const bool out = t < 0.5f;
         const int last = int(path_.size()) - 1;
         if (out && progress_ < 1) progress_ = 1;
@@ -125,10 +138,11 @@ Controls DemoScript::controls(int frame, glm::vec2 player, const scene::Perspect
     }
     // Actions, each on one frame (a click).
     auto mine = [&] {
-        if (auto ndc = cursor_on_wall(player, camera, is_wall)) {
+        if (auto target = cursor_on_wall(player, camera, is_wall)) {
             c.has_cursor = true;
-            c.cursor_ndc = *ndc;
+            c.cursor_ndc = target->first;
             c.mine = true;
+            pickups_.push_back({target->second, frame});
         }
     };
     auto place = [&](bool Controls::*what) {

@@ -321,18 +321,23 @@ void interact(ecs::SystemContext& ctx) {
     auto in_reach = [&](glm::ivec2 tile) {
         return glm::distance(glm::vec2(tile) + 0.5f, glm::vec2(player->x, player->z)) <= interaction_range;
     };
-    const auto gain = [&](Item item) { inventory[item] = std::min(inventory[item] + 1, Inventory::max_stack); };
+    // What is mined drops where it was, for the player to collect (collect_items).
+    const auto drop = [&](Item item, glm::vec2 at) {
+        auto& cb = ctx.commands();
+        const ecs::Entity e = cb.create();
+        cb.emplace<DroppedItem>(e, DroppedItem{item, 1, at, 0.0f});
+    };
     const auto edited = [&](SoundCue cue, glm::ivec2 tile) {
         if (w.has_resource<WorldEdits>()) ++w.resource<WorldEdits>().count;
         if (w.has_resource<SoundCues>()) w.resource<SoundCues>().entries.push_back({cue, glm::vec2(tile) + 0.5f});
     };
     if (c.mine) {
-        // The wall under the cursor yields its block; on open ground, a torch or prop placed
-        // on that tile is picked back up (the scene's own lights are not the player's).
+        // The wall under the cursor drops its block; on open ground, a torch or prop placed
+        // on that tile drops as an item (the scene's own lights are not the player's).
         if (auto tile = pick_wall(ray, w.resource<systems::GiConfig>().wall_height, is_wall)) {
             if (in_reach(*tile)) {
                 streaming.set_wall(w, *tile, false);
-                gain(Item::wall);
+                drop(Item::wall, glm::vec2(*tile) + 0.5f);
                 edited(SoundCue::dig, *tile);
             }
             return;
@@ -340,18 +345,24 @@ void interact(ecs::SystemContext& ctx) {
         const auto ground = pick_ground(ray);
         if (!ground || !in_reach(*ground)) return;
         const auto on_tile = [&](glm::vec2 p) { return glm::ivec2(glm::floor(p)) == *ground; };
-        std::optional<std::pair<ecs::Entity, Item>> found;
+        struct Found {
+            ecs::Entity entity;
+            Item item;
+            glm::vec2 at;
+        };
+        std::optional<Found> found;
         w.view<Torch, PointLight>().each([&](ecs::Entity e, const Torch&, const PointLight& l) {
-            if (!found && on_tile(l.position)) found = {e, Item::torch};
+            if (!found && on_tile(l.position)) found = Found{e, Item::torch, l.position};
         });
         w.view<Prop>().each([&](ecs::Entity e, const Prop& p) {
             if (found || !on_tile(p.position)) return;
-            found = {e, p.kind == PropKind::crystal ? Item::crystal : p.kind == PropKind::tree ? Item::tree : Item::lamp_post};
+            found = Found{e, p.kind == PropKind::crystal ? Item::crystal : p.kind == PropKind::tree ? Item::tree : Item::lamp_post,
+                          p.position};
         });
         if (found) {
-            ctx.commands().destroy(found->first);
-            gain(found->second);
-            edited(SoundCue::pick_up, *ground);
+            ctx.commands().destroy(found->entity);
+            drop(found->item, found->at);
+            edited(SoundCue::dig, *ground);
         }
         return;
     }
@@ -390,6 +401,34 @@ void interact(ecs::SystemContext& ctx) {
     edited(SoundCue::place, *tile);
 }
 
+// Dropped items age; near the player they glide to it and go into the inventory.
+void collect_items(ecs::SystemContext& ctx) {
+    ecs::World& w = ctx.world;
+    const float dt = w.resource<GameClock>().dt;
+    const auto player = player_position(w);
+    Inventory* inventory = w.try_resource<Inventory>();
+    w.view<DroppedItem>().each([&](ecs::Entity e, const DroppedItem&) {
+        DroppedItem& d = w.patch<DroppedItem>(e);
+        d.age = std::min(d.age + dt, 60.0f); // (bounded: only its first moments show)
+        if (!player || !inventory || d.age < item_pickup_delay) return;
+        const glm::vec2 to = glm::vec2(player->x, player->z) - d.position;
+        const float distance = glm::length(to);
+        if (!(distance <= item_magnet_radius)) return;
+        int& carried = (*inventory)[d.item];
+        if (carried >= Inventory::max_stack) return; // no room: it stays where it is
+        if (distance > item_collect_radius) {
+            d.position += to * std::min(1.0f, item_magnet_speed * dt / distance);
+            return;
+        }
+        const int taken = std::min(d.count, Inventory::max_stack - carried);
+        carried += taken;
+        if (w.has_resource<WorldEdits>()) ++w.resource<WorldEdits>().count;
+        if (w.has_resource<SoundCues>()) w.resource<SoundCues>().entries.push_back({SoundCue::pick_up, d.position});
+        if (taken == d.count) ctx.commands().destroy(e);
+        else d.count -= taken;
+    });
+}
+
 } // namespace
 
 void add_gameplay_systems(ecs::Schedule& schedule) {
@@ -404,6 +443,13 @@ void add_gameplay_systems(ecs::Schedule& schedule) {
         .reads<Player, Transform, Camera, Torch, PointLight, Prop>() // what it picks up
         .writes_resource<systems::Streaming, Inventory, WorldEdits, SoundCues>()
         .writes<WallChunk>();
+    schedule.add("collect_items", [](ecs::SystemContext& ctx) { collect_items(ctx); })
+        .reads_resource<GameClock>()
+        .reads<Player, Transform>()
+        .writes<DroppedItem>()
+        .writes_resource<Inventory, WorldEdits, SoundCues>()
+        .after("player_move")  // where the player stands this frame
+        .after("interact");    // both write the inventory, edits and cues: what is mined first
     schedule.add("torch_flicker", [](ecs::SystemContext& ctx) {
         const double t = ctx.world.resource<GameClock>().time;
         ctx.world.view<Torch, PointLight>().patch_each<PointLight>(

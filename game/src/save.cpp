@@ -120,6 +120,11 @@ void write_entity(json::Writer& w, const SavedEntity& e) {
         write_vec(w, "position", e.prop->position);
         w.end();
     }
+    if (e.item) {
+        w.key("item").begin_object().field("kind", inventory_keys[int(e.item->item)]).field("count", e.item->count);
+        write_vec(w, "position", e.item->position);
+        w.end();
+    }
     if (e.sun) w.field("sun", true);
     w.end();
 }
@@ -147,10 +152,11 @@ constexpr std::array<EnumName<E>, K> enum_names(const char* const (&names)[K]) {
     return out;
 }
 constexpr auto prop_kinds = enum_names<PropKind>(prop_names);
+constexpr auto item_kinds = enum_names<Item>(inventory_keys);
 constexpr auto world_kinds = enum_names<WorldKind>(kind_names);
 
 void read_entity(Reader& r, const json::Value& v, const std::string& path, SavedEntity& e) {
-    Fields f(r, v, path, {"point_light", "emissive_light", "directional_light", "shadow_proxy", "torch", "prop", "sun"});
+    Fields f(r, v, path, {"point_light", "emissive_light", "directional_light", "shadow_proxy", "torch", "prop", "item", "sun"});
     if (const json::Value* m = f.find("point_light")) {
         scene::PointLight l;
         scene::reading::read_point_light(r, *m, f.path_of("point_light"), l);
@@ -186,6 +192,15 @@ void read_entity(Reader& r, const json::Value& v, const std::string& path, Saved
             .required("kind", prop.kind, prop_kinds)
             .required("position", prop.position, world_coordinate);
         e.prop = prop;
+    }
+    if (const json::Value* m = f.find("item")) {
+        DroppedItem item;
+        Fields(r, *m, f.path_of("item"), {"kind", "count", "position"})
+            .required("kind", item.item, item_kinds)
+            .optional("count", item.count, IntRange{1, Inventory::max_stack})
+            .required("position", item.position, world_coordinate);
+        item.age = item_pickup_delay; // on the ground already: no hop
+        e.item = item;
     }
     f.optional("sun", e.sun);
     if (e.sun && !e.directional_light && r.ok()) f.fail("sun", "a sun needs a directional_light");
@@ -254,6 +269,7 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
     world.view<DirectionalLight>().each([&](ecs::Entity e, const DirectionalLight&) { collect(e); });
     world.view<ShadowProxy>().each([&](ecs::Entity e, const ShadowProxy&) { collect(e); });
     world.view<Prop>().each([&](ecs::Entity e, const Prop&) { collect(e); });
+    world.view<DroppedItem>().each([&](ecs::Entity e, const DroppedItem&) { collect(e); });
     std::sort(entities.begin(), entities.end());
     entities.erase(std::unique(entities.begin(), entities.end()), entities.end());
     for (ecs::Entity e : entities) {
@@ -269,6 +285,7 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
             out.point_light->intensity = c->base_intensity; // not this frame's flicker
         }
         if (auto* c = world.try_get<Prop>(e)) out.prop = *c;
+        if (auto* c = world.try_get<DroppedItem>(e)) out.item = *c;
         out.sun = world.try_get<Sun>(e) != nullptr;
         s.entities.push_back(std::move(out));
     }
@@ -481,6 +498,7 @@ void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player) {
     world.view<DirectionalLight>().each([&](ecs::Entity e, const DirectionalLight&) { mark(e); });
     world.view<ShadowProxy>().each([&](ecs::Entity e, const ShadowProxy&) { mark(e); });
     world.view<Prop>().each([&](ecs::Entity e, const Prop&) { mark(e); });
+    world.view<DroppedItem>().each([&](ecs::Entity e, const DroppedItem&) { mark(e); });
     std::sort(doomed.begin(), doomed.end());
     doomed.erase(std::unique(doomed.begin(), doomed.end()), doomed.end());
     for (ecs::Entity e : doomed)
@@ -493,6 +511,7 @@ void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player) {
         if (s.shadow_proxy) world.emplace<ShadowProxy>(e, *s.shadow_proxy);
         if (s.torch) world.emplace<Torch>(e, *s.torch);
         if (s.prop) world.emplace<Prop>(e, *s.prop);
+        if (s.item) world.emplace<DroppedItem>(e, *s.item);
         if (s.sun) world.emplace<Sun>(e);
     }
     if (!player.is_null()) {

@@ -1010,12 +1010,12 @@ TEST(GameHeadless, DemoWritesScreenshotsAndAReport) {
     // scripts/update-schedule-picture.sh when systems change).
     const std::string dot = test::read_file(dot_path);
     ASSERT_EQ(dot.rfind("digraph schedule {", 0), 0u) << dot;
-    for (const char* n : {"input", "player_move", "interact", "torch_flicker", "day_cycle", "bake", "camera_view",
+    for (const char* n : {"input", "player_move", "interact", "collect_items", "torch_flicker", "day_cycle", "bake", "camera_view",
                           "streaming", "light_gather", "proxy_gather", "cache_keys", "wall_distance", "gpu_submit",
                           "draw_list", "render"})
         EXPECT_NE(dot.find("label=\"" + std::string(n) + "\\n"), std::string::npos) << "not drawn: " << n;
     // The two ambiguities docs/frame.md explains, and no other.
-    EXPECT_NE(log.find("schedule: 15 systems"), std::string::npos) << log;
+    EXPECT_NE(log.find("schedule: 16 systems"), std::string::npos) << log;
     EXPECT_NE(log.find("2 ambiguities"), std::string::npos) << log;
     EXPECT_NE(log.find("interact / streaming: both write Streaming, WallChunk"), std::string::npos) << log;
     EXPECT_NE(log.find("interact / gpu_submit: both write Streaming"), std::string::npos) << log;

@@ -251,6 +251,8 @@ SaveState sample_state(ecs::World& world, systems::Streaming& streaming, jobs::J
     streaming.set_wall(world, s + glm::ivec2(40, 3), true); // not resident
     spawn_prop(world, PropKind::lamp_post, w->spawn + glm::vec2(2.0f, 1.0f));
     spawn_prop(world, PropKind::tree, w->spawn + glm::vec2(-2.0f, 1.0f));
+    const ecs::Entity block = world.create(); // mined, not yet collected
+    world.emplace<DroppedItem>(block, DroppedItem{Item::wall, 3, w->spawn + glm::vec2(3.5f, -1.25f), 0.1f});
     Inventory carried;
     carried.counts = {17, 3, 0, 999, 1};
     world.set_resource<Inventory>(carried);
@@ -305,6 +307,42 @@ TEST(Saves, RoundTripIsExactAndRestoresTheWorld) {
     EXPECT_TRUE(fresh.resource<DayCycle>().running);
     EXPECT_FLOAT_EQ(fresh.resource<DayCycle>().time_of_day, 0.625f);
     EXPECT_EQ(fresh.resource<Inventory>().counts, (std::array<int, item_count>{17, 3, 0, 999, 1}));
+    // The dropped block lies where it lay, resting (its hop is not saved).
+    int items = 0;
+    fresh.view<DroppedItem>().each([&](const DroppedItem& d) {
+        ++items;
+        EXPECT_EQ(d.item, Item::wall);
+        EXPECT_EQ(d.count, 3);
+        EXPECT_EQ(d.position, fw->spawn + glm::vec2(3.5f, -1.25f));
+        EXPECT_GE(d.age, item_pickup_delay);
+    });
+    EXPECT_EQ(items, 1);
+}
+
+// Dropped items in saves: kinds by the inventory's names, counts in [1, 999], a position;
+// anything else is refused with its position.
+TEST(Saves, DroppedItemsAreCheckedLikeEverythingElse) {
+    const std::string head = "{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"entities\": [";
+    auto good = parse_save(head + "{\"item\": {\"kind\": \"lamp_post\", \"position\": [4.5, 6]}}]}", "t.json");
+    ASSERT_TRUE(good) << good.error().message;
+    ASSERT_EQ(good->entities.size(), 1u);
+    ASSERT_TRUE(good->entities[0].item);
+    EXPECT_EQ(good->entities[0].item->item, Item::lamp_post);
+    EXPECT_EQ(good->entities[0].item->count, 1);
+    const std::pair<const char*, const char*> bad[] = {
+        {"{\"item\": {\"kind\": \"sword\", \"position\": [0, 0]}}", "entities[0].item.kind"},
+        {"{\"item\": {\"kind\": \"wall\", \"count\": 0, \"position\": [0, 0]}}", "entities[0].item.count: must be an integer in [1, 999], got 0"},
+        {"{\"item\": {\"kind\": \"wall\", \"count\": 1000, \"position\": [0, 0]}}", "entities[0].item.count"},
+        {"{\"item\": {\"kind\": \"wall\"}}", "entities[0].item.position"},
+        {"{\"item\": {\"kind\": \"wall\", \"position\": [0, 0], \"age\": 1}}", "age"},
+        {"{\"item\": [1]}", "entities[0].item"},
+    };
+    for (const auto& [entity, expect] : bad) {
+        auto r = parse_save(head + entity + "]}", "t.json");
+        ASSERT_FALSE(r) << entity;
+        EXPECT_NE(r.error().message.find("t.json:1:"), std::string::npos) << r.error().message;
+        EXPECT_NE(r.error().message.find(expect), std::string::npos) << r.error().message;
+    }
 }
 
 // The inventory in saves: a save without one (written before it existed) gives a new game's;

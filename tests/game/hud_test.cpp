@@ -479,6 +479,114 @@ TEST(DrawList, TexelLightingMakesModelsTexelLitParts) {
     }
 }
 
+// Issue 19's dropped items, through the game's own systems (add_gameplay_systems): mining a
+// wall drops its block where the wall stood, not straight into the inventory; after its hop
+// the player, standing near, collects it (it glides over: the count rises, a pick-up cue, an
+// edit). A torch taken off the ground drops too. An item out of reach stays, and so does one
+// whose stack is full. The draw list draws each as its item's small model, a moving part.
+TEST(Gameplay, MinedThingsDropAsItemsThatThePlayerCollectsByWalkingNear) {
+    scene::WallGrid grid;
+    grid.width = 24;
+    grid.height = 16;
+    grid.cells.assign(std::size_t(grid.width * grid.height), 0);
+    grid.cells[std::size_t(12 + 8 * grid.width)] = 1;
+    ecs::World world;
+    jobs::JobSystem::Config no_workers;
+    no_workers.worker_threads = 0;
+    jobs::JobSystem jobs(no_workers);
+    world.set_resource<systems::Streaming>(std::make_shared<systems::GridSource>(grid));
+    world.resource<systems::Streaming>().load_all(world, jobs, {0.0f, 0.0f, 24.0f, 16.0f});
+    world.set_resource<Controls>();
+    world.set_resource<GameClock>();
+    world.set_resource<CameraRig>();
+    world.set_resource<DayCycle>();
+    world.set_resource<systems::GiConfig>();
+    world.set_resource<Inventory>();
+    world.set_resource<WorldEdits>();
+    world.set_resource<SoundCues>();
+    const ecs::Entity player = spawn_player(world, {10.5f, 8.5f}, false);
+    const ecs::Entity camera = world.create();
+    world.emplace<Camera>(camera, Camera{follow_camera({10.5f, 0.0f, 8.5f}, CameraRig{})});
+    ecs::Schedule schedule(jobs);
+    add_gameplay_systems(schedule);
+    const auto frame = [&] {
+        schedule.run(world);
+        world.resource<Controls>() = Controls{}; // a click lasts one frame
+    };
+    frame(); // the camera follows the player
+    const auto click_at = [&](glm::vec3 point) {
+        const auto* view = std::get_if<scene::PerspectiveCamera>(&world.get<Camera>(camera).view);
+        ASSERT_NE(view, nullptr);
+        const auto ndc = project_to_ndc(*view, point);
+        ASSERT_TRUE(ndc);
+        Controls& c = world.resource<Controls>();
+        c.has_cursor = true;
+        c.cursor_ndc = *ndc;
+        c.mine = true;
+    };
+    const auto items = [&] {
+        std::vector<DroppedItem> out;
+        world.view<DroppedItem>().each([&](const DroppedItem& d) { out.push_back(d); });
+        return out;
+    };
+    const Inventory start = world.resource<Inventory>();
+    const std::uint64_t edits = world.resource<WorldEdits>().count;
+    // Mine the wall 2 tiles east (its top's centre under the cursor).
+    click_at({12.5f, 1.99f, 8.5f});
+    frame();
+    EXPECT_FALSE(world.resource<systems::Streaming>().is_wall({12, 8}));
+    auto dropped = items();
+    ASSERT_EQ(dropped.size(), 1u);
+    EXPECT_EQ(dropped[0].item, Item::wall);
+    EXPECT_EQ(dropped[0].position, glm::vec2(12.5f, 8.5f));
+    EXPECT_EQ(world.resource<Inventory>()[Item::wall], start[Item::wall]) << "mined straight into the inventory";
+    // The draw list shows it: the block's small model, moving (lit live).
+    {
+        DrawContext ctx;
+        ctx.camera = follow_camera({10.5f, 0.0f, 8.5f}, CameraRig{});
+        ctx.texel_lighting = true;
+        DrawList list;
+        build_draw_list(world, world.resource<systems::Streaming>(), ctx, list);
+        int blocks = 0;
+        for (const TexelPart& p : list.texel_parts)
+            if (p.model == int(TexelModel::item_block)) {
+                ++blocks;
+                EXPECT_TRUE(p.moves);
+                EXPECT_NEAR(p.center.x, 12.5f, 1e-4f);
+            }
+        EXPECT_EQ(blocks, 1);
+    }
+    // 2 tiles away: beyond the magnet. The player steps east; the block glides over and in.
+    for (int i = 0; i < 30; ++i) frame();
+    EXPECT_EQ(items().size(), 1u) << "collected from beyond the magnet's reach";
+    world.get<Transform>(player).position = glm::vec3(11.2f, 0.0f, 8.5f);
+    int frames = 0;
+    while (!items().empty() && frames < 120) frame(), ++frames;
+    EXPECT_TRUE(items().empty()) << "not collected after " << frames << " frames";
+    EXPECT_GT(frames, 1) << "it should glide over, not jump";
+    EXPECT_EQ(world.resource<Inventory>()[Item::wall], start[Item::wall] + 1);
+    EXPECT_GT(world.resource<WorldEdits>().count, edits + 1); // the dig and the pick-up
+    bool cue = false;
+    for (const SoundCues::Entry& e : world.resource<SoundCues>().entries) cue |= e.cue == SoundCue::pick_up;
+    EXPECT_TRUE(cue);
+    // A torch taken off the ground drops as a torch; with the torches' stack full it stays put.
+    spawn_torch(world, {9.5f, 8.5f}, 0.0f);
+    world.resource<Inventory>()[Item::torch] = Inventory::max_stack;
+    click_at({9.5f, 0.0f, 8.5f});
+    frame();
+    dropped = items();
+    ASSERT_EQ(dropped.size(), 1u);
+    EXPECT_EQ(dropped[0].item, Item::torch);
+    for (int i = 0; i < 60; ++i) frame();
+    dropped = items();
+    ASSERT_EQ(dropped.size(), 1u) << "collected into a full stack";
+    EXPECT_EQ(dropped[0].position, glm::vec2(9.5f, 8.5f));
+    world.resource<Inventory>()[Item::torch] = 3;
+    for (int i = 0; i < 60 && !items().empty(); ++i) frame();
+    EXPECT_TRUE(items().empty());
+    EXPECT_EQ(world.resource<Inventory>()[Item::torch], 4);
+}
+
 // Seed 001's static lights in the game: under a bake (context.probes), the crystal's light
 // (baked mode) is marked to be baked into the models' texels; the player's lantern and the
 // torch stay live (realtime), as does the lamp post's (mixed: its direct light is live).

@@ -233,7 +233,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         build_draw_list(w, streaming, r.context, r.list);
         gather_texel_lights(w, r.context, r.texel_lights);
     })
-        .reads<Player, Transform, Prop, Torch, PointLight, EmissiveLight, Camera, ProbeAnchor>()
+        .reads<Player, Transform, Prop, Torch, PointLight, EmissiveLight, Camera, ProbeAnchor, DroppedItem>()
         .reads_resource<Controls, GameClock, systems::GiConfig, systems::Streaming, BakedChunks, BakeStatus>()
         .reads_resource<GameTables>() // the lights' ambient colours
         .writes_resource<DrawListResource>();
@@ -242,7 +242,8 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
             .main_thread() // OpenAL's context is the main thread's
             .reads<Player, Transform, Torch, PointLight>()
             .writes_resource<SoundCues>() // plays and empties them
-            .after("interact");           // which adds them
+            .after("interact")            // which adds them
+            .after("collect_items");      // and so does this
     schedule.add("render", [this, &s](ecs::SystemContext&) { render_system(s); })
         .main_thread()
         .reads_resource<DrawListResource, systems::FramePasses, systems::GiView, systems::GatheredLights,

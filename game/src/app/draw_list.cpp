@@ -21,6 +21,10 @@ constexpr glm::vec3 player_xray_colour(0.55f, 0.8f, 1.0f);
 // A texel-lit crystal's glow: below the plain glowing box's 1.6, since its own light (and
 // the others') lights its facets on top.
 constexpr float crystal_glow = 1.1f;
+// A dropped item's hop out of the ground (seconds), and its colour without texel lighting.
+constexpr float item_hop_time = 0.3f;
+constexpr glm::vec3 item_colours[item_count] = {
+    {0.46f, 0.42f, 0.4f}, {0.8f, 0.5f, 0.2f}, {0.5f, 0.75f, 1.0f}, {0.6f, 0.58f, 0.5f}, {0.25f, 0.48f, 0.18f}};
 
 bool in_rect(glm::vec2 p, glm::vec2 lo, glm::vec2 hi) { return p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y; }
 
@@ -168,6 +172,19 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
              out.boxes);
         out.boxes.push_back(box(at + glm::vec3(0, 0.58f, 0), glm::vec3(0.08f, 0.1f * f, 0.08f), {1.0f, 0.6f, 0.25f},
                                 Material::glow, 2.2f * f));
+    });
+
+    // Dropped items: a small model of the item that hops out of the ground where it was
+    // mined, then rests there until the player comes near (collect_items glides it over). Lit
+    // as a moving thing: every light live on it, the baked light's probes at it.
+    world.view<DroppedItem>().each([&](ecs::Entity e, const DroppedItem& d) {
+        if (!in_rect(d.position, lo, hi)) return;
+        const TexelModel model = item_model(d.item);
+        const float hop = d.age < item_hop_time ? 0.45f * std::sin(3.14159265f * d.age / item_hop_time) : 0.0f;
+        const glm::vec3 at(d.position.x, texel_model_half(model).y + hop, d.position.y);
+        moving_parts = true;
+        part(e, 0, model, at, item_colours[std::size_t(d.item)], probe_lit(e, d.position), out.boxes);
+        moving_parts = false;
     });
 
     // A scene file's own lights (no torch, prop or player of the game's carries them) are

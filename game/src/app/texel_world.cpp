@@ -25,6 +25,11 @@ constexpr std::array<glm::vec3, std::size_t(TexelModel::count)> halves = {{
     {0.04f, 0.25f, 0.04f}, // torch stick
     {0.12f, 0.28f, 0.12f}, // crystal
     {0.07f, 0.14f, 0.07f}, // crystal shard
+    {0.2f, 0.2f, 0.2f},    // item: a block of rock
+    {0.05f, 0.17f, 0.05f}, // item: a torch
+    {0.09f, 0.17f, 0.09f}, // item: a crystal
+    {0.07f, 0.2f, 0.07f},  // item: a lamp post's head
+    {0.1f, 0.18f, 0.1f},   // item: a sapling
 }};
 
 float noise(int model, int face, int i, int j) {
@@ -96,6 +101,29 @@ Texel paint(TexelModel model, int f, int i, int j, int w, int h) {
         const bool core = i == w / 2 && j > h / 4;
         return {glm::vec3(core ? 1.0f : shade) * vary, glm::vec3(tilt, 0.5f, 0.88f)};
     }
+    case TexelModel::item_block: {
+        // Rock: grey with dark specks and a crack across the top and down one side.
+        const bool crack = (top && i == j) || (f == 2 && i == w / 2 && j > h / 3);
+        if (crack) return {glm::vec3(0.16f, 0.15f, 0.14f)};
+        const glm::vec3 rock(0.46f, 0.42f, 0.4f);
+        return {rock * (n < 0.15f ? 0.7f : vary), glm::vec3(0.4f + 0.2f * n, 0.5f, 0.9f)};
+    }
+    case TexelModel::item_torch:
+        if (j < std::max(1, h / 4) || top) return {glm::vec3(1.0f, 0.62f, 0.25f)}; // its head, unlit
+        return {glm::vec3(0.35f, 0.22f, 0.1f) * vary};
+    case TexelModel::item_crystal: {
+        const int band = (i + (h - 1 - j)) / 2;
+        return {glm::vec3((band & 1) ? 0.75f : 0.92f) * vary, glm::vec3((band & 1) ? 0.32f : 0.68f, 0.5f, 0.88f)};
+    }
+    case TexelModel::item_lamp_post:
+        if (top || j < h / 3) return {glm::vec3(1.0f, 0.9f, 0.7f) * vary}; // the lamp
+        return {glm::vec3(0.2f, 0.2f, 0.23f) * vary};
+    case TexelModel::item_sapling:
+        if (top || j < (h * 2) / 3) {
+            const glm::vec3 leaf = n > 0.6f ? glm::vec3(0.3f, 0.55f, 0.2f) : glm::vec3(0.2f, 0.42f, 0.16f);
+            return {leaf, glm::vec3(0.3f + 0.4f * n, 0.5f, 0.85f)};
+        }
+        return {glm::vec3(0.36f, 0.23f, 0.12f) * vary};
     case TexelModel::torch_stick:
     case TexelModel::count: break;
     }
@@ -124,6 +152,17 @@ texel::Model make_model(TexelModel model, int lod) {
 } // namespace
 
 glm::vec3 texel_model_half(TexelModel model) { return halves[std::size_t(model)]; }
+
+TexelModel item_model(Item item) {
+    switch (item) {
+    case Item::wall: return TexelModel::item_block;
+    case Item::torch: return TexelModel::item_torch;
+    case Item::crystal: return TexelModel::item_crystal;
+    case Item::lamp_post: return TexelModel::item_lamp_post;
+    case Item::tree: return TexelModel::item_sapling;
+    }
+    return TexelModel::item_block;
+}
 
 int texel_lod_for(glm::vec3 center, glm::vec2 view_target) {
     return glm::distance(glm::vec2(center.x, center.z), view_target) > texel_lod_distance ? 1 : 0;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "lantern/core/result.hpp"
+#include "lantern/game/game_components.hpp"
 #include "lantern/game/world_renderer.hpp"
 #include "lantern/gi/frame_inputs.hpp"
 #include "lantern/texel/pass_table.hpp"
@@ -31,6 +32,13 @@ enum class TexelModel : int {
     torch_stick,
     crystal,       // a crystal's tall shard (it glows: TexelPart::glow)
     crystal_shard, // and the small one beside it
+    // Dropped items (DroppedItem), small: a block of rock, a torch, a crystal, a lamp post's
+    // head, a sapling.
+    item_block,
+    item_torch,
+    item_crystal,
+    item_lamp_post,
+    item_sapling,
     count
 };
 
@@ -41,6 +49,9 @@ inline constexpr int texel_density = 8; // texels per world unit of the models' 
 inline constexpr int texel_lod_count = 2;
 inline constexpr float texel_lod_distance = 9.0f;
 int texel_lod_for(glm::vec3 center, glm::vec2 view_target);
+
+// The model a dropped item is drawn as.
+TexelModel item_model(Item item);
 
 // The half extents of a model's box (the draw list's box for it has these).
 glm::vec3 texel_model_half(TexelModel model);

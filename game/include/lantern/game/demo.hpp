@@ -7,7 +7,8 @@
 // world. It is deterministic: same world, same frames, same controls.
 //
 //   0 - 8 %    stand at night; a torch is placed next to the player
-//   8 - 45 %   walk out along the path; mine the walls beside it at 25 % and 35 %
+//   8 - 45 %   walk out along the path; mine the walls beside it at 25 % and 35 %, going
+//              to each mined tile until its block glides over (collected: DroppedItem)
 //   40 - 55 %  place a crystal, a lamp post and a tree near the path
 //   55 %       the day cycle starts (fast: a night-day-dusk turn over the rest of the run)
 //   55 - 100 % walk back towards the start, mining once more
@@ -16,6 +17,8 @@
 #include "lantern/game/game_components.hpp"
 #include "lantern/game/gameplay.hpp"
 
+#include <deque>
+#include <utility>
 #include <vector>
 
 namespace lantern::game {
@@ -35,8 +38,9 @@ class DemoScript {
     bool is_walking(int frame) const;
 
   private:
-    std::optional<glm::vec2> cursor_on_wall(glm::vec2 player, const scene::PerspectiveCamera& camera,
-                                            const IsWall& is_wall) const;
+    // The cursor on the nearest minable wall, and its tile.
+    std::optional<std::pair<glm::vec2, glm::ivec2>> cursor_on_wall(glm::vec2 player, const scene::PerspectiveCamera& camera,
+                                                                   const IsWall& is_wall) const;
     std::optional<glm::vec2> cursor_on_ground(glm::vec2 player, glm::vec2 facing, const scene::PerspectiveCamera& camera,
                                               const IsWall& is_wall) const;
 
@@ -45,6 +49,7 @@ class DemoScript {
     float wall_height_ = 2.0f;
     int progress_ = 0; // the path tile the walk heads for
     glm::vec2 last_facing_{0.0f, -1.0f};
+    std::deque<std::pair<glm::ivec2, int>> pickups_; // mined tiles whose blocks to collect, and when
 };
 
 } // namespace lantern::game

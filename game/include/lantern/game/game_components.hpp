@@ -78,8 +78,8 @@ struct CameraRig {
     float aspect = 16.0f / 9.0f;
 };
 
-// What the player carries (issue 19: mining yields the block, placing consumes, placed things
-// can be picked back up). The hotbar shows it; saves keep it.
+// What the player carries (issue 19: mining drops the block, or the torch or prop, as a
+// DroppedItem the player collects; placing consumes). The hotbar shows it; saves keep it.
 enum class Item : std::uint8_t { wall, torch, crystal, lamp_post, tree };
 inline constexpr int item_count = 5;
 inline constexpr const char* item_names[item_count] = {"wall", "torch", "crystal", "lamp post", "tree"};
@@ -91,6 +91,20 @@ struct Inventory {
     int operator[](Item i) const { return counts[std::size_t(i)]; }
     friend bool operator==(const Inventory&, const Inventory&) = default;
 };
+
+// Something lying on the ground: what mining gave (a wall's block, a torch or prop picked up).
+// The player collects it by walking near: within item_magnet_radius it glides to the player,
+// within item_collect_radius it goes into the inventory (when the stack has room).
+struct DroppedItem {
+    Item item = Item::wall;
+    int count = 1;             // 1 .. Inventory::max_stack
+    glm::vec2 position{0.0f}; // world x, z
+    float age = 0.0f;          // seconds on the ground (it hops out; collected after item_pickup_delay)
+};
+inline constexpr float item_pickup_delay = 0.3f;  // seconds before a dropped item can be collected
+inline constexpr float item_magnet_radius = 1.75f; // tiles
+inline constexpr float item_collect_radius = 0.4f; // tiles
+inline constexpr float item_magnet_speed = 6.0f;   // tiles per second
 
 // Edits the player made to the world (a wall mined or placed, a light or prop placed or picked
 // up), counted by `interact`: the game compares the count with the one at the last save to

@@ -1,5 +1,5 @@
 // Save files: the world a game was started from, the player, the time of day, every light,
-// proxy and prop (with their components), and every wall chunk the player edited.
+// proxy, prop and dropped item (with their components), and every wall chunk the player edited.
 //
 // A save is a JSON text (docs/game.md has the format). write_save() replaces the file
 // atomically (core/file.hpp): a game killed during a save leaves the previous save intact.
@@ -29,6 +29,7 @@ struct SavedEntity {
     std::optional<ShadowProxy> shadow_proxy;
     std::optional<Torch> torch;
     std::optional<Prop> prop;
+    std::optional<DroppedItem> item; // its age is not saved (read back: resting)
     bool sun = false;
 };
 
