@@ -629,6 +629,37 @@ TEST(DrawList, BakedModeLightsAreBakedIntoTheTexelsUnderABakeAndThePlayerMoves) 
     EXPECT_EQ(moving, 3);
 }
 
+// Trees' crowns sway in the wind: between two times the crown moves a little and the trunk
+// stays; the crown is a moving part (lit live, carried again by UV to world), the trunk not.
+TEST(DrawList, TreeCrownsSwayAsMovingPartsAndTrunksStandStill) {
+    StreamedWorld open({20, 20});
+    spawn_prop(open.world, PropKind::tree, {9.5f, 8.5f});
+    DrawContext ctx;
+    ctx.camera = follow_camera({10.5f, 0.0f, 10.5f}, CameraRig{});
+    ctx.texel_lighting = true;
+    DrawList a, b;
+    ctx.time = 10.0;
+    build_draw_list(open.world, *open.streaming, ctx, a);
+    ctx.time = 10.5;
+    build_draw_list(open.world, *open.streaming, ctx, b);
+    const auto find = [](const DrawList& l, TexelModel m) -> const TexelPart* {
+        for (const TexelPart& p : l.texel_parts)
+            if (p.model == int(m)) return &p;
+        return nullptr;
+    };
+    const TexelPart *crown_a = find(a, TexelModel::tree_crown), *crown_b = find(b, TexelModel::tree_crown);
+    const TexelPart *trunk_a = find(a, TexelModel::tree_trunk), *trunk_b = find(b, TexelModel::tree_trunk);
+    ASSERT_TRUE(crown_a && crown_b && trunk_a && trunk_b);
+    EXPECT_TRUE(crown_a->moves);
+    EXPECT_FALSE(trunk_a->moves);
+    EXPECT_EQ(trunk_a->center, trunk_b->center);
+    const glm::vec3 d = crown_b->center - crown_a->center;
+    EXPECT_EQ(d.y, 0.0f);
+    EXPECT_GT(glm::length(d), 1e-3f) << "the crown did not sway";
+    EXPECT_LE(std::abs(crown_a->center.x - 9.5f), crown_sway_tiles + 1e-6f);
+    EXPECT_LE(std::abs(crown_a->center.z - 8.5f), crown_sway_tiles + 1e-6f);
+}
+
 // Issue 19: a lower level of detail for far models. A part farther than texel_lod_distance
 // from the point the camera looks at takes LOD 1: the same box, its art at half the texels per
 // unit (a quarter of the texels to light), painted on every face texel.
@@ -720,7 +751,7 @@ TEST(DrawList, AProbeAnchorMovesWhereAnObjectSamplesTheProbes) {
     for (const TexelPart& p : list.texel_parts) {
         ASSERT_GE(p.probe, 0);
         const float x = list.probes[std::size_t(p.probe)].c[0].x;
-        if (std::abs(p.center.x - 8.5f) < 0.01f) {
+        if (std::abs(p.center.x - 8.5f) < crown_sway_tiles + 0.01f) { // the anchored tree (its crown sways)
             EXPECT_EQ(x, 20.5f);
             ++at_anchor;
         } else {

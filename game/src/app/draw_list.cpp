@@ -26,6 +26,19 @@ constexpr float item_hop_time = 0.3f;
 constexpr glm::vec3 item_colours[item_count] = {
     {0.46f, 0.42f, 0.4f}, {0.8f, 0.5f, 0.2f}, {0.5f, 0.75f, 1.0f}, {0.6f, 0.58f, 0.5f}, {0.25f, 0.48f, 0.18f}};
 
+} // namespace
+
+glm::vec2 crown_sway(double time, glm::vec2 at) {
+    // Two slow sines across the wind and one along it, each tree in its own phase; the time
+    // wrapped so floats keep their precision in long games.
+    const float t = float(std::fmod(time, 3600.0));
+    const float phase = at.x * 0.71f + at.y * 1.37f;
+    return crown_sway_tiles * glm::vec2(0.7f * std::sin(1.3f * t + phase) + 0.3f * std::sin(2.9f * t + 2.1f * phase),
+                                        std::sin(0.9f * t + 1.7f * phase));
+}
+
+namespace {
+
 bool in_rect(glm::vec2 p, glm::vec2 lo, glm::vec2 hi) { return p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y; }
 
 } // namespace
@@ -151,7 +164,12 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         case PropKind::tree: {
             const auto lit = probe_lit(e, p.position);
             part(e, 0, TexelModel::tree_trunk, at + glm::vec3(0, 0.45f, 0), {0.36f, 0.23f, 0.12f}, lit, out.boxes);
-            part(e, 1, TexelModel::tree_crown, at + glm::vec3(0, 1.25f, 0), {0.2f, 0.42f, 0.16f}, lit, out.boxes);
+            // The crown sways in the wind (seed 001's improvement 2): a moving part, carried
+            // into the world again each frame and lit live.
+            const glm::vec2 sway = crown_sway(ctx.time, p.position);
+            moving_parts = true;
+            part(e, 1, TexelModel::tree_crown, at + glm::vec3(sway.x, 1.25f, sway.y), {0.2f, 0.42f, 0.16f}, lit, out.boxes);
+            moving_parts = false;
             break;
         }
         case PropKind::lamp_post: {

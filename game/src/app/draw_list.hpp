@@ -28,6 +28,11 @@ struct DrawContext {
     bool texel_lighting = false;
 };
 
+// How far a tree's crown sways in the wind (tiles; crown_sway is within it on each axis).
+inline constexpr float crown_sway_tiles = 0.05f;
+// The crown's offset on the ground (x, z) at `time` (seconds) for a tree standing at `at`.
+glm::vec2 crown_sway(double time, glm::vec2 at);
+
 // Fills `out` (emptied first: the frame's list is reused) with the world's boxes in view
 // (walls from the streaming mirror).
 void build_draw_list(ecs::World& world, const systems::Streaming& streaming, const DrawContext& context, DrawList& out);

@@ -194,12 +194,21 @@ Result<std::unique_ptr<TexelWorld>> TexelWorld::create(gpu::Device& device) {
 
 void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts, std::span<const texel::TexelLight> lights,
                         const gi::WallView& walls, float wall_height, texel::vk::TexelRowTimer* timer) {
+    // The atlas holds the still parts first, then the moving ones (the player, swaying tree
+    // crowns, dropped items): what moves each frame is one run of texels, carried into the
+    // world again by one UV-to-world dispatch, and the light pass's workgroups do not mix the
+    // two kinds. order_[j] is the part placed j-th.
+    order_.clear();
+    for (int pass = 0; pass < 2; ++pass)
+        for (std::size_t k = 0; k < parts.size(); ++k)
+            if (parts[k].moves == (pass == 1)) order_.push_back(std::uint32_t(k));
     std::vector<texel::Placement> placements;
     placements.reserve(parts.size());
     // The layout's key: the parts' models and levels of detail (which art, so which normal
     // maps and albedo), cheaper than hashing the atlas's normal maps each frame.
     Hasher models;
-    for (const TexelPart& p : parts) {
+    for (const std::uint32_t k : order_) {
+        const TexelPart& p = parts[k];
         const int model = std::clamp(p.model, 0, int(TexelModel::count) - 1);
         const texel::Model& art = texel_model(TexelModel(model), p.lod);
         placements.push_back({&art, glm::translate(glm::mat4(1.0f), p.center), p.moves});
@@ -231,10 +240,11 @@ void TexelWorld::record(gpu::CommandList& cmd, std::span<const TexelPart> parts,
     last_plan_ = plan;
 
     records_.resize(parts.size());
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-        const texel::Model& m = *placements[k].model;
+    for (std::size_t j = 0; j < order_.size(); ++j) {
+        const std::uint32_t k = order_[j];
+        const texel::Model& m = *placements[j].model;
         TexelRecord& r = records_[k];
-        r.texture = glm::vec4(float(scene.placements[k].ranges.z), float(m.size), float(parts[k].probe + 1), parts[k].glow);
+        r.texture = glm::vec4(float(scene.placements[j].ranges.z), float(m.size), float(parts[k].probe + 1), parts[k].glow);
         for (std::size_t f = 0; f < 5; ++f) r.faces[f] = glm::vec4(m.faces[f]);
     }
 }

@@ -88,6 +88,7 @@ class TexelWorld {
     texel::TexelPlan last_plan_;
     std::uint64_t bakes_ = 0;
     std::vector<TexelRecord> records_;
+    std::vector<std::uint32_t> order_; // the parts in atlas order: still ones, then moving ones
     std::vector<glm::vec4> albedo_;
 };
 
