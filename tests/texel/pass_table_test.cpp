@@ -58,7 +58,8 @@ std::string runs(const TexelPlan& plan) {
 }
 
 bool same_bits(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0;
+    if (a.size() != b.size()) return false;
+    return a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0; // (no memcmp of nullptr)
 }
 
 // Every pass afresh: what a planned frame must equal.
