@@ -24,6 +24,7 @@
 #include "lantern/transport/progress.hpp"
 
 #include <algorithm>
+#include <mutex>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -145,6 +146,55 @@ void brick_report(const gi::Field& f, const std::vector<float>& eps_list) {
     }
 }
 
+// Order 1 against order 2 (issue 18: "order 2, or order 1 if measured good enough"): up to
+// `count` of the shard's chunks that hold baked light, spread over it, baked again with what
+// each probe was captured from; each probe's harmonics against the exact irradiance of its
+// samples, at 64 orientations.
+void probe_order_report(const scene::Scene& scene, const bake::BakeSettings& b, const bake::BakeOptions& o, int count,
+                        jobs::JobSystem& jobs) {
+    std::vector<bake::ChunkId> chunks = bake::shard_of(bake::scene_chunks(scene), o.shard, o.shards);
+    std::vector<bake::ChunkId> picked;
+    const std::size_t step = std::max<std::size_t>(1, chunks.size() / std::size_t(count));
+    for (std::size_t i = 0; i < chunks.size() && int(picked.size()) < count; i += step) picked.push_back(chunks[i]);
+    std::vector<bake::ProbeOrderError> errors(picked.size());
+    std::vector<std::uint8_t> lit(picked.size(), 0);
+    transport::ProgressBar bar("probe orders");
+    std::mutex progress;
+    int done = 0;
+    jobs.parallel_for("probe orders", 0, std::uint32_t(picked.size()), 1, [&](std::uint32_t first, std::uint32_t last, std::uint32_t) {
+        for (std::uint32_t i = first; i < last; ++i) {
+            std::vector<bake::ProbeSamples> samples;
+            const bake::ChunkBake c = bake::bake_chunk(scene, picked[i], b, &samples);
+            for (std::size_t k = 0; k < c.probes.size(); ++k)
+                if (c.probe_valid[k]) errors[i].add(c.probes[k], samples[k]);
+            lit[i] = c.empty ? 0 : 1;
+            const std::lock_guard lock(progress);
+            ++done;
+            bar.update(double(done) / double(picked.size()), std::to_string(done) + "/" + std::to_string(picked.size()) + " chunks");
+        }
+    });
+    bake::ProbeOrderError all;
+    int with_light = 0;
+    for (std::size_t i = 0; i < picked.size(); ++i) {
+        if (!lit[i]) continue;
+        ++with_light;
+        const bake::ProbeOrderError& e = errors[i];
+        all.probes += e.probes, all.samples += e.samples, all.exact1 += e.exact1, all.exact2 += e.exact2;
+        for (std::size_t k = 0; k < 2; ++k) {
+            all.err1[k] += e.err1[k], all.err2[k] += e.err2[k];
+            all.worst_probe[k] = std::max(all.worst_probe[k], e.worst_probe[k]);
+        }
+    }
+    bar.finish(std::to_string(with_light) + " of " + std::to_string(picked.size()) + " chunks with baked light, " +
+               std::to_string(all.probes) + " probes");
+    std::printf("\nprobes: %lld in %d chunks, 64 orientations each, %d rays a probe\n", all.probes, with_light, b.rays);
+    std::printf("| order | floats per probe | rel. RMS error | rel. mean abs. error | worst probe (rel. RMS) |\n");
+    std::printf("|---|---|---|---|---|\n");
+    for (int order = 1; order <= 2; ++order)
+        std::printf("| %d | %d | %.2f %% | %.2f %% | %.1f %% |\n", order, order == 1 ? 9 : 15, 100.0 * all.relative_rms(order),
+                    100.0 * all.relative_mean_abs(order), 100.0 * all.worst_probe[std::size_t(order - 1)]);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -189,6 +239,10 @@ int main(int argc, char** argv) {
                  return std::nullopt;
              });
     p.text("--image", "FILE.png", "also draw this shard's baked light, top down, as one picture", image);
+    int probe_chunks = 0;
+    p.integer("--probe-orders", "N", "then report how well the probes' harmonics of order 1 and 2 give the irradiance "
+                                     "of what they were captured from, over N of the shard's chunks (baked again)",
+              probe_chunks, 1, 1 << 20);
     p.epilog("Exit status: 0 done, 2 bad input (a message names the file, line and column).");
     if (auto exit = p.parse(argc, argv)) return *exit;
     if (world.empty()) {
@@ -232,6 +286,7 @@ int main(int argc, char** argv) {
         }
     if (!brick_eps.empty())
         if (auto f = world_field(*scene, out, settings)) brick_report(*f, brick_eps);
+    if (probe_chunks > 0) probe_order_report(*scene, settings, options, probe_chunks, jobs);
     bar.finish(std::string(status) + " (shard " + std::to_string(options.shard) + "/" +
                std::to_string(options.shards) + ") in " + out);
     return 0;

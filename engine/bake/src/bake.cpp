@@ -220,7 +220,8 @@ struct BounceField {
 // The light probe at `pos`: the bounce solve's radiance by rays (`field`, after the solve;
 // none without one) and the baked lights' direct light as point sources.
 CircularHarmonics capture_probe(const ChunkProblem& p, const BounceField* field,
-                                const std::vector<SingleSource>& sources, glm::vec2 pos, int rays) {
+                                const std::vector<SingleSource>& sources, glm::vec2 pos, int rays,
+                                ProbeSamples* samples = nullptr) {
     constexpr float two_pi = 6.28318531f;
     CircularHarmonics h;
     if (field) {
@@ -239,6 +240,7 @@ CircularHarmonics capture_probe(const ChunkProblem& p, const BounceField* field,
                 gi::gather_radiosity(p.bounce, field->direct, field->faces, hit.face, hit.texel, w.ambient) *
                 (0.5f * w.weight(hit.distance(d)));
             h.add_ray(two_pi * float(index) / 4096.0f, radiance, two_pi / float(rays));
+            if (samples) samples->add(two_pi * float(index) / 4096.0f, radiance * (two_pi / float(rays)));
         }
     }
     for (const SingleSource& s : sources) {
@@ -246,6 +248,7 @@ CircularHarmonics capture_probe(const ChunkProblem& p, const BounceField* field,
         if (fluence == glm::vec3(0.0f)) continue;
         const glm::vec2 to = s.position - pos;
         h.add_delta(s.sun ? s.sun_angle : std::atan2(to.y, to.x), fluence);
+        if (samples) samples->add(s.sun ? s.sun_angle : std::atan2(to.y, to.x), fluence);
     }
     return h;
 }
@@ -344,8 +347,9 @@ std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& b)
     return h.value();
 }
 
-ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
+ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b, std::vector<ProbeSamples>* samples) {
     ChunkBake out;
+    if (samples) samples->assign(std::size_t(chunk_probes * chunk_probes), ProbeSamples{});
     out.id = c;
     out.key = chunk_key(s, c, b);
     out.resolution = b.resolution;
@@ -389,7 +393,8 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
             const glm::ivec2 tile(c.x * chunk_tiles + i * probe_spacing, c.z * chunk_tiles + j * probe_spacing);
             if (s.walls.is_wall_tile(tile.x, tile.y)) continue;
             const std::size_t k = std::size_t(j * chunk_probes + i);
-            out.probes[k] = capture_probe(p, bounce ? &field : nullptr, sources, glm::vec2(tile) + 0.5f, b.rays);
+            out.probes[k] = capture_probe(p, bounce ? &field : nullptr, sources, glm::vec2(tile) + 0.5f, b.rays,
+                                          samples ? &(*samples)[k] : nullptr);
             if (!b.directional) // seed 004's non-directional bake: the fluence alone
                 for (std::size_t h = 1; h < out.probes[k].c.size(); ++h) out.probes[k].c[h] = glm::vec3(0.0f);
             out.probe_valid[k] = 1;

@@ -122,8 +122,11 @@ struct ChunkBake {
 // settings and the scene's gi settings), the chunk, the walls and materials within reach,
 // and the mixed and baked lights and shadow proxies that reach it.
 std::uint64_t chunk_key(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings);
-// Solves the chunk (one thread; about a second at the defaults).
-ChunkBake bake_chunk(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings);
+// Solves the chunk (one thread; about a second at the defaults). With `samples`, also what each
+// probe was captured from (chunk_probes^2 entries, empty where no probe is), for measuring the
+// harmonics' order (ProbeOrderError).
+ChunkBake bake_chunk(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings,
+                     std::vector<ProbeSamples>* samples = nullptr);
 
 // The baked light at world point p for a surface facing angle phi, interpolated bilinearly
 // between the four probes around p, over those that exist (`probe(ix, iz)`: the probe at

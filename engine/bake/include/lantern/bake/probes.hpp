@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <vector>
 
 namespace lantern::bake {
 
@@ -27,11 +28,42 @@ struct CircularHarmonics {
     // Irradiance on a surface whose outward normal in the ground plane has angle phi
     // (atan2(n.z, n.x)), clamped at 0.
     glm::vec3 irradiance(float phi) const;
+    // The same from the harmonics up to `order` (1: a0, a1, b1 only; 2: all five).
+    glm::vec3 irradiance(float phi, int order) const;
     glm::vec3 fluence() const { return c[0]; }
 
     CircularHarmonics& operator+=(const CircularHarmonics& o);
     friend CircularHarmonics operator*(const CircularHarmonics& h, float w);
     friend bool operator==(const CircularHarmonics&, const CircularHarmonics&) = default;
+};
+
+// What a probe was captured from: its rays' radiance times their arcs and the baked lights'
+// fluence, each arriving from an angle theta. The harmonics approximate this; a surface facing
+// phi receives exactly the sum of flux x max(0, cos(theta - phi)) from it. Measures the
+// harmonics' order (bake_chunk's `samples`, lantern-bake --probe-orders).
+struct ProbeSamples {
+    std::vector<float> theta;
+    std::vector<glm::vec3> flux;
+
+    void add(float angle, glm::vec3 f) {
+        theta.push_back(angle);
+        flux.push_back(f);
+    }
+    glm::vec3 irradiance(float phi) const;
+};
+
+// How well harmonics of order 1 and 2 give the irradiance of their samples, over probes and
+// `angles` surface orientations each: sums to report relative errors from.
+struct ProbeOrderError {
+    long long probes = 0, samples = 0;
+    double exact2 = 0.0;                   // sum of exact irradiance squared (all channels)
+    double exact1 = 0.0;                   // sum of exact irradiance
+    std::array<double, 2> err2{};          // order 1, 2: sum of squared errors
+    std::array<double, 2> err1{};          // order 1, 2: sum of absolute errors
+    std::array<double, 2> worst_probe{};   // order 1, 2: the largest probe's relative RMS error
+    void add(const CircularHarmonics& h, const ProbeSamples& s, int angles = 64);
+    double relative_rms(int order) const;       // sqrt(err2 / exact2)
+    double relative_mean_abs(int order) const;  // err1 / exact1
 };
 
 } // namespace lantern::bake
