@@ -120,7 +120,8 @@ void WorldBaker::run() {
             LANTERN_PROFILE_SCOPE("bake_compose");
             std::vector<const bake::ChunkBake*> pointers;
             for (const auto& b : job->bakes) pointers.push_back(b.get());
-            result->light = bake::runtime_light(pointers, gi::WallView::of(job->walls));
+            result->light = bake::runtime_light(pointers, gi::WallView::of(job->walls), options_.settings.eps,
+                                                options_.settings.max_level);
             result->bakes = std::move(job->bakes);
         }
         result->ms = double(now_ns() - start) * 1e-6;

@@ -1,5 +1,7 @@
 #include "lantern/game/options.hpp"
 
+#include "lantern/bake/bake.hpp"
+#include "lantern/game/baking.hpp"
 #include "lantern/core/cli.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/text.hpp"
@@ -183,6 +185,10 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
     p.text("--bake-dir", "DIR",
            "where the baked light of the world's chunks is kept (default: lantern-bake beside the save file;\n"
            "the headless demo: in its --out folder)", o.bake_dir);
+    // The baker's settings (defaults: the game's, BakerOptions; a scene world's "bake" block
+    // first): the options given replace them.
+    o.bake_values = BakerOptions{}.settings;
+    bake::add_settings_options(p, o.bake_values, "--bake-", o.bake_values);
     p.integer("--workers", "N", "job-system worker threads (default: cores - 1)", o.workers, 0, 256);
     p.flag("--fixed-step", "advance 1/60 s per frame whatever the frame took", o.fixed_step);
     p.flag("--validation", "enable the Vulkan validation layers", o.validation);
@@ -192,6 +198,7 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
              "key bindings, save slots, quit).\n"
              "exit status: 0 ok, 1 runtime failure (e.g. no Vulkan device), 2 bad input.");
     if (auto exit = p.parse(argc, argv)) return exit;
+    o.bake_given = bake::given_settings(p, o.bake_values, "--bake-").given;
     o.vsync = vsync == "on";
     o.gi = overrides.gi;
     // Outputs are checked before the game starts (a folder, FIFO or device named as a file,

@@ -198,6 +198,7 @@ Result<GameWorld> create_world(const WorldSpec& spec, ecs::World& world, const W
         out.scene_point_lights = sw.point_lights;
         out.scene_emissive_lights = sw.emissive_lights;
         out.scene_proxies = sw.proxies;
+        if (scene->bake_given) out.bake = scene->bake;
         // The scene's suns follow the day cycle once it is switched on.
         for (ecs::Entity e : sw.directional_lights) world.emplace<Sun>(e);
         glm::vec2 center(0.0f);

@@ -1092,6 +1092,39 @@ TEST(GameHeadless, MemoryDoesNotGrowFrameByFrame) {
     EXPECT_EQ(device_growth, 0.0) << "MiB of device memory";
 }
 
+// The game's background baker (issue 18: bake settings are not fixed): the game's own
+// settings, a scene's "bake" block instead of them, and --bake-* options over either; the log
+// names the settings the baker was given (chunk_key keys its cache files by them).
+TEST(GameHeadless, BakeSettingsComeFromTheGameTheSceneAndTheCommandLine) {
+    test::TempDir dir;
+    std::string scene = two_rooms;
+    scene.replace(scene.find("\"point_lights\""), 0, "\"bake\": {\"resolution\": 1, \"margin\": 2, \"rays\": 16, \"eps\": 0.05},\n  ");
+    const std::string radius = "\"radius\": 10}";
+    scene.replace(scene.find(radius), radius.size(), "\"radius\": 10, \"mode\": \"mixed\"}");
+    ASSERT_TRUE(write_file_atomic(dir.file("baked.json"), scene));
+    int status = 0;
+    const auto run = [&](std::vector<std::string> extra, const std::string& name) {
+        std::vector<std::string> args = {"--headless", "--frames", "20", "--screenshots", "0", "--out", dir.file(name)};
+        args.insert(args.end(), extra.begin(), extra.end());
+        status = run_game(args, dir.file(name + ".log"));
+        return test::read_file(dir.file(name + ".log"));
+    };
+    std::string log = run({"--caves", "3"}, "caves");
+    if (status == 1 && log.find("no usable Vulkan device") != std::string::npos) LANTERN_SKIP_NO_GPU(log);
+    EXPECT_EQ(status, 0) << log;
+    EXPECT_NE(log.find("baked light: resolution 2, margin 8, 64 rays (32 on faces), gather, eps 0.01, max level 3 (the game's)"),
+              std::string::npos) << log;
+    log = run({"--scene", dir.file("baked.json")}, "scene");
+    EXPECT_EQ(status, 0) << log;
+    EXPECT_NE(log.find("baked light: resolution 1, margin 2, 16 rays (128 on faces), gather, eps 0.05, max level 3 (the scene's)"),
+              std::string::npos) << log;
+    log = run({"--scene", dir.file("baked.json"), "--bake-rays", "8", "--bake-max-level", "1", "--bake-non-directional"}, "given");
+    EXPECT_EQ(status, 0) << log;
+    EXPECT_NE(log.find("baked light: resolution 1, margin 2, 8 rays (128 on faces), gather, non-directional, eps 0.05, max level 1 "
+                       "(--bake-* given)"),
+              std::string::npos) << log;
+}
+
 TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
     test::TempDir dir;
     const std::string out = dir.file("out");
@@ -1112,6 +1145,7 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--gi-view", "heatmap"}, "--gi-view: must be one of lit, direct, indirect, light_image, radiosity, distance, "
                                    "direction, jump_flood, baked, bricks, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},
+        {{"--bake-rays", "0"}, "--bake-rays: must be an integer in [1, 1024], got '0'"},
         {{"--watch"}, "--watch needs a --scene FILE or a --tables FILE to watch"},
         {{"--tables", dir.file("bad_tables.json")}, "bad_tables.json:1:34: lights.lantern: unknown key"},
         {{"--schedule", dir.path().string()}, "--schedule " + dir.path().string() + ": is a folder"},

@@ -7,13 +7,22 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdio>
+#include <string>
 
 #include <glm/common.hpp>
 
 namespace lantern::bake {
+namespace {
+// A default for a help text: the shortest %g form ("0.01", "4").
+std::string text_of(float v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%g", double(v));
+    return buffer;
+}
+} // namespace
 
-void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& prefix) {
-    const BakeSettings d;
+void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& prefix, const BakeSettings& d) {
     p.integer(prefix + "resolution", "R", "baked texels per tile (default " + std::to_string(d.resolution) + ")", s.resolution, 1, 16);
     p.integer(prefix + "margin", "M",
               "tiles around a chunk whose walls reflect light into it (default " + std::to_string(d.margin) + ")", s.margin, 0, 64);
@@ -31,14 +40,15 @@ void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& pr
                  return std::nullopt;
              });
     p.number(prefix + "falloff", "TILES",
-             "seed002: a hit at this distance counts half (default " + std::to_string(int(d.falloff)) + ")", s.falloff,
+             "seed002: a hit at this distance counts half (default " + text_of(d.falloff) + ")", s.falloff,
              1.0f / 64.0f, 4096.0f);
-    p.number(prefix + "ambient", "E", "seed002: ambient fill every hit wall receives (default 0)", s.ambient, 0.0f,
+    p.number(prefix + "ambient", "E", "seed002: ambient fill every hit wall receives (default " + text_of(d.ambient) + ")", s.ambient, 0.0f,
              1000.0f);
     p.flag(prefix + "non-directional", "probes keep the light's amount, not its direction (seed 004's non-directional bake)",
            [&s] { s.directional = false; });
-    p.number(prefix + "eps", "E", "at run time: the bricks' colour range (seed 002's eps; default 0.01)", s.eps, 0.0f, 1000.0f);
-    p.integer(prefix + "max-level", "L", "at run time: the coarsest brick level, 0-3 (seed 002's maxLevel; default 3)",
+    p.number(prefix + "eps", "E", "at run time: the bricks' colour range (seed 002's eps; default " + text_of(d.eps) + ")", s.eps, 0.0f, 1000.0f);
+    p.integer(prefix + "max-level", "L", "at run time: the coarsest brick level, 0-3 (seed 002's maxLevel; default " +
+                  std::to_string(d.max_level) + ")",
               s.max_level, 0, 3);
 }
 

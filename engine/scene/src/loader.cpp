@@ -455,7 +455,10 @@ void read_scene(Reader& reader, const json::Value& root, Scene& scene, MapSpec& 
         if (reader.ok()) read_world(reader, *world, row_legend(scene.materials, symbols), scene, map);
     read_view(reader, top, scene.view);
     if (const json::Value* gi = top.find("gi")) reading::read_gi_settings(reader, *gi, scene.gi);
-    if (const json::Value* bake = top.find("bake")) read_bake_settings(reader, *bake, scene.bake);
+    if (const json::Value* bake = top.find("bake")) {
+        read_bake_settings(reader, *bake, scene.bake);
+        scene.bake_given = true;
+    }
     check_gi_window(reader, top, scene);
     read_list<PointLight>(reader, top, "point_lights", read_point_light, scene.point_lights);
     read_list<EmissiveLight>(reader, top, "emissive_lights", read_emissive_light,

@@ -152,6 +152,15 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
                           std::filesystem::path(ws.path).stem().string().substr(0, 60).c_str());
         BakerOptions bo;
         bo.cache_dir = (root / name).string();
+        // The world's own bake settings (a scene's "bake") or the game's, the --bake-* options
+        // over them. They are in every chunk's cache key: a change bakes again.
+        bo.settings = bake::GivenSettings{options_.bake_values, options_.bake_given}.over(s->info.bake ? *s->info.bake
+                                                                                                      : bo.settings);
+        LANTERN_LOG_INFO("baked light: resolution %d, margin %d, %d rays (%d on faces), %s%s, eps %g, max level %d (%s)",
+                         bo.settings.resolution, bo.settings.margin, bo.settings.rays, bo.settings.face_rays,
+                         bake::solver_name(bo.settings.solver), bo.settings.directional ? "" : ", non-directional",
+                         double(bo.settings.eps), bo.settings.max_level,
+                         options_.bake_given.empty() ? (s->info.bake ? "the scene's" : "the game's") : "--bake-* given");
         s->baker = std::make_unique<WorldBaker>(std::move(bo));
     }
 

@@ -58,6 +58,10 @@ struct GameOptions {
     bool texel_lighting = true;      // --no-texel-lighting: props and the player lit per pixel by
                                      // the GI, not per texel (docs/texel.md, "In the game")
     std::string bake_dir;            // --bake-dir DIR (default: lantern-bake beside the save file; headless: in --out)
+    // --bake-resolution, --bake-rays ... (lantern-bake's options, prefixed): given ones replace
+    // the world's own (a scene's "bake") or the game's defaults (BakerOptions::settings).
+    scene::BakeSettings bake_values;
+    std::vector<std::string> bake_given; // which of them were given (bake::GivenSettings::given)
     int workers = -1;                // --workers N (-1: hardware threads - 1)
     bool fixed_step = false;         // --fixed-step: dt = 1/60 whatever the frame took (headless always)
     bool validation = false;         // --validation: Vulkan validation layers

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,9 @@ struct GameWorld {
     // Scene worlds: the entity of each of the scene's point lights, emissive lights and shadow
     // proxies, in the scene's order (the scene editor moves and recolours them in place).
     std::vector<ecs::Entity> scene_point_lights, scene_emissive_lights, scene_proxies;
+    // A scene world whose file has a "bake" block: the world's own bake settings (the game's
+    // background baker starts from them instead of its own; docs/baked.md, "In the game").
+    std::optional<scene::BakeSettings> bake;
 };
 
 struct WorldOptions {

@@ -77,8 +77,10 @@ Result<void> validate_settings(const BakeSettings& settings);
 // The settings as command-line options `<prefix>resolution`, `<prefix>margin`,
 // `<prefix>rays`, `<prefix>face-rays`, `<prefix>solver`, `<prefix>falloff`,
 // `<prefix>ambient`, `<prefix>non-directional`, `<prefix>eps`, `<prefix>max-level`
-// (lantern-bake: "--", lantern-render: "--bake-"), parsed into `settings`.
-void add_settings_options(cli::Parser& parser, BakeSettings& settings, const std::string& prefix);
+// (lantern-bake: "--", lantern-render and the game: "--bake-"), parsed into `settings`; the
+// help names `defaults`' values as the defaults.
+void add_settings_options(cli::Parser& parser, BakeSettings& settings, const std::string& prefix,
+                          const BakeSettings& defaults = {});
 // The bake options a command line gave: their values (add_settings_options') and which
 // were given, to lay over a world's own settings (the command line wins).
 struct GivenSettings {

@@ -316,6 +316,7 @@ struct Scene {
     std::vector<ShadowProxy> shadow_proxies;
     std::vector<Material> materials; // cell value 2 + k is materials[k]
     BakeSettings bake;               // its bake's settings ("bake")
+    bool bake_given = false;         // the file has a "bake" block (else `bake` holds the defaults)
     // The other files the scene was read from (its world.map), as opened: what --watch looks
     // at besides the scene file. Empty for a scene built in code.
     std::vector<std::string> inputs;
