@@ -77,6 +77,16 @@ struct TexelPasses::Impl {
 
     std::uint32_t groups() const { return groups_for(push.counts.x); }
     static std::uint32_t groups_for(std::uint32_t texels) { return (texels + group_size - 1) / group_size; }
+    // UV to world's pipeline and buffers, after earlier passes' use of its outputs.
+    void bind_uv_to_world(gpu::CommandList& cmd) const {
+        before_writes(cmd);
+        cmd.bind(uv_to_world);
+        cmd.push_descriptors(gpu::DescriptorWrites()
+                                 .storage_buffer(0, triangles)
+                                 .storage_buffer(1, placements)
+                                 .storage_buffer(2, normal_maps)
+                                 .storage_buffer(3, surfaces));
+    }
     void dispatch_uv_to_world(gpu::CommandList& cmd, std::uint32_t first, std::uint32_t texels) {
         TexelPush p = push;
         p.span = glm::uvec4(first, texels, 0u, 0u);
@@ -203,13 +213,7 @@ void TexelPasses::upload_scene(gpu::CommandList& cmd, const TexelScene& scene) {
 void TexelPasses::record_uv_to_world(gpu::CommandList& cmd) {
     Impl& m = *impl_;
     if (m.push.counts.x == 0) return;
-    m.before_writes(cmd);
-    cmd.bind(m.uv_to_world);
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .storage_buffer(0, m.triangles)
-                             .storage_buffer(1, m.placements)
-                             .storage_buffer(2, m.normal_maps)
-                             .storage_buffer(3, m.surfaces));
+    m.bind_uv_to_world(cmd);
     m.dispatch_uv_to_world(cmd, 0u, m.push.counts.x);
     cmd.barrier_compute_to_compute();
 }
@@ -217,13 +221,7 @@ void TexelPasses::record_uv_to_world(gpu::CommandList& cmd) {
 void TexelPasses::record_uv_to_world(gpu::CommandList& cmd, std::span<const std::uint32_t> placements) {
     Impl& m = *impl_;
     if (m.push.counts.x == 0 || placements.empty()) return;
-    m.before_writes(cmd);
-    cmd.bind(m.uv_to_world);
-    cmd.push_descriptors(gpu::DescriptorWrites()
-                             .storage_buffer(0, m.triangles)
-                             .storage_buffer(1, m.placements)
-                             .storage_buffer(2, m.normal_maps)
-                             .storage_buffer(3, m.surfaces));
+    m.bind_uv_to_world(cmd);
     // One dispatch per run of neighbouring placements (the player's parts are one).
     for (std::size_t i = 0; i < placements.size();) {
         std::size_t j = i + 1;
