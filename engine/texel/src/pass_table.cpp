@@ -72,8 +72,12 @@ std::vector<TexelLight> static_lights_of(std::span<const TexelLight> lights) {
 std::span<const TexelRow> texel_rows() { return rows; }
 const TexelRow& texel_row(TexelPass pass) { return rows.at(std::size_t(pass)); }
 
-TexelKeys texel_input_keys(const TexelFrame& frame) {
+namespace {
+
+// The inputs' keys, and (with `places`) each placement's triangles' hash, hashed once.
+TexelKeys input_keys(const TexelFrame& frame, std::vector<std::uint64_t>* places) {
     const TexelScene& s = frame.scene;
+    if (places) places->clear();
     TexelKeys keys{};
     Hasher layout;
     layout.add(s.texel_count).add(s.normal_maps.size()).add(frame.layout_key);
@@ -85,7 +89,9 @@ TexelKeys texel_input_keys(const TexelFrame& frame) {
         // where it stands: its bounds are its triangles').
         const bool moves = placement_moves(s, p);
         layout.add(p.ranges.x).add(p.ranges.y).add(p.ranges.z).add(p.ranges.w).add(moves);
-        (moves ? moving : still).add_u64(placement_hash(s, p));
+        const std::uint64_t where = placement_hash(s, p);
+        (moves ? moving : still).add_u64(where);
+        if (places) places->push_back(where);
     }
     Hasher walls;
     walls.add(s.walls.origin.x).add(s.walls.origin.y).add(s.walls.width).add(s.walls.height).add(s.wall_height);
@@ -104,9 +110,14 @@ TexelKeys texel_input_keys(const TexelFrame& frame) {
     return keys;
 }
 
+} // namespace
+
+TexelKeys texel_input_keys(const TexelFrame& frame) { return input_keys(frame, nullptr); }
+
 TexelPlan plan_texel_frame(const TexelFrame& frame, TexelHistory& history) {
     TexelPlan plan;
-    const TexelKeys inputs = texel_input_keys(frame);
+    std::vector<std::uint64_t> places;
+    const TexelKeys inputs = input_keys(frame, &places);
     const auto input_changed = [&](std::uint32_t bit) {
         const int i = std::countr_zero(bit);
         return inputs[std::size_t(i)] != history.inputs[std::size_t(i)];
@@ -128,9 +139,7 @@ TexelPlan plan_texel_frame(const TexelFrame& frame, TexelHistory& history) {
         if (!plan.run[r]) plan.why_not[r] = "unchanged";
     }
     // The scene's uploads, and which placements UV to world redoes.
-    const std::size_t count = frame.scene.placements.size();
-    std::vector<std::uint64_t> places(count);
-    for (std::size_t k = 0; k < count; ++k) places[k] = placement_hash(frame.scene, frame.scene.placements[k]);
+    const std::size_t count = places.size();
     const bool layout = input_changed(texel_input_layout) || history.placements.size() != count;
     plan.upload_layout = layout;
     plan.upload_walls = !layout && input_changed(texel_input_walls);
