@@ -859,4 +859,171 @@ TEST(Bake, GivenOptionsWinOverTheWorldsSettings) {
     const char* none[] = {"lantern-bake"};
     ASSERT_FALSE(q.parse(1, none));
     EXPECT_EQ(bake::given_settings(q, unused, "--").over(world), world);
+    // --density (repeatable) replaces the world's regions.
+    world.density = {{{5, 5}, {6, 6}, 8}};
+    BakeSettings d_values;
+    cli::Parser d("lantern-bake", "", "");
+    bake::add_settings_options(d, d_values, "--");
+    const char* dargv[] = {"lantern-bake", "--density", "0,-1,3,2,1", "--density", "2,2,2,2,16"};
+    ASSERT_FALSE(d.parse(5, dargv));
+    const BakeSettings ds = bake::given_settings(d, d_values, "--").over(world);
+    ASSERT_EQ(ds.density.size(), 2u);
+    EXPECT_EQ(ds.density[0], (scene::BakeDensity{{0, -1}, {3, 2}, 1}));
+    EXPECT_EQ(ds.resolution_at(2, 2), 16);
+    EXPECT_EQ(ds.resolution_at(5, 5), world.resolution);
+    for (const char* bad : {"1,2,3", "0,0,1,1,17", "2,0,1,1,4", "0,0,1,1,x", "0,0,1,1,4,"}) {
+        BakeSettings v;
+        cli::Parser e("lantern-bake", "", "");
+        bake::add_settings_options(e, v, "--");
+        const char* eargv[] = {"lantern-bake", "--density", bad};
+        EXPECT_EQ(e.parse(3, eargv), std::optional<int>(2)) << bad;
+    }
+}
+
+// Seed 004's texel density per chunk: each chunk bakes at its region's resolution, with the
+// key and the bytes a bake of the whole world at that resolution gives it, so a chunk in no
+// region keeps its cache; the run time lays them out at the finest.
+TEST(Bake, TexelDensityPerChunkBakesEachChunkAtItsOwnResolution) {
+    const scene::Scene s = world();
+    BakeSettings b = quick();
+    b.rays = 32;
+    b.face_rays = 16;
+    BakeSettings dense = b;
+    dense.density = {{{0, 0}, {0, 1}, 1}, {{1, 1}, {2, 1}, 3}, {{2, 1}, {2, 1}, 4}};
+    EXPECT_EQ(dense.resolution_at(0, 1), 1);
+    EXPECT_EQ(dense.resolution_at(1, 1), 3);
+    EXPECT_EQ(dense.resolution_at(2, 1), 4); // the last region holding a chunk wins
+    EXPECT_EQ(dense.resolution_at(1, 0), 2); // in none: the world's
+    auto uniform = [&](int r) {
+        BakeSettings u = b;
+        u.resolution = r;
+        return u;
+    };
+    for (ChunkId c : bake::scene_chunks(s)) {
+        const int r = dense.resolution_at(c.x, c.z);
+        EXPECT_EQ(bake::chunk_key(s, c, dense), bake::chunk_key(s, c, uniform(r))) << c.x << ", " << c.z;
+        if (r != b.resolution) {
+            EXPECT_NE(bake::chunk_key(s, c, dense), bake::chunk_key(s, c, b));
+        }
+    }
+    TempDir dir;
+    auto report = bake::bake_world(s, dir.path().string(), dense);
+    ASSERT_TRUE(report.ok()) << report.error().message;
+    std::vector<bake::ChunkBake> loaded;
+    for (ChunkId c : bake::scene_chunks(s)) {
+        auto chunk = bake::load_chunk(dir.path().string(), c, bake::chunk_key(s, c, dense));
+        ASSERT_TRUE(chunk) << c.x << ", " << c.z;
+        EXPECT_EQ(chunk->resolution, dense.resolution_at(c.x, c.z));
+        loaded.push_back(std::move(*chunk));
+    }
+    // The bytes of a uniform bake at the chunk's resolution (chunk (1, 1) holds the baked light).
+    auto file_bytes = [](const bake::ChunkBake& c) {
+        const std::vector<std::byte> e = bake::encode_chunk(c);
+        std::vector<std::uint8_t> u(e.size());
+        std::memcpy(u.data(), e.data(), e.size());
+        return u;
+    };
+    EXPECT_EQ(file_bytes(bake::bake_chunk(s, {1, 1}, uniform(3))), bytes_of((dir.path() / bake::chunk_file_name({1, 1})).string()));
+    EXPECT_EQ(file_bytes(bake::bake_chunk(s, {0, 0}, uniform(1))), bytes_of((dir.path() / bake::chunk_file_name({0, 0})).string()));
+    EXPECT_FALSE(loaded[4].empty);
+    // A second run reuses every file; a chunk outside the regions reads the uniform bake's file.
+    report = bake::bake_world(s, dir.path().string(), dense);
+    ASSERT_TRUE(report.ok());
+    EXPECT_EQ(report->reused, report->chunks);
+    EXPECT_TRUE(bake::load_chunk(dir.path().string(), {1, 0}, bake::chunk_key(s, {1, 0}, b)));
+    // The run time lays them out at the finest resolution.
+    std::vector<const bake::ChunkBake*> pointers;
+    for (const auto& c : loaded) pointers.push_back(&c);
+    auto light = bake::runtime_light(pointers, gi::WallView::of(s.walls), 0.0f);
+    ASSERT_TRUE(light);
+    EXPECT_EQ(light->resolution, 4);
+    // Chunk (1, 1) at 3 texels a tile, read at its own texel centres, is its own light (within
+    // RGBM8's rounding and the bilinear blend with its neighbouring texels: 5 % relative RMS).
+    const bake::ChunkBake& c11 = loaded[4];
+    int checked = 0;
+    double err2 = 0.0, ref2 = 0.0;
+    for (int y = 4; y < c11.side() - 4; y += 5)
+        for (int x = 4; x < c11.side() - 4; x += 5) {
+            const glm::vec2 p = glm::vec2(32.0f, 32.0f) + (glm::vec2(float(x), float(y)) + 0.5f) / 3.0f;
+            const glm::ivec2 tile(int(std::floor(p.x)), int(std::floor(p.y)));
+            bool near_wall = false;
+            for (int dz = -1; dz <= 1; ++dz)
+                for (int dx = -1; dx <= 1; ++dx) near_wall |= s.walls.is_wall_tile(tile.x + dx, tile.y + dz);
+            if (near_wall) continue;
+            const glm::vec3 want = texel(c11.ground, c11.side(), x, y), d = light->sample(0, p) - want;
+            err2 += double(glm::dot(d, d));
+            ref2 += double(glm::dot(want, want));
+            ++checked;
+        }
+    EXPECT_GT(checked, 100);
+    EXPECT_GT(ref2, 0.0) << "the baked light reaches chunk (1, 1)";
+    EXPECT_LT(std::sqrt(err2 / std::max(ref2, 1e-30)), 0.05);
+}
+
+// How a coarser chunk is laid out at a finer resolution (runtime_light): bilinear between its
+// texels, so a linear ramp comes back exactly; over the texels that hold light only, so
+// light beside a wall is not pulled to the wall's zero; and no step at the border with a
+// finer chunk beyond the ramp's own change over a tile.
+TEST(BakeAtRunTime, ACoarserChunkIsResampledBilinearlyOverItsLitTexels) {
+    scene::WallGrid walls;
+    walls.width = 64;
+    walls.height = 32;
+    walls.cells.assign(std::size_t(64 * 32), 0);
+    walls.cells[std::size_t(10 * 64 + 10)] = scene::default_wall_cell; // one wall tile, (10, 10)
+    auto ramp = [](glm::vec2 p) { return glm::vec3(0.2f + 0.01f * p.x, 0.1f + 0.005f * p.y, 0.3f); };
+    auto chunk = [&](int x, int r) {
+        bake::ChunkBake c;
+        c.id = {x, 0};
+        c.key = std::uint64_t(x + 1);
+        c.resolution = r;
+        c.empty = false;
+        const int side = c.side();
+        c.ground.assign(std::size_t(side * side * 3), 0.0f);
+        for (auto& f : c.faces) f.assign(c.ground.size(), 0.0f);
+        for (int y = 0; y < side; ++y)
+            for (int i = 0; i < side; ++i) {
+                const glm::vec2 p = glm::vec2(float(x * 32), 0.0f) + (glm::vec2(float(i), float(y)) + 0.5f) / float(r);
+                if (walls.is_wall_tile(int(std::floor(p.x)), int(std::floor(p.y)))) continue; // walls hold 0
+                const glm::vec3 v = ramp(p);
+                for (int k = 0; k < 3; ++k) c.ground[(std::size_t(y) * std::size_t(side) + std::size_t(i)) * 3 + std::size_t(k)] = v[k];
+            }
+        c.probes.resize(std::size_t(bake::chunk_probes * bake::chunk_probes));
+        c.probe_valid.assign(c.probes.size(), 1);
+        return c;
+    };
+    const bake::ChunkBake coarse = chunk(0, 1), fine = chunk(1, 4);
+    const bake::ChunkBake* pointers[] = {&coarse, &fine};
+    auto light = bake::runtime_light(pointers, gi::WallView::of(walls), 0.0f);
+    ASSERT_TRUE(light);
+    ASSERT_EQ(light->resolution, 4);
+    // The coarse chunk (1 texel a tile, laid out at 4) holds no detail below brick level 2, so
+    // its cells stop there although the ramp's range exceeds eps 0; the fine chunk's do not.
+    EXPECT_EQ(light->level(0, {5.5f, 20.5f}), 2);
+    EXPECT_EQ(light->level(0, {40.5f, 20.5f}), 0);
+    EXPECT_EQ(light->bricks.bricks_per_level[0] + light->bricks.bricks_per_level[1], 32 * 32);
+    auto close = [](glm::vec3 got, glm::vec3 want, float tolerance) {
+        return glm::all(glm::lessThanEqual(glm::abs(got - want), glm::vec3(tolerance)));
+    };
+    // Inside the coarse chunk, away from its border and the wall: the ramp, at every fine texel.
+    int inside = 0;
+    for (int y = 4; y < 124; ++y)
+        for (int x = 4; x < 124; ++x) {
+            const glm::vec2 p = (glm::vec2(float(x), float(y)) + 0.5f) / 4.0f;
+            if (glm::all(glm::greaterThan(p, glm::vec2(8.5f))) && glm::all(glm::lessThan(p, glm::vec2(12.5f)))) continue;
+            EXPECT_TRUE(close(light->sample(0, p), ramp(p), 0.004f)) << p.x << ", " << p.y;
+            ++inside;
+        }
+    EXPECT_GT(inside, 14000);
+    // Beside the wall tile: its zero does not pull the light down (a blend with it would give
+    // 0.625 of the light at x = 11.125).
+    for (float z : {9.125f, 10.5f, 11.875f}) {
+        const glm::vec2 p(11.125f, z);
+        const glm::vec3 got = light->sample(0, p), want = ramp(glm::vec2(11.5f, z));
+        EXPECT_TRUE(close(got, want, 0.01f)) << z << ": " << got.x << " " << got.y << " " << got.z << " against " << want.x << " " << want.y << " " << want.z;
+    }
+    // Across the border x = 32: the step is within the ramp's change over one tile.
+    for (float z = 2.5f; z < 30.0f; z += 3.0f) {
+        const glm::vec3 a = light->sample(0, {31.875f, z}), b = light->sample(0, {32.125f, z});
+        EXPECT_LE(std::abs(b.x - a.x), 0.01f + 0.004f) << z;
+    }
 }

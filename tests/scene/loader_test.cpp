@@ -709,6 +709,17 @@ TEST(SceneLoader, TheWorldKeepsItsBakeSettings) {
     want.eps = 0.05f;
     want.max_level = 2;
     EXPECT_EQ(s.bake, want);
+    // Seed 004's texel density per chunk: regions of chunks at their own resolution.
+    const Scene d = parse_scene_ok(R"({"lantern_scene": 1, "world": {"rows": ["#."]}, "view": {"center": [1, 0]},
+        "bake": {"resolution": 2, "density": [{"min": [0, 0], "max": [3, 1], "resolution": 1},
+                                              {"min": [2, -1], "max": [2, 0], "resolution": 8}]}})");
+    ASSERT_EQ(d.bake.density.size(), 2u);
+    EXPECT_EQ(d.bake.density[0], (BakeDensity{{0, 0}, {3, 1}, 1}));
+    EXPECT_EQ(d.bake.resolution_at(1, 1), 1);
+    EXPECT_EQ(d.bake.resolution_at(2, 0), 8); // the last region holding a chunk wins
+    EXPECT_EQ(d.bake.resolution_at(2, -1), 8);
+    EXPECT_EQ(d.bake.resolution_at(4, 0), 2); // in no region: the world's
+    EXPECT_EQ(d.bake.resolution_at(0, -1), 2);
     EXPECT_EQ(parse_scene_ok(R"({"lantern_scene": 1, "world": {"rows": ["#."]}, "view": {"center": [1, 0]}})").bake,
               BakeSettings{});
 }
@@ -784,6 +795,14 @@ INSTANTIATE_TEST_SUITE_P(
         SceneErrorCase{scene_with(R"("shadow_proxies": [{"position": [1, 1], "static": 1}])"),
                        "t.json:2:51: shadow_proxies[0].static: expected true or false, got a number"},
         SceneErrorCase{scene_with(R"("bake": {"resolution": 17})"), "t.json:2:24: bake.resolution: must be an integer in [1, 16], got 17"},
+        SceneErrorCase{scene_with(R"("bake": {"density": [{"min": [0, 0], "max": [1, 1], "resolution": 0}]})"),
+                       "t.json:2:67: bake.density[0].resolution: must be an integer in [1, 16], got 0"},
+        SceneErrorCase{scene_with(R"("bake": {"density": [{"min": [2, 0], "max": [1, 1], "resolution": 2}]})"),
+                       "t.json:2:45: bake.density[0].max: must not be below min in x or z"},
+        SceneErrorCase{scene_with(R"("bake": {"density": [{"min": [0, 0], "resolution": 2}]})"),
+                       "t.json:2:22: bake.density[0].max: required key is missing"},
+        SceneErrorCase{scene_with(R"("bake": {"density": {"min": [0, 0]}})"),
+                       "t.json:2:21: bake.density: expected an array, got an object"},
         SceneErrorCase{scene_with(R"("bake": {"solver": "radiosity"})"),
                        "t.json:2:20: bake.solver: expected one of \"gather\", \"seed002\", got \"radiosity\""},
         SceneErrorCase{scene_with(R"("bake": {"max_level": 4})"), "t.json:2:23: bake.max_level: must be an integer in [0, 3], got 4"},

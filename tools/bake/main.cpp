@@ -59,6 +59,19 @@ std::optional<std::string> parse_shard(std::string_view text, int& shard, int& s
     return std::nullopt;
 }
 
+// The finest resolution any of the chunks bakes at (texel density per chunk: the pictures
+// and fields below are laid out at it, coarser chunks' texels repeated).
+int finest_resolution(const std::vector<bake::ChunkId>& chunks, const bake::BakeSettings& b) {
+    int r = 1;
+    for (const bake::ChunkId c : chunks) r = std::max(r, b.resolution_at(c.x, c.z));
+    return r;
+}
+// The index of a chunk's texel (RGB triple) under texel (x, y) of a grid of `res` texels a tile.
+std::size_t chunk_texel(const bake::ChunkBake& chunk, int res, int x, int y) {
+    const int cx = x * chunk.resolution / res, cy = y * chunk.resolution / res;
+    return (std::size_t(cy) * std::size_t(chunk.side()) + std::size_t(cx)) * 3;
+}
+
 // The baked light of every chunk of this shard as one picture, top down: ground light
 // tone-mapped (ACES), walls grey with their brightest face's light.
 Result<void> write_picture(const scene::Scene& scene, const std::string& dir, const bake::BakeSettings& b,
@@ -69,7 +82,7 @@ Result<void> write_picture(const scene::Scene& scene, const std::string& dir, co
     int x0 = all.front().x, x1 = all.front().x, z0 = all.front().z, z1 = all.front().z;
     for (const bake::ChunkId c : all)
         x0 = std::min(x0, c.x), x1 = std::max(x1, c.x), z0 = std::min(z0, c.z), z1 = std::max(z1, c.z);
-    const int side = bake::chunk_tiles * b.resolution;
+    const int res = finest_resolution(all, b), side = bake::chunk_tiles * res;
     const int w = (x1 - x0 + 1) * side, h = (z1 - z0 + 1) * side;
     if (std::int64_t(w) * h > (std::int64_t(1) << 28)) return make_error("lantern-bake: --image: the picture would be too large");
     std::vector<std::uint8_t> rgb(std::size_t(w) * std::size_t(h) * 3, 0);
@@ -78,7 +91,7 @@ Result<void> write_picture(const scene::Scene& scene, const std::string& dir, co
         if (!chunk || chunk->empty) continue;
         for (int y = 0; y < side; ++y)
             for (int x = 0; x < side; ++x) {
-                const std::size_t i = (std::size_t(y) * std::size_t(side) + std::size_t(x)) * 3;
+                const std::size_t i = chunk_texel(*chunk, res, x, y);
                 glm::vec3 v(chunk->ground[i], chunk->ground[i + 1], chunk->ground[i + 2]);
                 for (const auto& f : chunk->faces) v = glm::max(v, glm::vec3(f[i], f[i + 1], f[i + 2]) * 0.5f);
                 const glm::vec3 t = gi::tone_map(v, scene::ToneMap::aces, 4.0f);
@@ -96,7 +109,7 @@ std::optional<gi::Field> world_field(const scene::Scene& scene, const std::strin
     int x0 = all.front().x, x1 = x0, z0 = all.front().z, z1 = z0;
     for (const bake::ChunkId c : all)
         x0 = std::min(x0, c.x), x1 = std::max(x1, c.x), z0 = std::min(z0, c.z), z1 = std::max(z1, c.z);
-    const int side = bake::chunk_tiles * b.resolution;
+    const int res = finest_resolution(all, b), side = bake::chunk_tiles * res;
     gi::Field f;
     f.width = (x1 - x0 + 1) * side;
     f.height = (z1 - z0 + 1) * side;
@@ -104,15 +117,16 @@ std::optional<gi::Field> world_field(const scene::Scene& scene, const std::strin
     f.air.assign(std::size_t(f.width) * std::size_t(f.height), 0);
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
-            const int tx = x0 * bake::chunk_tiles + x / b.resolution, tz = z0 * bake::chunk_tiles + y / b.resolution;
+            const int tx = x0 * bake::chunk_tiles + x / res, tz = z0 * bake::chunk_tiles + y / res;
             f.air[std::size_t(y) * std::size_t(f.width) + std::size_t(x)] = scene.walls.is_wall_tile(tx, tz) ? 0 : 1;
         }
     for (const bake::ChunkId c : all) {
         auto chunk = bake::load_chunk(dir, c, bake::chunk_key(scene, c, b));
         if (!chunk || chunk->empty) continue;
         for (int y = 0; y < side; ++y)
-            std::copy_n(&chunk->ground[std::size_t(y * side) * 3], side * 3,
-                        &f.rgb[(std::size_t((c.z - z0) * side + y) * std::size_t(f.width) + std::size_t((c.x - x0) * side)) * 3]);
+            for (int x = 0; x < side; ++x)
+                std::copy_n(&chunk->ground[chunk_texel(*chunk, res, x, y)], 3,
+                            &f.rgb[(std::size_t((c.z - z0) * side + y) * std::size_t(f.width) + std::size_t((c.x - x0) * side + x)) * 3]);
     }
     return f;
 }

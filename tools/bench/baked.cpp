@@ -102,23 +102,35 @@ int baked(const BakedOptions& o) {
     settings.solver = o.solver == "seed002" ? bake::BakeSolver::seed002 : bake::BakeSolver::gather;
     settings.falloff = o.falloff;
     settings.ambient = o.ambient;
+    if (o.coarse > 0) // texel density per chunk: the west half of the world at its own resolution
+        settings.density.push_back({{0, 0}, {o.chunks / 2 - 1, o.chunks - 1}, o.coarse});
     const scene::Scene baked_world = caves_world(o.chunks, o.lights, scene::LightMode::baked);
     const fs::path dir = fs::temp_directory_path() / ("lantern-bench-baked-" + std::to_string(now_ns()));
 
     // 1. The bake, on 1 and 2 threads.
     std::printf("\n## Bake (solver %s, resolution %d, margin %d, %d ground and %d face rays)\n\n",
                 bake::solver_name(settings.solver), settings.resolution, settings.margin, settings.rays, settings.face_rays);
+    if (o.coarse > 0) std::printf("texel density: the west half (chunks x < %d) at resolution %d\n\n", o.chunks / 2, o.coarse);
     if (settings.solver == bake::BakeSolver::seed002)
         std::printf("seed002: falloff %g tiles, ambient %g\n\n", double(settings.falloff), double(settings.ambient));
     std::printf("| threads | chunks | seconds | per chunk |\n|---|---|---|---|\n");
-    for (int threads : {1, 2}) {
+    const std::vector<int> thread_counts = o.threads > 0 ? std::vector<int>{o.threads} : std::vector<int>{1, 2};
+    for (int threads : thread_counts) {
         jobs::JobSystem::Config config;
         config.worker_threads = threads - 1;
         jobs::JobSystem jobs(config);
         bake::BakeOptions options;
         options.jobs = &jobs;
         options.force = true;
-        const fs::path out = dir / ("t" + std::to_string(threads));
+        int shown = -1; // progress on stderr, every 5 %, for large worlds
+        options.progress = [&](const bake::BakeProgress& p) {
+            const int pct = p.total ? p.done * 100 / p.total : 100;
+            if (pct / 5 == shown / 5 && p.done != p.total) return;
+            shown = pct;
+            std::fprintf(stderr, "\rbake (%d threads): %d / %d chunks (%d %%), %.0f s", threads, p.done, p.total, pct, p.seconds);
+            if (p.done == p.total) std::fprintf(stderr, "\n");
+        };
+        const fs::path out = dir / (threads == thread_counts.front() ? "first" : "t" + std::to_string(threads));
         auto report = bake::bake_world(baked_world, out.string(), settings, options);
         if (!report) {
             std::fprintf(stderr, "lantern-bench baked: %s\n", report.error().message.c_str());
@@ -132,7 +144,7 @@ int baked(const BakedOptions& o) {
     {
         std::uintmax_t disk = 0, raw = 0;
         int files = 0, empty = 0;
-        for (const auto& e : fs::directory_iterator(dir / "t1")) {
+        for (const auto& e : fs::directory_iterator(dir / "first")) {
             if (e.path().extension() != ".lbk") continue;
             disk += e.file_size();
             ++files;
@@ -152,16 +164,22 @@ int baked(const BakedOptions& o) {
     // 2. Memory: dense against bricks.
     std::vector<bake::ChunkBake> chunks;
     for (bake::ChunkId c : bake::scene_chunks(baked_world)) {
-        auto b = bake::load_chunk((dir / "t1").string(), c, bake::chunk_key(baked_world, c, settings));
+        auto b = bake::load_chunk((dir / "first").string(), c, bake::chunk_key(baked_world, c, settings));
         if (b) chunks.push_back(std::move(*b));
     }
     std::vector<const bake::ChunkBake*> pointers;
     for (const auto& b : chunks) pointers.push_back(&b);
-    const int side = o.chunks * bake::chunk_tiles * settings.resolution;
+    const int side = o.chunks * bake::chunk_tiles * std::max(settings.resolution, o.coarse); // the finest chunk's
     const std::size_t texels = std::size_t(side) * std::size_t(side);
     std::printf("\n## Memory of the baked light (ground and four face layers, %d x %d texels each)\n\n", side, side);
-    std::printf("dense RGBM8, five layers: %.3f MB; dense RGB halves: %.3f MB\n\n", double(texels * 5 * 4) / 1e6,
+    std::printf("dense RGBM8, five layers: %.3f MB; dense RGB halves: %.3f MB\n", double(texels * 5 * 4) / 1e6,
                 double(texels * 5 * 6) / 1e6);
+    if (o.coarse > 0) {
+        std::size_t own = 0; // dense, each chunk at its own resolution
+        for (const auto& b : chunks) own += std::size_t(b.side()) * std::size_t(b.side());
+        std::printf("dense RGBM8 at each chunk's own resolution: %.3f MB\n", double(own * 5 * 4) / 1e6);
+    }
+    std::printf("\n");
     std::printf("| eps | bricks (level 0/1/2/3) | atlas + indirection | of dense RGBM8 | rel. RMS error (ground) |\n|---|---|---|---|---|\n");
     const gi::WallView walls = gi::WallView::of(baked_world.walls);
     for (float eps : {0.0f, 0.01f, 0.05f, 0.2f}) {
@@ -173,7 +191,7 @@ int baked(const BakedOptions& o) {
             for (int y = 0; y < s; ++y)
                 for (int x = 0; x < s; ++x) {
                     const glm::vec2 p = glm::vec2(float(b.id.x * bake::chunk_tiles), float(b.id.z * bake::chunk_tiles)) +
-                                        (glm::vec2(float(x), float(y)) + 0.5f) / float(settings.resolution);
+                                        (glm::vec2(float(x), float(y)) + 0.5f) / float(b.resolution);
                     if (baked_world.walls.is_wall_tile(int(std::floor(p.x)), int(std::floor(p.y)))) continue;
                     const std::size_t i = (std::size_t(y) * std::size_t(s) + std::size_t(x)) * 3;
                     const glm::vec3 want(b.ground[i], b.ground[i + 1], b.ground[i + 2]);
@@ -189,6 +207,10 @@ int baked(const BakedOptions& o) {
     }
 
     // 3. The frame.
+    if (!o.frame) {
+        fs::remove_all(dir);
+        return 0;
+    }
     auto device = gpu::Device::create();
     if (!device) {
         std::fprintf(stderr, "lantern-bench baked: %s\n", device.error().message.c_str());

@@ -47,6 +47,9 @@ struct BakedOptions {
     int resolution = 2, margin = 8, rays = 64, face_rays = 32; // the bake's settings (the game's)
     std::string solver = "gather";                             // or "seed002", with:
     float falloff = 4.0f, ambient = 0.0f;
+    int threads = 0;     // bake on this many threads only (0: on 1 and on 2, for the comparison)
+    bool frame = true;   // time the frame on the device (off for worlds too large for one window's bench)
+    int coarse = 0;      // > 0: the west half of the chunks bakes at this resolution (texel density per chunk)
 };
 int baked(const BakedOptions& options);
 

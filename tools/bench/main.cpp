@@ -5,7 +5,8 @@
 //   lantern-bench radiosity-noise [--frames N] [--resolution R] [--lights N]
 //   lantern-bench dirty-bins [--frames N] [--resolution R]
 //   lantern-bench baked [--chunks N] [--lights N] [--repeats N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
-//                       [--solver gather|seed002] [--falloff TILES] [--ambient E]
+//                       [--solver gather|seed002] [--falloff TILES] [--ambient E] [--threads N] [--no-frame]
+//                       [--coarse R]
 //   lantern-bench accuracy [--quick] [--repeats N] [--out DIR] [--scenes A,B] [--maps DIR]
 //                          [--albedo A] [--target E] [--cache DIR | --no-cache] [--backend B]
 //                          [--images]
@@ -143,7 +144,7 @@ int baked_main(int argc, char** argv) {
              "What the bake costs and saves (docs/baked.md): the caves with their lava and crystal veins and\n"
              "point lights, baked on 1 and 2 threads; the baked light's memory dense and in bricks; the frame\n"
              "with the lights realtime, mixed and baked (GPU timestamps, median).");
-    p.integer("--chunks", "N", "the world is N x N chunks of 32 x 32 tiles (default 3)", o.chunks, 1, 64);
+    p.integer("--chunks", "N", "the world is N x N chunks of 32 x 32 tiles (default 3; 128 is the 4096 x 4096 world)", o.chunks, 1, 128);
     p.integer("--lights", "N", "point lights (default 32)", o.lights, 0, 4096);
     p.integer("--repeats", "N", "timed frames per configuration (default 5)", o.repeats, 1, 1000);
     p.integer("--resolution", "R", "baked texels per tile (default 2: the game's)", o.resolution, 1, 16);
@@ -153,6 +154,9 @@ int baked_main(int argc, char** argv) {
     p.choice("--solver", "the bake's solver (default gather)", o.solver, {"gather", "seed002"});
     p.number("--falloff", "TILES", "seed002: the falloff's half distance (default 4)", o.falloff, 1.0f / 64.0f, 4096.0f);
     p.number("--ambient", "E", "seed002: the ambient fill (default 0)", o.ambient, 0.0f, 1000.0f);
+    p.integer("--threads", "N", "bake on N threads only (default: on 1 and on 2)", o.threads, 1, 256);
+    p.integer("--coarse", "R", "texel density per chunk: the west half of the chunks bakes at R texels a tile", o.coarse, 1, 16);
+    p.flag("--no-frame", "leave out the frame's timing (the bake and the memory only)", [&] { o.frame = false; });
     if (auto exit = p.parse(argc, argv, 2)) return *exit;
     return lantern::bench::baked(o);
 }

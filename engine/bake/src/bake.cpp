@@ -307,6 +307,16 @@ Result<void> validate_settings(const BakeSettings& s) {
         return make_error("bake.eps: must be a number in [0, 1000], got " + std::to_string(s.eps));
     if (s.max_level < 0 || s.max_level > 3)
         return make_error("bake.max_level: must be an integer in [0, 3], got " + std::to_string(s.max_level));
+    if (s.density.size() > std::size_t(scene::max_bake_density_regions))
+        return make_error("bake.density: " + std::to_string(s.density.size()) + " regions, above the limit of " +
+                          std::to_string(scene::max_bake_density_regions));
+    for (std::size_t i = 0; i < s.density.size(); ++i) {
+        const scene::BakeDensity& d = s.density[i];
+        const std::string at = "bake.density[" + std::to_string(i) + "]";
+        if (d.resolution < 1 || d.resolution > 16)
+            return make_error(at + ".resolution: must be an integer in [1, 16], got " + std::to_string(d.resolution));
+        if (d.max.x < d.min.x || d.max.y < d.min.y) return make_error(at + ".max: must not be below min in x or z");
+    }
     return {};
 }
 
@@ -326,7 +336,15 @@ std::vector<ChunkId> shard_of(const std::vector<ChunkId>& chunks, int shard, int
     return out;
 }
 
-std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& b) {
+BakeSettings chunk_settings(const BakeSettings& settings, ChunkId chunk) {
+    BakeSettings out = settings;
+    out.resolution = settings.resolution_at(chunk.x, chunk.z);
+    out.density.clear();
+    return out;
+}
+
+std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& world_settings) {
+    const BakeSettings b = chunk_settings(world_settings, c);
     const ChunkProblem p = make_problem(s, c, b);
     Hasher h;
     const std::string solver = std::string("lantern-bake/") + solver_name(b.solver);
@@ -347,7 +365,8 @@ std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& b)
     return h.value();
 }
 
-ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& b, std::vector<ProbeSamples>* samples) {
+ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& world_settings, std::vector<ProbeSamples>* samples) {
+    const BakeSettings b = chunk_settings(world_settings, c);
     ChunkBake out;
     if (samples) samples->assign(std::size_t(chunk_probes * chunk_probes), ProbeSamples{});
     out.id = c;

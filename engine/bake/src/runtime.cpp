@@ -6,6 +6,7 @@
 #include "lantern/core/hash.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <climits>
 #include <cstdio>
 #include <string>
@@ -50,11 +51,39 @@ void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& pr
     p.integer(prefix + "max-level", "L", "at run time: the coarsest brick level, 0-3 (seed 002's maxLevel; default " +
                   std::to_string(d.max_level) + ")",
               s.max_level, 0, 3);
+    p.custom(prefix + "density", "X0,Z0,X1,Z1,R",
+             "the chunks X0..X1, Z0..Z1 (inclusive) bake at R texels a tile (seed 004's texel density per chunk); "
+             "repeatable, the last region holding a chunk wins; replaces the world's \"density\"",
+             [&s](std::string_view v) -> std::optional<std::string> {
+                 scene::BakeDensity region;
+                 int* fields[5] = {&region.min.x, &region.min.y, &region.max.x, &region.max.y, &region.resolution};
+                 std::size_t at = 0;
+                 for (int k = 0; k < 5; ++k) {
+                     const std::size_t end = k < 4 ? v.find(',', at) : v.size();
+                     if (end == std::string_view::npos) return "must be five integers X0,Z0,X1,Z1,R";
+                     const std::string_view part = v.substr(at, end - at);
+                     const auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), *fields[k]);
+                     if (ec != std::errc{} || ptr != part.data() + part.size() || part.empty())
+                         return "must be five integers X0,Z0,X1,Z1,R, got '" + std::string(v.substr(0, 60)) + "'";
+                     at = end + 1;
+                 }
+                 constexpr int limit = (1 << 24) / chunk_tiles;
+                 for (int k = 0; k < 4; ++k)
+                     if (*fields[k] < -limit || *fields[k] > limit)
+                         return "chunk coordinates must be within [" + std::to_string(-limit) + ", " + std::to_string(limit) + "]";
+                 if (region.resolution < 1 || region.resolution > 16) return "R must be in [1, 16], got " + std::to_string(region.resolution);
+                 if (region.max.x < region.min.x || region.max.y < region.min.y) return "X1,Z1 must not be below X0,Z0";
+                 if (s.density.size() >= std::size_t(scene::max_bake_density_regions))
+                     return "at most " + std::to_string(scene::max_bake_density_regions) + " regions";
+                 s.density.push_back(region);
+                 return std::nullopt;
+             },
+             /*repeatable=*/true);
 }
 
 namespace {
-constexpr const char* setting_options[] = {"resolution", "margin",          "rays", "face-rays", "solver",
-                                           "falloff",    "ambient", "non-directional", "eps",  "max-level"};
+constexpr const char* setting_options[] = {"resolution", "margin",          "rays", "face-rays", "solver",   "falloff",
+                                           "ambient",    "non-directional", "eps",  "max-level", "density"};
 }
 
 GivenSettings given_settings(const cli::Parser& p, const BakeSettings& values, const std::string& prefix) {
@@ -80,19 +109,66 @@ BakeSettings GivenSettings::over(const BakeSettings& world) const {
     take("non-directional", &BakeSettings::directional);
     take("eps", &BakeSettings::eps);
     take("max-level", &BakeSettings::max_level);
+    take("density", &BakeSettings::density);
     return s;
 }
+
+namespace {
+
+// Which texels of layer `layer` hold light (open ground; the faces a wall tile shows).
+bool holds_light(const gi::WallView& walls, int layer, glm::ivec2 tile) {
+    static constexpr glm::ivec2 across[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    const bool wall = walls.is_wall(tile.x, tile.y);
+    if (layer == 0) return !wall;
+    const glm::ivec2 a = across[layer - 1];
+    return wall && !walls.is_wall(tile.x + a.x, tile.y + a.y);
+}
+
+// A chunk's texel (x, y) (of `side` a row) of layer `layer` (0: ground, 1 + f: face f).
+const float* texel_of(const ChunkBake& c, int layer, int x, int y) {
+    const std::size_t i = (std::size_t(y) * std::size_t(c.side()) + std::size_t(x)) * 3;
+    return (layer == 0 ? c.ground : c.faces[std::size_t(layer - 1)]).data() + i;
+}
+
+// Chunk `c`'s light at the centre of texel (x, y) of a grid of `res` texels a tile over it,
+// when c was baked at a coarser resolution: bilinear between c's four texels around that
+// point (clamped at c's border), over those that hold light in the layer; the nearest texel
+// when none of them does.
+glm::vec3 resample(const ChunkBake& c, const gi::WallView& walls, int layer, int res, int x, int y) {
+    const int r = c.resolution, side = c.side();
+    const glm::vec2 g = (glm::vec2(float(x), float(y)) + 0.5f) * (float(r) / float(res)) - 0.5f;
+    const glm::ivec2 i0(int(std::floor(g.x)), int(std::floor(g.y)));
+    const glm::vec2 f = g - glm::vec2(i0);
+    glm::vec3 sum(0.0f);
+    float weight = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        const int dx = k & 1, dy = k >> 1;
+        const int sx = std::clamp(i0.x + dx, 0, side - 1), sy = std::clamp(i0.y + dy, 0, side - 1);
+        const glm::ivec2 tile(c.id.x * chunk_tiles + sx / r, c.id.z * chunk_tiles + sy / r);
+        if (!holds_light(walls, layer, tile)) continue;
+        const float w = (dx ? f.x : 1.0f - f.x) * (dy ? f.y : 1.0f - f.y);
+        const float* t = texel_of(c, layer, sx, sy);
+        sum += w * glm::vec3(t[0], t[1], t[2]);
+        weight += w;
+    }
+    if (weight > 0.0f) return sum / weight;
+    const int nx = std::clamp(int(std::floor(g.x + 0.5f)), 0, side - 1), ny = std::clamp(int(std::floor(g.y + 0.5f)), 0, side - 1);
+    const float* t = texel_of(c, layer, nx, ny);
+    return {t[0], t[1], t[2]};
+}
+
+} // namespace
 
 std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,
                                                     float eps, int max_level) {
     if (chunks.empty()) return nullptr;
-    const int res = chunks[0]->resolution;
+    int res = 1; // the finest chunk's (texel density per chunk)
+    for (const ChunkBake* c : chunks) res = std::max(res, c->resolution);
     glm::ivec2 lo(INT_MAX), hi(INT_MIN);
     Hasher key;
     key.add(res).add(eps);
     if (max_level != gi::brick_levels - 1) key.add(max_level);
     for (const ChunkBake* c : chunks) {
-        LANTERN_ASSERT(c->resolution == res, "runtime_light: chunks of different resolutions");
         lo = glm::min(lo, glm::ivec2(c->id.x, c->id.z));
         hi = glm::max(hi, glm::ivec2(c->id.x, c->id.z));
         key.add(c->id.x).add(c->id.z).add(c->key);
@@ -102,30 +178,45 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
     const int width = chunks_wide.x * side, height = chunks_wide.y * side;
     std::array<gi::Field, gi::baked_layers> layers;
     for (gi::Field& f : layers) f = gi::Field(width, height);
-    static constexpr glm::ivec2 across[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     for (const ChunkBake* c : chunks) {
         const glm::ivec2 at = (glm::ivec2(c->id.x, c->id.z) - lo) * side;
+        const bool coarser = c->resolution != res;
         for (int y = 0; y < side; ++y)
             for (int x = 0; x < side; ++x) {
-                const std::size_t src = std::size_t(y) * std::size_t(side) + std::size_t(x);
                 const std::size_t dst = std::size_t(at.y + y) * std::size_t(width) + std::size_t(at.x + x);
                 const glm::ivec2 tile(c->id.x * chunk_tiles + x / res, c->id.z * chunk_tiles + y / res);
-                const bool wall = walls.is_wall(tile.x, tile.y);
-                // Which texels hold light: open ground, and the faces a wall tile shows.
-                layers[0].air[dst] = wall ? 0 : 1;
-                for (int f = 0; f < 4; ++f)
-                    layers[std::size_t(1 + f)].air[dst] =
-                        wall && !walls.is_wall(tile.x + across[f].x, tile.y + across[f].y) ? 1 : 0;
-                if (c->empty) continue; // no baked light reaches it: zero
-                for (int k = 0; k < 3; ++k) {
-                    layers[0].rgb[dst * 3 + std::size_t(k)] = c->ground[src * 3 + std::size_t(k)];
-                    for (int f = 0; f < 4; ++f)
-                        layers[std::size_t(1 + f)].rgb[dst * 3 + std::size_t(k)] = c->faces[std::size_t(f)][src * 3 + std::size_t(k)];
+                for (int layer = 0; layer < gi::baked_layers; ++layer) {
+                    gi::Field& field = layers[std::size_t(layer)];
+                    field.air[dst] = holds_light(walls, layer, tile) ? 1 : 0;
+                    if (c->empty) continue; // no baked light reaches it: zero
+                    glm::vec3 v;
+                    if (coarser) {
+                        v = resample(*c, walls, layer, res, x, y);
+                    } else {
+                        const float* t = texel_of(*c, layer, x, y);
+                        v = {t[0], t[1], t[2]};
+                    }
+                    for (int k = 0; k < 3; ++k) field.rgb[dst * 3 + std::size_t(k)] = v[k];
                 }
             }
     }
-    return std::make_shared<const gi::BakedLight>(
-        gi::make_baked_light(lo * chunk_tiles, res, layers, eps, key.value(), max_level));
+    // A chunk baked at res / 2^L holds no detail below brick level L: its cells stop there.
+    const int cells_x = (width + gi::brick_probes - 1) / gi::brick_probes, cells_y = (height + gi::brick_probes - 1) / gi::brick_probes;
+    std::vector<std::uint8_t> finest(std::size_t(cells_x) * std::size_t(cells_y), 0);
+    bool coarser = false;
+    for (const ChunkBake* c : chunks) {
+        int level = 0;
+        while (level + 1 < gi::brick_levels && c->resolution << (level + 1) <= res && res % (c->resolution << (level + 1)) == 0) ++level;
+        if (level == 0) continue;
+        coarser = true;
+        const int cells = side / gi::brick_probes;
+        const glm::ivec2 at = (glm::ivec2(c->id.x, c->id.z) - lo) * cells;
+        for (int y = 0; y < cells; ++y)
+            for (int x = 0; x < cells; ++x) finest[std::size_t(at.y + y) * std::size_t(cells_x) + std::size_t(at.x + x)] = std::uint8_t(level);
+    }
+    return std::make_shared<const gi::BakedLight>(gi::make_baked_light(lo * chunk_tiles, res, layers, eps, key.value(), max_level,
+                                                                       coarser ? std::span<const std::uint8_t>(finest)
+                                                                               : std::span<const std::uint8_t>()));
 }
 
 scene::Scene live_scene(const scene::Scene& s) {

@@ -16,13 +16,13 @@ int BakedLight::level(int layer, glm::vec2 p) const {
 }
 
 BakedLight make_baked_light(glm::ivec2 origin, int resolution, const std::array<Field, baked_layers>& layers, float eps,
-                            std::uint64_t key, int max_level) {
+                            std::uint64_t key, int max_level, std::span<const std::uint8_t> finest_level) {
     BakedLight out;
     out.origin = origin;
     out.resolution = resolution;
     out.width = layers[0].width;
     out.height = layers[0].height;
-    out.bricks = build_bricks(std::span<const Field>(layers), eps, baked_bricks_per_row, max_level);
+    out.bricks = build_bricks(std::span<const Field>(layers), eps, baked_bricks_per_row, max_level, finest_level);
     out.key = key;
     return out;
 }

@@ -60,6 +60,19 @@ struct Builder {
     std::vector<int>& cell_level;
     std::size_t cell_base = 0;
     int max_level = brick_levels - 1;
+    std::span<const std::uint8_t> finest_level; // per level-0 cell (build_bricks'), or empty
+
+    // The coarsest level the cell at o (level-0 cells `cells` a side) may stop at whatever its
+    // range: the least of its cells' finest levels, capped at max_level.
+    int floor_level(glm::ivec2 o, int cells) const {
+        if (finest_level.empty()) return 0;
+        int floor = brick_levels - 1;
+        const int x0 = o.x / brick_probes, y0 = o.y / brick_probes;
+        for (int y = y0; y < std::min(y0 + cells, out.cells_y); ++y)
+            for (int x = x0; x < std::min(x0 + cells, out.cells_x); ++x)
+                floor = std::min(floor, int(finest_level[std::size_t(y) * std::size_t(out.cells_x) + std::size_t(x)]));
+        return std::min(floor, max_level);
+    }
 
     // The probe (i, j) of a level-`level` brick at grid origin o: the box mean of its s x s
     // texels (clamped to the field).
@@ -116,7 +129,7 @@ struct Builder {
         const int side = brick_probes << level;
         if (o.x >= f.width || o.y >= f.height) return;
         if (!near_air(o, side)) return; // wholly inside rock: empty
-        if (level == 0 || (level <= max_level && range(o, level) <= eps)) {
+        if (level == 0 || (level <= max_level && (level <= floor_level(o, 1 << level) || range(o, level) <= eps))) {
             store(o, level);
             return;
         }
@@ -149,7 +162,8 @@ BrickAtlas build_bricks(const Field& field, float eps, int bricks_per_row, int m
     return build_bricks(std::span<const Field>(&field, 1), eps, bricks_per_row, max_level);
 }
 
-BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row, int max_level) {
+BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row, int max_level,
+                        std::span<const std::uint8_t> finest_level) {
     BrickAtlas out;
     LANTERN_ASSERT(!fields.empty(), "build_bricks needs a field");
     const int width = fields[0].width, height = fields[0].height;
@@ -161,13 +175,14 @@ BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per
     out.cells_x = (width + brick_probes - 1) / brick_probes;
     out.cells_y = (height + brick_probes - 1) / brick_probes;
     const std::size_t layer_cells = std::size_t(out.cells_x) * std::size_t(out.cells_y);
+    LANTERN_ASSERT(finest_level.empty() || finest_level.size() == layer_cells, "build_bricks: finest_level is one value per cell");
     std::vector<std::vector<std::uint8_t>> bricks;
     std::vector<int> cell_brick(layer_cells * fields.size(), -1), cell_level(cell_brick.size(), 0);
     const int top = brick_probes << (brick_levels - 1);
     for (std::size_t layer = 0; layer < fields.size(); ++layer) {
         const Field f = dilated(fields[layer]);
         Builder b{f, fields[layer], eps, out, bricks, cell_brick, cell_level, layer * layer_cells,
-                  std::clamp(max_level, 0, brick_levels - 1)};
+                  std::clamp(max_level, 0, brick_levels - 1), finest_level};
         for (int y = 0; y < height; y += top)
             for (int x = 0; x < width; x += top) b.visit({x, y}, brick_levels - 1);
     }

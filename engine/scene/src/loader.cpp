@@ -426,11 +426,37 @@ void read_version(Reader& reader, Fields& top) {
 }
 
 // Everything but the map import, in a fixed order; the first problem is kept.
+// "bake.density": regions of chunks baked at their own resolution (BakeDensity).
+void read_bake_density(Reader& reader, const json::Value& list, std::vector<BakeDensity>& out) {
+    if (!reader.expect(list, "bake.density", json::Type::array)) return;
+    if (list.as_array().size() > std::size_t(max_bake_density_regions)) {
+        reader.fail(list.position(), "bake.density",
+                    "has " + std::to_string(list.as_array().size()) + " regions, above the limit of " +
+                        std::to_string(max_bake_density_regions));
+        return;
+    }
+    constexpr int max_chunk = max_origin / 32;
+    for (std::size_t i = 0; i < list.as_array().size() && reader.ok(); ++i) {
+        BakeDensity region;
+        Fields fields(reader, list.as_array()[i], reading::index_path("bake.density", i), {"min", "max", "resolution"});
+        fields.required("min", region.min, IntRange{-max_chunk, max_chunk})
+            .required("max", region.max, IntRange{-max_chunk, max_chunk})
+            .required("resolution", region.resolution, IntRange{1, 16});
+        if (!reader.ok()) return;
+        if (region.max.x < region.min.x || region.max.y < region.min.y) {
+            fields.fail("max", "must not be below min in x or z");
+            return;
+        }
+        out.push_back(region);
+    }
+}
+
 // "bake": the world's bake settings, in bake::validate_settings' ranges.
 void read_bake_settings(Reader& reader, const json::Value& value, BakeSettings& b) {
-    Fields(reader, value, "bake",
-           {"resolution", "margin", "rays", "face_rays", "solver", "falloff", "ambient", "directional", "eps", "max_level"})
-        .optional("resolution", b.resolution, IntRange{1, 16})
+    Fields fields(reader, value, "bake",
+                  {"resolution", "margin", "rays", "face_rays", "solver", "falloff", "ambient", "directional", "eps",
+                   "max_level", "density"});
+    fields.optional("resolution", b.resolution, IntRange{1, 16})
         .optional("margin", b.margin, IntRange{0, 64})
         .optional("rays", b.rays, IntRange{1, 1024})
         .optional("face_rays", b.face_rays, IntRange{1, 1024})
@@ -440,6 +466,8 @@ void read_bake_settings(Reader& reader, const json::Value& value, BakeSettings& 
         .optional("directional", b.directional)
         .optional("eps", b.eps, between(0.0, 1000.0))
         .optional("max_level", b.max_level, IntRange{0, 3});
+    if (const json::Value* density = fields.find("density"); density && reader.ok())
+        read_bake_density(reader, *density, b.density);
 }
 
 void read_scene(Reader& reader, const json::Value& root, Scene& scene, MapSpec& map,

@@ -156,8 +156,10 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
         // over them. They are in every chunk's cache key: a change bakes again.
         bo.settings = bake::GivenSettings{options_.bake_values, options_.bake_given}.over(s->info.bake ? *s->info.bake
                                                                                                       : bo.settings);
-        LANTERN_LOG_INFO("baked light: resolution %d, margin %d, %d rays (%d on faces), %s%s, eps %g, max level %d (%s)",
-                         bo.settings.resolution, bo.settings.margin, bo.settings.rays, bo.settings.face_rays,
+        const std::string density =
+            bo.settings.density.empty() ? "" : " (" + std::to_string(bo.settings.density.size()) + " density regions)";
+        LANTERN_LOG_INFO("baked light: resolution %d%s, margin %d, %d rays (%d on faces), %s%s, eps %g, max level %d (%s)",
+                         bo.settings.resolution, density.c_str(), bo.settings.margin, bo.settings.rays, bo.settings.face_rays,
                          bake::solver_name(bo.settings.solver), bo.settings.directional ? "" : ", non-directional",
                          double(bo.settings.eps), bo.settings.max_level,
                          options_.bake_given.empty() ? (s->info.bake ? "the scene's" : "the game's") : "--bake-* given");

@@ -120,11 +120,16 @@ struct ChunkBake {
     friend bool operator==(const ChunkBake&, const ChunkBake&) = default;
 };
 
+// The settings chunk `chunk` bakes with: `settings` at the chunk's own resolution
+// (BakeSettings::resolution_at, seed 004's texel density per chunk), without the density
+// list, so a chunk's key and bytes depend on its own resolution alone.
+BakeSettings chunk_settings(const BakeSettings& settings, ChunkId chunk);
+
 // Hash of everything the chunk's bake depends on: the solver (name, code version, its
-// settings and the scene's gi settings), the chunk, the walls and materials within reach,
-// and the mixed and baked lights and shadow proxies that reach it.
+// settings at the chunk's resolution and the scene's gi settings), the chunk, the walls and
+// materials within reach, and the mixed and baked lights and shadow proxies that reach it.
 std::uint64_t chunk_key(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings);
-// Solves the chunk (one thread; about a second at the defaults). With `samples`, also what each
+// Solves the chunk at its resolution (chunk_settings; one thread; about a second at the defaults). With `samples`, also what each
 // probe was captured from (chunk_probes^2 entries, empty where no probe is), for measuring the
 // harmonics' order (ProbeOrderError).
 ChunkBake bake_chunk(const scene::Scene& scene, ChunkId chunk, const BakeSettings& settings,
@@ -203,7 +208,10 @@ Result<BakeReport> bake_world(const scene::Scene& scene, const std::string& dir,
 // it (FrameInputs::baked): each chunk's ground and faces laid side by side and stored in
 // seed 002's bricks at `eps`, none coarser than `max_level`. `walls` decides which texels
 // hold light (open ground; the exposed faces of wall tiles). A chunk without baked light
-// (empty) holds zero. All chunks have one resolution (asserted). Empty `chunks`: nullptr.
+// (empty) holds zero. Chunks baked at different resolutions (texel density per chunk) are
+// laid out at the finest one: a coarser chunk's texels are resampled bilinearly, over the
+// texels of its own that hold light in that layer (open ground; the face's exposed wall
+// texels), clamped at its border. Empty `chunks`: nullptr.
 std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,
                                                     float eps = gi::baked_eps, int max_level = gi::brick_levels - 1);
 

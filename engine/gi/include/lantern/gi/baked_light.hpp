@@ -43,8 +43,10 @@ struct BakedLight {
     int level(int layer, glm::vec2 p) const;
 };
 
-// The atlas of dense fields (each width x height texels, layer order as above) at `eps`.
+// The atlas of dense fields (each width x height texels, layer order as above) at `eps`;
+// `finest_level` as build_bricks takes it (coarser chunks' cells).
 BakedLight make_baked_light(glm::ivec2 origin, int resolution, const std::array<Field, baked_layers>& layers,
-                            float eps, std::uint64_t key, int max_level = brick_levels - 1);
+                            float eps, std::uint64_t key, int max_level = brick_levels - 1,
+                            std::span<const std::uint8_t> finest_level = {});
 
 } // namespace lantern::gi

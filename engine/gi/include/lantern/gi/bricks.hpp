@@ -69,9 +69,13 @@ struct BrickAtlas {
 // Bricks go in rows of `bricks_per_row` (0: as square an atlas as fits them). No brick is
 // coarser than `max_level` (seed 002's maxLevel, 0..3).
 BrickAtlas build_bricks(const Field& field, float eps, int bricks_per_row = 0, int max_level = brick_levels - 1);
-// The same for several fields of one size in one atlas (layer k = fields[k]).
+// The same for several fields of one size in one atlas (layer k = fields[k]). With
+// `finest_level` (one value per level-0 cell, row-major, cells_x x cells_y, for every
+// layer): a cell whose field holds no detail finer than level L there (a chunk baked at
+// 1 / 2^L of the grid's resolution: texel density per chunk) is not split below L, whatever
+// its colour range (but never stored coarser than `max_level`).
 BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per_row = 0,
-                        int max_level = brick_levels - 1);
+                        int max_level = brick_levels - 1, std::span<const std::uint8_t> finest_level = {});
 
 // The field of `layer` as the atlas gives it back at grid position (x, y) (texel i's centre
 // at i + 0.5): indirection (nearest), then bilinear between the brick's probes on the stored

@@ -284,6 +284,16 @@ enum class BakeSolver : std::uint8_t { gather, seed002 };
 // A world's bake settings (seed 002's "saved with the world"; the scene file's "bake",
 // docs/scenes.md): lantern-bake and lantern-render --bake start from them, and their
 // command-line options win. Checked by bake::validate_settings.
+// Seed 004's texel density, per chunk: the chunks (x, z) with min <= (x, z) <= max (chunk
+// (x, z) covers the tiles [32 x, 32 x + 32) x [32 z, 32 z + 32)) bake at `resolution` texels
+// a tile instead of the world's (BakeSettings::density: the last region holding a chunk wins).
+struct BakeDensity {
+    glm::ivec2 min{0}, max{0};
+    int resolution = 4; // 1..16
+    friend bool operator==(const BakeDensity&, const BakeDensity&) = default;
+};
+inline constexpr int max_bake_density_regions = 4096;
+
 struct BakeSettings {
     int resolution = 4; // texels per tile, 1..16 (seed 002's finest probe spacing: 1 / resolution tiles)
     int margin = 32;    // tiles around the chunk whose walls reflect or send light into it, 0..64
@@ -300,6 +310,17 @@ struct BakeSettings {
     // up to 2^max_level x 4 probes a side).
     float eps = 0.01f;
     int max_level = 3;
+    // Texel density per chunk (regions of chunks at their own resolution; empty: every chunk
+    // at `resolution`). Sparse caves can bake coarse and a detailed room fine.
+    std::vector<BakeDensity> density{};
+
+    // The resolution chunk (x, z) bakes at: the last density region holding it, else
+    // `resolution`.
+    int resolution_at(int x, int z) const {
+        for (auto r = density.rbegin(); r != density.rend(); ++r)
+            if (x >= r->min.x && x <= r->max.x && z >= r->min.y && z <= r->max.y) return r->resolution;
+        return resolution;
+    }
 
     friend bool operator==(const BakeSettings&, const BakeSettings&) = default;
 };
