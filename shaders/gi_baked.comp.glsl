@@ -3,7 +3,8 @@
 // bilinear read of the RGBM atlas inside the brick): open ground into baked_ground (layer 0),
 // the texels of a wall tile whose face f is exposed into baked_face_f (layer 1 + f, alpha 1
 // at wall texels, as wall_indirect writes), and the HUD's view. The baked pass adds them to
-// the frame's textures (gi_add.comp). C++ reference: engine/gi/src/rows/baked.cpp.
+// the frame's textures (gi_add.comp). With a pulsing part (layers 5..9) its light is added
+// scaled by this frame's pulse. C++ reference: engine/gi/src/rows/baked.cpp.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -11,7 +12,8 @@ struct BakedParams {
     int origin_x, origin_z; // world tile of the baked grid's texel (0, 0)
     int resolution;         // baked grid texels per tile
     int width, height;      // baked grid texels
-    int pad0, pad1;
+    int pulsing;            // 1: layers 5..9 hold the pulsing glow's light (seed 004's pulsing emission)
+    float pulse;            // FrameInputs::baked_pulse, its factor this frame
     float intensity;        // gi.baked_intensity
 };
 #define GI_PASS_PARAMS BakedParams
@@ -50,7 +52,19 @@ vec3 baked_sample(int layer, vec2 p, out float level) {
     // The brick's texel coordinate: probe k's centre at k + 1.5 (the apron is texel 0).
     vec2 t = vec2(brick * 6) + (g - o) / s + 1.0;
     vec4 v = texture(u_atlas, t / vec2(textureSize(u_atlas, 0)));
-    return v.rgb * v.a * RGBM_RANGE * pc.pass.intensity;
+    return v.rgb * v.a * RGBM_RANGE;
+}
+
+// The light the frame takes from `layer` (BakedLight::light): the steady light, plus the
+// pulsing glow's scaled by this frame's pulse, times gi.baked_intensity; `level` the steady
+// layer's brick level + 1.
+vec3 baked_light(int layer, vec2 p, out float level) {
+    vec3 v = baked_sample(layer, p, level);
+    if (pc.pass.pulsing != 0) {
+        float pulse_level;
+        v += pc.pass.pulse * baked_sample(LAYERS + layer, p, pulse_level);
+    }
+    return v * pc.pass.intensity;
 }
 
 void main() {
@@ -67,7 +81,7 @@ void main() {
             ivec2 cell = ivec2(floor(p));
             bool wall = is_wall(cell);
             float level = 0.0;
-            vec3 ground = wall ? vec3(0.0) : baked_sample(0, p, level);
+            vec3 ground = wall ? vec3(0.0) : baked_light(0, p, level);
             o_ground.texels[index] = pack_rgba16f(vec4(ground, 0.0));
             vec4 shown = vec4(ground, level);
             vec4 mask = wall && FACES != 0u ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
@@ -75,7 +89,7 @@ void main() {
             for (int f = 0; f < 4; ++f)
                 if (mask[f] > 0.0) {
                     float face_level;
-                    v[f] = baked_sample(1 + f, p, face_level);
+                    v[f] = baked_light(1 + f, p, face_level);
                     shown.rgb += v[f];
                     if (shown.a == 0.0) shown.a = face_level;
                 }

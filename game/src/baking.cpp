@@ -30,14 +30,23 @@ using systems::floor_div;
 std::uint64_t chunk_id_key(bake::ChunkId c) { return (std::uint64_t(std::uint32_t(c.x)) << 32) | std::uint32_t(c.z); }
 
 bake::CircularHarmonics BakedChunks::probes_at(glm::vec2 p) const {
-    auto probe = [this](int ix, int iz) -> const bake::CircularHarmonics* {
+    // With the pulsing glow in a chunk, its probe is the steady one plus the pulsing one scaled.
+    std::array<bake::CircularHarmonics, 4> summed;
+    int used = 0;
+    auto probe = [&](int ix, int iz) -> const bake::CircularHarmonics* {
         const int tx = ix * bake::probe_spacing, tz = iz * bake::probe_spacing;
         const bake::ChunkId c{floor_div(tx, bake::chunk_tiles), floor_div(tz, bake::chunk_tiles)};
         auto it = chunks.find(chunk_id_key(c));
         if (it == chunks.end() || it->second->empty) return nullptr;
         const int i = (tx - c.x * bake::chunk_tiles) / bake::probe_spacing, j = (tz - c.z * bake::chunk_tiles) / bake::probe_spacing;
         const std::size_t k = std::size_t(j * bake::chunk_probes + i);
-        return it->second->probe_valid[k] ? &it->second->probes[k] : nullptr;
+        const bake::ChunkBake& b = *it->second;
+        if (!b.probe_valid[k]) return nullptr;
+        if (!b.pulses()) return &b.probes[k];
+        bake::CircularHarmonics& h = summed[std::size_t(used++)];
+        h = b.probes[k];
+        h += b.pulse_probes[k] * pulse;
+        return &h;
     };
     return bake::interpolate_probes(probe, p);
 }
@@ -242,7 +251,7 @@ bool WorldBaker::scan(ecs::World& world) {
         h.add_bytes(s.walls.cells.data(), s.walls.cells.size()).add(s.wall_height);
         for (const auto& m : s.materials)
             h.add(m.albedo.r).add(m.albedo.g).add(m.albedo.b).add(m.emission.r).add(m.emission.g).add(m.emission.b)
-                .add(int(m.emission_gi)).add(m.opacity);
+                .add(int(m.emission_gi)).add(m.opacity).add(m.pulse > 0.0f);
         for (double v : scene::gi_setting_values(s.gi)) h.add(v);
         for (const auto& l : s.point_lights) h.add(l.position.x).add(l.position.y).add(l.intensity).add(l.radius).add(int(l.mode)).add(l.color.r).add(l.color.g).add(l.color.b);
         for (const auto& l : s.emissive_lights) h.add(l.position.x).add(l.position.y).add(l.intensity).add(l.radius).add(int(l.mode)).add(l.color.r).add(l.color.g).add(l.color.b);
@@ -262,6 +271,12 @@ void WorldBaker::update(ecs::World& world) {
     BakedChunks& baked = world.resource<BakedChunks>();
     BakeStatus& status = world.resource<BakeStatus>();
     status.enabled = true;
+    // Seed 004's pulsing emission: the pulsing glow's factor at the game's time, for the frame's
+    // baked light and the probes (a colour-only update: nothing is baked again).
+    const float hz = scene::pulse_frequency(world.resource<systems::GiConfig>().materials);
+    const float pulse = world.has_resource<GameClock>() ? scene::pulse_factor(hz, world.resource<GameClock>().time) : 1.0f;
+    world.resource<systems::BakedGi>().pulse = pulse;
+    baked.pulse = pulse;
     status.cache_dir = options_.cache_dir;
     std::vector<std::unique_ptr<Result>> done;
     int pending = 0;
@@ -356,7 +371,7 @@ void add_bake_system(ecs::Schedule& schedule, WorldBaker& baker) {
     schedule.add("bake", [&baker](ecs::SystemContext& ctx) { baker.update(ctx.world); })
         .main_thread()
         .reads<PointLight, EmissiveLight, ShadowProxy, Torch, WallChunk>()
-        .reads_resource<systems::Streaming, systems::GiConfig>()
+        .reads_resource<systems::Streaming, systems::GiConfig, GameClock>()
         .writes_resource<systems::BakedGi, BakedChunks, BakeStatus>();
 }
 

@@ -52,6 +52,7 @@ std::string format_tables(const GameTables& t) {
         w.key(m.name).begin_object(json::Layout::one_line);
         write_vec3(w, "albedo", m.albedo);
         write_vec3(w, "emission", m.emission);
+        w.field("pulse", double(m.pulse));
         w.end();
     }
     w.end();
@@ -93,9 +94,18 @@ Result<GameTables> parse_tables(std::string_view text, const std::string& file_n
                        "unknown material \"" + scene::reading::shorten(member.key) + "\" (the caves have " + names + ")");
                 break;
             }
-            Fields(r, member.value, path, {"albedo", "emission"})
-                .optional("albedo", m->albedo, scene::reading::between(0.0, 1.0))
-                .optional("emission", m->emission, scene::reading::at_least(0.0));
+            Fields mf(r, member.value, path, {"albedo", "emission", "pulse"});
+            mf.optional("albedo", m->albedo, scene::reading::between(0.0, 1.0))
+                .optional("emission", m->emission, scene::reading::at_least(0.0))
+                .optional("pulse", m->pulse, scene::reading::between(0.0, 60.0));
+            if (!r.ok()) break;
+            // Seed 004's pulsing emission: the bake keeps one pulsing part, so one frequency.
+            for (const scene::Material& other : t.materials)
+                if (&other != &*m && other.pulse > 0.0f && m->pulse > 0.0f && other.pulse != m->pulse) {
+                    mf.fail("pulse", "every pulsing material pulses at one frequency (the bake keeps one pulsing part); \"" +
+                                         other.name + "\" pulses at " + scene::reading::format_number(other.pulse) + " Hz");
+                    break;
+                }
             if (!r.ok()) break;
         }
     }

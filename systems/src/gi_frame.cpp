@@ -255,6 +255,7 @@ void GiFrame::add_systems() {
         in.materials.clear();
         for (const scene::Material& m : config.materials) in.materials.push_back(gi::pack_material(m));
         in.baked = w.resource<BakedGi>().light;
+        in.baked_pulse = w.resource<BakedGi>().pulse;
         f.plan = gi::plan_passes(in, config.lit_image);
         // The bounce stepper: a restart starts the converging rows afresh; while they are held,
         // a step advances them by one frame (gpu_submit advances them otherwise).

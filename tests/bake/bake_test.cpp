@@ -1027,3 +1027,86 @@ TEST(BakeAtRunTime, ACoarserChunkIsResampledBilinearlyOverItsLitTexels) {
         EXPECT_LE(std::abs(b.x - a.x), 0.01f + 0.004f) << z;
     }
 }
+
+// Seed 004's pulsing emission: a pulsing material's glow is baked apart from the steady
+// light (the gather is linear in its sources: steady + pulsing equals the bake of the steady
+// world, light by light and probe by probe), keyed apart, kept in the cache file, and the
+// run time's light at pulse p is the steady part plus p times the pulsing part.
+TEST(Bake, APulsingGlowIsBakedApartAndAddsUpToTheSteadyBake) {
+    scene::Scene steady = world(); // the lava wall in chunk (0, 0) glows
+    steady.point_lights.push_back({{20.5f, 20.5f}, 1.0f, {0.8f, 0.9f, 1.0f}, 2.0f, 8.0f, LightMode::baked});
+    scene::Scene pulsing = steady;
+    pulsing.materials[0].pulse = 0.5f;
+    scene::Scene dark = steady;
+    dark.materials[0].emission = glm::vec3(0.0f);
+    BakeSettings b = quick();
+    b.rays = 64;
+    b.face_rays = 32;
+    EXPECT_NE(bake::chunk_key(pulsing, {0, 0}, b), bake::chunk_key(steady, {0, 0}, b));
+    const bake::ChunkBake a = bake::bake_chunk(steady, {0, 0}, b), p = bake::bake_chunk(pulsing, {0, 0}, b),
+                          d = bake::bake_chunk(dark, {0, 0}, b);
+    ASSERT_TRUE(p.pulses());
+    EXPECT_FALSE(a.pulses());
+    // The steady part is the world without the glow, exactly.
+    EXPECT_EQ(p.ground, d.ground);
+    EXPECT_EQ(p.faces, d.faces);
+    EXPECT_EQ(p.probes, d.probes);
+    // Steady + pulsing = the steady world's bake.
+    double err2 = 0.0, ref2 = 0.0, pulse2 = 0.0;
+    auto sum_check = [&](const std::vector<float>& whole, const std::vector<float>& part, const std::vector<float>& pulse) {
+        ASSERT_EQ(whole.size(), pulse.size());
+        for (std::size_t i = 0; i < whole.size(); ++i) {
+            const double e = double(part[i]) + pulse[i] - whole[i];
+            err2 += e * e;
+            ref2 += double(whole[i]) * whole[i];
+            pulse2 += double(pulse[i]) * pulse[i];
+        }
+    };
+    sum_check(a.ground, p.ground, p.pulse_ground);
+    for (int f = 0; f < 4; ++f) sum_check(a.faces[std::size_t(f)], p.faces[std::size_t(f)], p.pulse_faces[std::size_t(f)]);
+    std::printf("steady + pulsing against the steady bake: relative RMS %.2e; the pulsing part holds %.1f %% of the light\n",
+                std::sqrt(err2 / ref2), 100.0 * std::sqrt(pulse2 / ref2));
+    EXPECT_LT(std::sqrt(err2 / ref2), 1e-5);
+    EXPECT_GT(pulse2, 0.01 * ref2) << "the lava's glow is a good part of this chunk's light";
+    EXPECT_LT(pulse2, 0.99 * ref2) << "and the steady light the rest";
+    for (std::size_t k = 0; k < a.probes.size(); ++k)
+        for (std::size_t h = 0; h < a.probes[k].c.size(); ++h)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(p.probes[k].c[h][c] + p.pulse_probes[k].c[h][c], a.probes[k].c[h][c],
+                            1e-5f + 1e-5f * std::abs(a.probes[k].c[h][c]));
+    // A chunk the glow does not reach has no pulsing part.
+    EXPECT_FALSE(bake::bake_chunk(pulsing, {2, 1}, b).pulses());
+    // The cache file keeps both parts (as halves), and a file without one reads as before.
+    TempDir dir;
+    ASSERT_TRUE(bake::save_chunk(dir.path().string(), p).ok());
+    auto back = bake::load_chunk(dir.path().string(), {0, 0}, p.key);
+    ASSERT_TRUE(back);
+    ASSERT_TRUE(back->pulses());
+    for (std::size_t i = 0; i < p.pulse_ground.size(); ++i)
+        ASSERT_NEAR(back->pulse_ground[i], p.pulse_ground[i], 1e-3f * p.pulse_ground[i] + 1e-6f);
+    EXPECT_EQ(back->pulse_probes, p.pulse_probes);
+    EXPECT_EQ(back->probes, p.probes);
+    auto bytes = bytes_of((dir.path() / bake::chunk_file_name({0, 0})).string());
+    bytes.resize(bytes.size() - 1);
+    EXPECT_FALSE(bake::decode_chunk(bytes).ok()) << "a truncated pulsing file is refused";
+    // At run time: the light at pulse 1 is the steady world's, at pulse 0 the dark world's.
+    const bake::ChunkBake* pp[] = {&p};
+    const bake::ChunkBake* ap[] = {&a};
+    const bake::ChunkBake* dp[] = {&d};
+    const gi::WallView walls = gi::WallView::of(steady.walls);
+    auto lp = bake::runtime_light(pp, walls, 0.0f), la = bake::runtime_light(ap, walls, 0.0f), ld = bake::runtime_light(dp, walls, 0.0f);
+    ASSERT_TRUE(lp->pulsing);
+    EXPECT_FALSE(la->pulsing);
+    int checked = 0;
+    for (float z = 1.3f; z < 30.0f; z += 1.7f)
+        for (float x = 1.3f; x < 30.0f; x += 1.7f) {
+            if (steady.walls.is_wall_tile(int(x), int(z))) continue;
+            const glm::vec2 q(x, z);
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(lp->light(0, q, 1.0f)[c], la->sample(0, q)[c], 0.01f + 0.01f * la->sample(0, q)[c]) << x << ", " << z;
+                EXPECT_NEAR(lp->light(0, q, 0.0f)[c], ld->sample(0, q)[c], 0.01f + 0.01f * ld->sample(0, q)[c]) << x << ", " << z;
+            }
+            ++checked;
+        }
+    EXPECT_GT(checked, 200);
+}

@@ -203,6 +203,57 @@ TEST_F(Baked, VulkanEqualsTheReference) {
     }
 }
 
+// Seed 004's pulsing emission at run time: a bake with a pulsing part adds it scaled by the
+// frame's pulse (FrameInputs::baked_pulse), on Vulkan as in the reference; the pulse is in
+// the baked rows' key, so a new pulse reruns them; at pulse 0 the frame is the steady part's.
+TEST_F(Baked, APulsingPartIsAddedScaledByTheFramesPulse) {
+    Scene s = gi_test::comparison_scene("rooms").scene;
+    s.gi.method = lantern::scene::GiMethod::gather;
+    FrameInputs in = inputs_of(s);
+    const glm::ivec2 origin(int(std::floor(in.window.view.min_x)) - 3, int(std::floor(in.window.view.min_z)) - 2);
+    const glm::ivec2 tiles(int(in.window.view.width) + 6, int(in.window.view.height) + 4);
+    in.baked = synthetic_bake(in.walls, origin, tiles, 4, 0.01f, 900, true);
+    ASSERT_TRUE(in.baked->pulsing);
+    std::uint64_t last_key = 0;
+    for (float pulse : {0.0f, 0.37f, 1.0f}) {
+        in.baked_pulse = pulse;
+        const std::uint64_t key = lantern::gi::input_keys_of(in).baked;
+        EXPECT_NE(key, last_key) << "a new pulse reruns the baked rows";
+        last_key = key;
+        compare("pulsing part at " + std::to_string(pulse), in, true);
+    }
+    // The reference at pulse 0 is the steady layers' light alone, and at 0.37 adds 0.37 of the
+    // pulsing layers' (sampled from the same bricks).
+    auto baked_ground = [&](const FrameInputs& f) {
+        lantern::gi::PassPlan plan = lantern::gi::plan_passes(f, false);
+        lantern::gi::ReferenceStore store;
+        lantern::gi::execute_reference(f, plan, plan.run, {}, store);
+        return store.at(lantern::gi::Tex::baked_ground);
+    };
+    in.baked_pulse = 0.0f;
+    const lantern::gi::Texture at0 = baked_ground(in);
+    in.baked_pulse = 0.37f;
+    const lantern::gi::Texture at37 = baked_ground(in);
+    int checked = 0;
+    for (int y = 0; y < in.window.height; y += 7)
+        for (int x = 0; x < in.window.width; x += 7) {
+            const glm::vec2 p = in.window.texel_center(x, y);
+            if (in.walls.is_wall(int(std::floor(p.x)), int(std::floor(p.y)))) continue;
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(at0.at(x, y)[c], in.baked->sample(0, p)[c], 2e-3f);
+                EXPECT_NEAR(at37.at(x, y)[c], in.baked->sample(0, p)[c] + 0.37f * in.baked->sample(lantern::gi::baked_layers, p)[c], 2e-3f);
+            }
+            ++checked;
+        }
+    EXPECT_GT(checked, 20);
+    // A steady bake's key does not follow the pulse.
+    in.baked = synthetic_bake(in.walls, origin, tiles, 4, 0.01f, 901);
+    in.baked_pulse = 0.2f;
+    const std::uint64_t steady = lantern::gi::input_keys_of(in).baked;
+    in.baked_pulse = 0.9f;
+    EXPECT_EQ(lantern::gi::input_keys_of(in).baked, steady);
+}
+
 // An open window (no wall in it): the faces' producer is left out, so the baked row writes
 // the ground's texture over the method's and its faces (zero) itself.
 TEST_F(Baked, AWindowWithoutWallsMatchesTheReference) {

@@ -39,12 +39,14 @@ inline lantern::scene::Scene open_scene(glm::vec2 center, glm::vec2 size, int re
 
 // A smooth, coloured baked light over tiles [origin, origin + tiles) at `res` texels a tile:
 // every layer a different pattern, open where the walls say (as bake::runtime_light does).
+// With `pulsing`, five more layers: a pulsing part (seed 004's pulsing emission).
 inline std::shared_ptr<const lantern::gi::BakedLight> synthetic_bake(const lantern::gi::WallView& walls, glm::ivec2 origin, glm::ivec2 tiles, int res,
-                                                 float eps, std::uint64_t key) {
-    std::array<lantern::gi::Field, lantern::gi::baked_layers> layers;
+                                                 float eps, std::uint64_t key, bool pulsing = false) {
+    std::vector<lantern::gi::Field> layers(std::size_t(lantern::gi::baked_layers * (pulsing ? 2 : 1)));
     static constexpr glm::ivec2 across[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-    for (int l = 0; l < lantern::gi::baked_layers; ++l) {
-        lantern::gi::Field& f = layers[std::size_t(l)];
+    for (int layer = 0; layer < int(layers.size()); ++layer) {
+        const int l = layer % lantern::gi::baked_layers;
+        lantern::gi::Field& f = layers[std::size_t(layer)];
         f = lantern::gi::Field(tiles.x * res, tiles.y * res);
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) {
@@ -54,9 +56,9 @@ inline std::shared_ptr<const lantern::gi::BakedLight> synthetic_bake(const lante
                 f.air[i] = l == 0 ? !wall
                                   : wall && !walls.is_wall(tile.x + across[l - 1].x, tile.y + across[l - 1].y);
                 const float u = float(x) / float(res), v = float(y) / float(res);
-                f.rgb[i * 3 + 0] = 0.6f + 0.5f * std::sin(0.31f * u + float(l));
-                f.rgb[i * 3 + 1] = 0.4f + 0.3f * std::cos(0.23f * v - 0.5f * float(l));
-                f.rgb[i * 3 + 2] = 0.05f * float(l + 1) + 0.02f * u;
+                f.rgb[i * 3 + 0] = 0.6f + 0.5f * std::sin(0.31f * u + float(layer));
+                f.rgb[i * 3 + 1] = 0.4f + 0.3f * std::cos(0.23f * v - 0.5f * float(layer));
+                f.rgb[i * 3 + 2] = 0.05f * float(layer + 1) + 0.02f * u;
             }
     }
     return std::make_shared<const lantern::gi::BakedLight>(lantern::gi::make_baked_light(origin, res, layers, eps, key));

@@ -720,6 +720,15 @@ TEST(SceneLoader, TheWorldKeepsItsBakeSettings) {
     EXPECT_EQ(d.bake.resolution_at(2, -1), 8);
     EXPECT_EQ(d.bake.resolution_at(4, 0), 2); // in no region: the world's
     EXPECT_EQ(d.bake.resolution_at(0, -1), 2);
+    // Seed 004's pulsing emission.
+    const Scene p = parse_scene_ok(R"({"lantern_scene": 1, "world": {"rows": ["#L."]}, "view": {"center": [1, 0]},
+        "materials": [{"name": "lava", "emission": [1, 0.3, 0], "pulse": 0.25, "symbol": "L"}]})");
+    EXPECT_EQ(p.materials[0].pulse, 0.25f);
+    EXPECT_EQ(pulse_frequency(p.materials), 0.25f);
+    EXPECT_FLOAT_EQ(pulse_factor(0.25f, 0.0), 1.0f);
+    EXPECT_NEAR(pulse_factor(0.25f, 2.0), 0.0f, 1e-6f);
+    EXPECT_NEAR(pulse_factor(0.25f, 1.0), 0.5f, 1e-6f);
+    EXPECT_EQ(pulse_factor(0.0f, 1.0), 1.0f);
     EXPECT_EQ(parse_scene_ok(R"({"lantern_scene": 1, "world": {"rows": ["#."]}, "view": {"center": [1, 0]}})").bake,
               BakeSettings{});
 }
@@ -795,6 +804,12 @@ INSTANTIATE_TEST_SUITE_P(
         SceneErrorCase{scene_with(R"("shadow_proxies": [{"position": [1, 1], "static": 1}])"),
                        "t.json:2:51: shadow_proxies[0].static: expected true or false, got a number"},
         SceneErrorCase{scene_with(R"("bake": {"resolution": 17})"), "t.json:2:24: bake.resolution: must be an integer in [1, 16], got 17"},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "emission": [1, 0, 0], "gi": "realtime", "pulse": 1}])"),
+                       "t.json:2:79: materials[0].pulse: only a baked glow pulses (\"gi\": \"baked\"): its light is baked apart and scaled at run time"},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "pulse": 1}, {"name": "b", "pulse": 2}])"),
+                       "t.json:2:65: materials[1].pulse: every pulsing material pulses at one frequency (the bake keeps one pulsing part); \"a\" pulses at 1 Hz"},
+        SceneErrorCase{scene_with(R"("materials": [{"name": "a", "pulse": 61}])"),
+                       "t.json:2:38: materials[0].pulse: must be in [0, 60], got 61"},
         SceneErrorCase{scene_with(R"("bake": {"density": [{"min": [0, 0], "max": [1, 1], "resolution": 0}]})"),
                        "t.json:2:67: bake.density[0].resolution: must be an integer in [1, 16], got 0"},
         SceneErrorCase{scene_with(R"("bake": {"density": [{"min": [2, 0], "max": [1, 1], "resolution": 2}]})"),

@@ -70,13 +70,24 @@ Light as_solved(Light l, Lights which) {
     return l;
 }
 
+// Which glow a solve carries (seed 004's pulsing emission is baked apart): the steady
+// materials' with the lights, or the pulsing materials' alone, without any light.
+enum class Glow { steady, pulsing };
+
 // The scene without its walls (the solve views the caller's), with the lights `which`
 // keeps, the static shadow proxies and the bake's gi settings.
-scene::Scene lights_of(const scene::Scene& s, const BakeSettings& b, Lights which) {
+scene::Scene lights_of(const scene::Scene& s, const BakeSettings& b, Lights which, Glow glow = Glow::steady) {
     scene::Scene out;
     out.wall_height = s.wall_height;
     out.gi = bake_gi(s, b);
     out.view = s.view;
+    out.materials = s.materials;
+    for (scene::Material& m : out.materials) // realtime glow stays live: the bake leaves it out
+        if (m.emission_gi == scene::EmissionGi::realtime || (m.pulse > 0.0f) != (glow == Glow::pulsing))
+            m.emission = glm::vec3(0.0f);
+    for (const auto& p : s.shadow_proxies) // seed 004's static flag: moving proxies shadow the live light only
+        if (p.is_static) out.shadow_proxies.push_back(p);
+    if (glow == Glow::pulsing) return out;
     for (const auto& l : s.point_lights)
         if (keeps(l.mode, which)) out.point_lights.push_back(as_solved(l, which));
     for (const auto& l : s.emissive_lights)
@@ -86,24 +97,20 @@ scene::Scene lights_of(const scene::Scene& s, const BakeSettings& b, Lights whic
     for (const auto& l : s.directional_lights)
         if (keeps(l.mode == LightMode::mixed ? LightMode::realtime : l.mode, which))
             out.directional_lights.push_back(as_solved(l, which));
-    // Seed 004's static flag: moving proxies shadow the live light only.
-    for (const auto& p : s.shadow_proxies)
-        if (p.is_static) out.shadow_proxies.push_back(p);
-    out.materials = s.materials;
-    for (scene::Material& m : out.materials) // realtime glow stays live: the bake leaves it out
-        if (m.emission_gi == scene::EmissionGi::realtime) m.emission = glm::vec3(0.0f);
     return out;
 }
 
 struct ChunkProblem {
     gi::GiWindow window;
     glm::ivec2 offset{0};  // window texel of the chunk's texel (0, 0)
-    gi::FrameInputs bounce; // mixed and baked lights, the glow of materials
+    gi::FrameInputs bounce; // mixed and baked lights, the glow of steady materials
     gi::FrameInputs direct; // baked lights
+    std::optional<gi::FrameInputs> pulse; // the glow of pulsing materials alone (when the scene has any)
 };
 
-gi::FrameInputs inputs_for(const scene::Scene& s, const BakeSettings& b, Lights which, const gi::GiWindow& w) {
-    gi::FrameInputs in = gi::gather_frame_inputs(lights_of(s, b, which), w);
+gi::FrameInputs inputs_for(const scene::Scene& s, const BakeSettings& b, Lights which, const gi::GiWindow& w,
+                           Glow glow = Glow::steady) {
+    gi::FrameInputs in = gi::gather_frame_inputs(lights_of(s, b, which, glow), w);
     in.walls = gi::WallView::of(s.walls);
     return in;
 }
@@ -118,6 +125,7 @@ ChunkProblem make_problem(const scene::Scene& s, ChunkId c, const BakeSettings& 
                 int(std::lround((float(c.z * chunk_tiles) - w->view.min_z) * float(b.resolution)))};
     p.bounce = inputs_for(s, b, Lights::bounce, p.window);
     p.direct = inputs_for(s, b, Lights::direct, p.window);
+    if (scene::pulse_frequency(s.materials) > 0.0f) p.pulse = inputs_for(s, b, Lights::bounce, p.window, Glow::pulsing);
     return p;
 }
 
@@ -219,13 +227,13 @@ struct BounceField {
 
 // The light probe at `pos`: the bounce solve's radiance by rays (`field`, after the solve;
 // none without one) and the baked lights' direct light as point sources.
-CircularHarmonics capture_probe(const ChunkProblem& p, const BounceField* field,
+CircularHarmonics capture_probe(const gi::FrameInputs& bounce, const BounceField* field,
                                 const std::vector<SingleSource>& sources, glm::vec2 pos, int rays,
                                 ProbeSamples* samples = nullptr) {
     constexpr float two_pi = 6.28318531f;
     CircularHarmonics h;
     if (field) {
-        const gi::GatherFrame f = gi::gather_frame(p.bounce);
+        const gi::GatherFrame f = gi::gather_frame(bounce);
         const glm::vec2 rel = (pos - glm::vec2(f.origin_tile)) * float(gi::gather_unit);
         const glm::ivec2 fixed(int(std::lround(rel.x)), int(std::lround(rel.y)));
         const glm::ivec2 cell = fixed / gi::gather_unit; // inside the window: non-negative
@@ -233,11 +241,11 @@ CircularHarmonics capture_probe(const ChunkProblem& p, const BounceField* field,
         for (int k = 0; k < rays; ++k) {
             const int index = (k * 4096) / rays;
             const glm::ivec2 d = dirs[std::size_t(index)];
-            const gi::GatherHit hit = gi::gather_trace(p.bounce, f, fixed, cell, d);
+            const gi::GatherHit hit = gi::gather_trace(bounce, f, fixed, cell, d);
             if (hit.face < 0) continue;
             const gi::GatherWeighting& w = field->weighting;
             const glm::vec3 radiance =
-                gi::gather_radiosity(p.bounce, field->direct, field->faces, hit.face, hit.texel, w.ambient) *
+                gi::gather_radiosity(bounce, field->direct, field->faces, hit.face, hit.texel, w.ambient) *
                 (0.5f * w.weight(hit.distance(d)));
             h.add_ray(two_pi * float(index) / 4096.0f, radiance, two_pi / float(rays));
             if (samples) samples->add(two_pi * float(index) / 4096.0f, radiance * (two_pi / float(rays)));
@@ -356,6 +364,7 @@ std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& wo
     h.add(s.wall_height);
     hash_inputs(h, p.bounce);
     hash_inputs(h, p.direct);
+    if (p.pulse) hash_inputs(h, *p.pulse);
     // The walls the light can meet: the window and every light's reach around it.
     const int reach = std::max(wall_reach(p.bounce), wall_reach(p.direct));
     const glm::ivec2 lo(int(std::floor(p.window.view.min_x)), int(std::floor(p.window.view.min_z)));
@@ -377,47 +386,60 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& world
     // Seed 002's ambient fill lights every wall: then every chunk with a wall in reach bakes.
     const bool bounce = has_light(p.bounce) || glows_in(p.bounce) || (seed002 && b.ambient > 0.0f);
     const bool direct = has_light(p.direct);
-    if (!bounce && !direct) return out; // no baked light reaches the chunk
+    const bool pulse = p.pulse && glows_in(*p.pulse);
+    if (!bounce && !direct && !pulse) return out; // no baked light reaches the chunk
     out.empty = false;
     out.probes.assign(std::size_t(chunk_probes * chunk_probes), CircularHarmonics{});
     out.probe_valid.assign(out.probes.size(), 0);
     const int side = out.side();
-    gi::ReferenceStore store;
-    BounceField field;
-    if (bounce && !seed002) {
-        // The gather converged (the live method's frames x bounces, in one frame).
-        gi::Convergence convergence;
-        for (int f = 0; f < p.bounce.settings.gather.frames; ++f) {
-            gi::PassPlan plan = gi::plan_passes(p.bounce, false);
-            gi::derive_keys(p.bounce, plan, gi::input_keys_of(p.bounce), &convergence);
-            gi::execute_reference(p.bounce, plan, plan.run, {}, store);
-            convergence.advance(plan.run);
+    // One bounce solve (the steady light, or the pulsing glow alone): its ground and faces
+    // cropped to the chunk, and the probes' rays into it (with `sources`, the baked lights'
+    // direct light too).
+    auto solve = [&](const gi::FrameInputs& in, float ambient, std::vector<float>& ground, std::array<std::vector<float>, 4>& faces,
+                     std::vector<CircularHarmonics>& probes, const std::vector<SingleSource>& sources, bool any, bool keep_samples) {
+        gi::ReferenceStore store;
+        BounceField field;
+        if (any && !seed002) {
+            // The gather converged (the live method's frames x bounces, in one frame).
+            gi::Convergence convergence;
+            for (int f = 0; f < in.settings.gather.frames; ++f) {
+                gi::PassPlan plan = gi::plan_passes(in, false);
+                gi::derive_keys(in, plan, gi::input_keys_of(in), &convergence);
+                gi::execute_reference(in, plan, plan.run, {}, store);
+                convergence.advance(plan.run);
+            }
+            for (int face = 0; face < 4; ++face)
+                field.direct[std::size_t(face)] = store.find(gi::Tex(int(gi::Tex::wall_direct_px) + face));
+            field.faces = store.find(gi::gather_face_target(in.settings.gather.bounces - 1));
+        } else if (any) {
+            BakeSettings with = b;
+            with.ambient = ambient;
+            solve_seed002(in, with, store);
+            for (int face = 0; face < 4; ++face)
+                field.direct[std::size_t(face)] = store.find(gi::Tex(int(gi::Tex::wall_direct_px) + face));
+            field.weighting = {b.falloff, ambient};
         }
-        for (int face = 0; face < 4; ++face)
-            field.direct[std::size_t(face)] = store.find(gi::Tex(int(gi::Tex::wall_direct_px) + face));
-        field.faces = store.find(gi::gather_face_target(p.bounce.settings.gather.bounces - 1));
-    } else if (bounce) {
-        solve_seed002(p.bounce, b, store);
-        for (int face = 0; face < 4; ++face)
-            field.direct[std::size_t(face)] = store.find(gi::Tex(int(gi::Tex::wall_direct_px) + face));
-        field.weighting = {b.falloff, b.ambient};
-    }
-    out.ground = crop(store.find(gi::Tex::indirect), p, side);
-    for (int f = 0; f < 4; ++f)
-        out.faces[std::size_t(f)] = crop(store.find(gi::Tex(int(gi::Tex::wall_indirect_px) + f)), p, side);
+        ground = crop(store.find(gi::Tex::indirect), p, side);
+        for (int f = 0; f < 4; ++f)
+            faces[std::size_t(f)] = crop(store.find(gi::Tex(int(gi::Tex::wall_indirect_px) + f)), p, side);
+        probes.assign(std::size_t(chunk_probes * chunk_probes), CircularHarmonics{});
+        for (int j = 0; j < chunk_probes; ++j)
+            for (int i = 0; i < chunk_probes; ++i) {
+                const glm::ivec2 tile(c.x * chunk_tiles + i * probe_spacing, c.z * chunk_tiles + j * probe_spacing);
+                if (s.walls.is_wall_tile(tile.x, tile.y)) continue;
+                const std::size_t k = std::size_t(j * chunk_probes + i);
+                probes[k] = capture_probe(in, any ? &field : nullptr, sources, glm::vec2(tile) + 0.5f, b.rays,
+                                          samples && keep_samples ? &(*samples)[k] : nullptr);
+                if (!b.directional) // seed 004's non-directional bake: the fluence alone
+                    for (std::size_t h = 1; h < probes[k].c.size(); ++h) probes[k].c[h] = glm::vec3(0.0f);
+                out.probe_valid[k] = 1;
+            }
+    };
     // Light probes: rays into the bounce solve, the baked lights as point sources.
-    const std::vector<SingleSource> sources = single_sources(p.direct);
-    for (int j = 0; j < chunk_probes; ++j)
-        for (int i = 0; i < chunk_probes; ++i) {
-            const glm::ivec2 tile(c.x * chunk_tiles + i * probe_spacing, c.z * chunk_tiles + j * probe_spacing);
-            if (s.walls.is_wall_tile(tile.x, tile.y)) continue;
-            const std::size_t k = std::size_t(j * chunk_probes + i);
-            out.probes[k] = capture_probe(p, bounce ? &field : nullptr, sources, glm::vec2(tile) + 0.5f, b.rays,
-                                          samples ? &(*samples)[k] : nullptr);
-            if (!b.directional) // seed 004's non-directional bake: the fluence alone
-                for (std::size_t h = 1; h < out.probes[k].c.size(); ++h) out.probes[k].c[h] = glm::vec3(0.0f);
-            out.probe_valid[k] = 1;
-        }
+    solve(p.bounce, b.ambient, out.ground, out.faces, out.probes, single_sources(p.direct), bounce, true);
+    // Seed 004's pulsing emission: the pulsing glow's light alone, scaled at run time (no
+    // ambient fill: the steady part holds it once).
+    if (pulse) solve(*p.pulse, 0.0f, out.pulse_ground, out.pulse_faces, out.pulse_probes, {}, true, false);
     // Direct light of the baked lights, exactly as the live direct passes compute it.
     if (direct) {
         gi::DirectTextures d = gi::reference_direct(p.direct);

@@ -1,7 +1,8 @@
 // Chunk cache files (bake.hpp, docs/baked.md "Cache files"). Layout, little-endian:
 //   char[8]  magic "LGIBAKE\0"
 //   u32      file format version (file_format_version)
-//   u32      flags: 1 = holds textures (else an empty chunk: no payload)
+//   u32      flags: 1 = holds textures (else an empty chunk: no payload); 2 = also holds a
+//            pulsing part (with 1 only)
 //   u64      key (chunk_key)
 //   i32 x 3  chunk x, chunk z, resolution (texels per tile)
 //   u32      reserved, 0
@@ -9,7 +10,8 @@
 //   u64      hash of the payload (inflated)
 //   u64      stored bytes: the payload deflated (zlib), what follows the header
 //   payload  ground, then faces +X, -X, +Z, -Z: (32 x resolution)^2 texels x RGB, IEEE half;
-//            then 16 x 16 light probes: 5 x RGB float32 each, then one validity byte each
+//            then 16 x 16 light probes: 5 x RGB float32 each, then one validity byte each;
+//            with flag 2, then the pulsing part's ground, faces and probes alike (no validity)
 // The payload's size follows from the resolution, so a file cannot make the reader inflate
 // more than the largest chunk (resolution 16).
 #include "lantern/bake/bake.hpp"
@@ -51,9 +53,10 @@ T get(const std::uint8_t* p) {
 constexpr std::size_t probe_count = std::size_t(chunk_probes) * std::size_t(chunk_probes);
 constexpr std::size_t probe_floats = 5 * 3;
 
-std::size_t payload_bytes(int resolution) {
+std::size_t payload_bytes(int resolution, bool pulse = false) {
     const std::size_t side = std::size_t(chunk_tiles) * std::size_t(resolution);
-    return side * side * 3 * sizeof(std::uint16_t) * texture_count + probe_count * (probe_floats * sizeof(float) + 1);
+    const std::size_t part = side * side * 3 * sizeof(std::uint16_t) * texture_count + probe_count * probe_floats * sizeof(float);
+    return part + probe_count + (pulse ? part : 0);
 }
 
 } // namespace
@@ -65,17 +68,25 @@ std::string chunk_file_name(ChunkId c) {
 std::vector<std::byte> encode_chunk(const ChunkBake& b) {
     std::vector<std::byte> payload;
     if (!b.empty) {
-        payload.reserve(payload_bytes(b.resolution));
+        payload.reserve(payload_bytes(b.resolution, b.pulses()));
         auto halves = [&](const std::vector<float>& v) {
             // Above half's range (65504) a texel is clamped: light that bright is white anyway.
             for (float f : v) put(payload, std::uint16_t(glm::packHalf1x16(std::min(f, 65504.0f))));
         };
+        auto floats = [&](const std::vector<CircularHarmonics>& probes) {
+            for (const CircularHarmonics& h : probes)
+                for (const glm::vec3& v : h.c)
+                    for (int k = 0; k < 3; ++k) put(payload, v[k]);
+        };
         halves(b.ground);
         for (const auto& f : b.faces) halves(f);
-        for (const CircularHarmonics& h : b.probes)
-            for (const glm::vec3& v : h.c)
-                for (int k = 0; k < 3; ++k) put(payload, v[k]);
+        floats(b.probes);
         for (std::uint8_t valid : b.probe_valid) put(payload, valid);
+        if (b.pulses()) {
+            halves(b.pulse_ground);
+            for (const auto& f : b.pulse_faces) halves(f);
+            floats(b.pulse_probes);
+        }
     }
     // Deflated: zero texels in rock and halves with low bits zero compress 5-17x.
     std::vector<std::byte> stored;
@@ -91,7 +102,7 @@ std::vector<std::byte> encode_chunk(const ChunkBake& b) {
     out.reserve(header_bytes + stored.size());
     out.insert(out.end(), reinterpret_cast<const std::byte*>(magic), reinterpret_cast<const std::byte*>(magic) + 8);
     put(out, file_format_version);
-    put(out, std::uint32_t(b.empty ? 0 : 1));
+    put(out, std::uint32_t(b.empty ? 0 : b.pulses() ? 3 : 1));
     put(out, b.key);
     put(out, std::int32_t(b.id.x));
     put(out, std::int32_t(b.id.z));
@@ -120,10 +131,11 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
     const auto size = get<std::uint64_t>(p + 40);
     const auto hash = get<std::uint64_t>(p + 48);
     const auto stored = get<std::uint64_t>(p + 56);
-    if (flags > 1 || get<std::uint32_t>(p + 36) != 0) return make_error("unknown flags");
+    if ((flags != 0 && flags != 1 && flags != 3) || get<std::uint32_t>(p + 36) != 0) return make_error("unknown flags");
     if (b.resolution < 1 || b.resolution > 16) return make_error("resolution " + std::to_string(b.resolution));
     b.empty = flags == 0;
-    const std::uint64_t expected = b.empty ? 0 : payload_bytes(b.resolution);
+    const bool pulse = flags == 3;
+    const std::uint64_t expected = b.empty ? 0 : payload_bytes(b.resolution, pulse);
     if (size != expected || bytes.size() - header_bytes != stored || (stored == 0) != (expected == 0))
         return make_error("sizes do not match (" + std::to_string(bytes.size()) + " bytes, " + std::to_string(stored) +
                           " stored after the header, payload " + std::to_string(size) + " for " +
@@ -141,29 +153,39 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
     if (Hasher().add_bytes(payload, std::size_t(size)).value() != hash) return make_error("damaged (hash mismatch)");
     if (b.empty) return b;
     const std::size_t n = std::size_t(b.side()) * std::size_t(b.side()) * 3;
-    auto read = [&](std::vector<float>& v, std::size_t index) {
-        v.resize(n);
-        const std::uint8_t* at = payload + index * n * sizeof(std::uint16_t);
-        for (std::size_t i = 0; i < n; ++i) v[i] = glm::unpackHalf1x16(get<std::uint16_t>(at + i * 2));
+    // One part (textures, then probes) from `at`; false on a bad value.
+    auto read_part = [&](const std::uint8_t* at, std::vector<float>& ground, std::array<std::vector<float>, 4>& faces,
+                         std::vector<CircularHarmonics>& probes) -> std::optional<std::string> {
+        auto read = [&](std::vector<float>& v, std::size_t index) {
+            v.resize(n);
+            const std::uint8_t* t = at + index * n * sizeof(std::uint16_t);
+            for (std::size_t i = 0; i < n; ++i) v[i] = glm::unpackHalf1x16(get<std::uint16_t>(t + i * 2));
+        };
+        read(ground, 0);
+        for (std::size_t f = 0; f < 4; ++f) read(faces[f], f + 1);
+        for (const auto* v : {&ground, &faces[0], &faces[1], &faces[2], &faces[3]})
+            for (float x : *v)
+                if (!std::isfinite(x) || x < 0.0f) return "holds a negative or non-finite value";
+        const std::uint8_t* floats = at + texture_count * n * sizeof(std::uint16_t);
+        probes.resize(probe_count);
+        for (std::size_t i = 0; i < probe_count; ++i)
+            for (std::size_t k = 0; k < probe_floats; ++k) {
+                const float x = get<float>(floats + (i * probe_floats + k) * sizeof(float));
+                if (!std::isfinite(x)) return "holds a non-finite probe";
+                probes[i].c[k / 3][int(k % 3)] = x;
+            }
+        return std::nullopt;
     };
-    read(b.ground, 0);
-    for (std::size_t f = 0; f < 4; ++f) read(b.faces[f], f + 1);
-    for (const auto* v : {&b.ground, &b.faces[0], &b.faces[1], &b.faces[2], &b.faces[3]})
-        for (float x : *v)
-            if (!std::isfinite(x) || x < 0.0f) return make_error("holds a negative or non-finite value");
-    const std::uint8_t* probes = payload + texture_count * n * sizeof(std::uint16_t);
-    b.probes.resize(probe_count);
+    const std::size_t part = texture_count * n * sizeof(std::uint16_t) + probe_count * probe_floats * sizeof(float);
+    if (auto bad = read_part(payload, b.ground, b.faces, b.probes)) return make_error(*bad);
     b.probe_valid.resize(probe_count);
-    for (std::size_t i = 0; i < probe_count; ++i)
-        for (std::size_t k = 0; k < probe_floats; ++k) {
-            const float x = get<float>(probes + (i * probe_floats + k) * sizeof(float));
-            if (!std::isfinite(x)) return make_error("holds a non-finite probe");
-            b.probes[i].c[k / 3][int(k % 3)] = x;
-        }
     for (std::size_t i = 0; i < probe_count; ++i) {
-        b.probe_valid[i] = probes[probe_count * probe_floats * sizeof(float) + i];
+        b.probe_valid[i] = payload[part + i];
         if (b.probe_valid[i] > 1) return make_error("holds a probe flag other than 0 or 1");
     }
+    if (pulse)
+        if (auto bad = read_part(payload + part + probe_count, b.pulse_ground, b.pulse_faces, b.pulse_probes))
+            return make_error("pulsing part " + *bad);
     return b;
 }
 
@@ -176,7 +198,7 @@ std::optional<ChunkBake> load_chunk(const std::string& dir, ChunkId c, std::uint
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return fail("missing");
     // Deflate never grows data by more than 0.03 % plus a few bytes (compressBound).
-    auto bytes = read_binary_file(path, header_bytes + payload_bytes(16) + payload_bytes(16) / 1000 + 64);
+    auto bytes = read_binary_file(path, header_bytes + payload_bytes(16, true) + payload_bytes(16, true) / 1000 + 64);
     if (!bytes) return fail(bytes.error().message);
     auto b = decode_chunk(*bytes);
     if (!b) return fail(b.error().message);

@@ -115,19 +115,26 @@ BakeSettings GivenSettings::over(const BakeSettings& world) const {
 
 namespace {
 
-// Which texels of layer `layer` hold light (open ground; the faces a wall tile shows).
+// Which texels of layer `layer` hold light (open ground; the faces a wall tile shows; the
+// pulsing layers baked_layers + k as layer k).
 bool holds_light(const gi::WallView& walls, int layer, glm::ivec2 tile) {
     static constexpr glm::ivec2 across[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    layer %= gi::baked_layers;
     const bool wall = walls.is_wall(tile.x, tile.y);
     if (layer == 0) return !wall;
     const glm::ivec2 a = across[layer - 1];
     return wall && !walls.is_wall(tile.x + a.x, tile.y + a.y);
 }
 
-// A chunk's texel (x, y) (of `side` a row) of layer `layer` (0: ground, 1 + f: face f).
+// A chunk's texel (x, y) (of `side` a row) of layer `layer` (0: ground, 1 + f: face f;
+// baked_layers + k: the pulsing part's layer k, which the chunk must have).
 const float* texel_of(const ChunkBake& c, int layer, int x, int y) {
     const std::size_t i = (std::size_t(y) * std::size_t(c.side()) + std::size_t(x)) * 3;
-    return (layer == 0 ? c.ground : c.faces[std::size_t(layer - 1)]).data() + i;
+    const bool pulse = layer >= gi::baked_layers;
+    const int k = layer % gi::baked_layers;
+    const std::vector<float>& v = k == 0 ? (pulse ? c.pulse_ground : c.ground)
+                                         : (pulse ? c.pulse_faces : c.faces)[std::size_t(k - 1)];
+    return v.data() + i;
 }
 
 // Chunk `c`'s light at the centre of texel (x, y) of a grid of `res` texels a tile over it,
@@ -176,7 +183,9 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
     const int side = chunk_tiles * res;
     const glm::ivec2 chunks_wide = hi - lo + 1;
     const int width = chunks_wide.x * side, height = chunks_wide.y * side;
-    std::array<gi::Field, gi::baked_layers> layers;
+    // With any chunk's pulsing part, five more layers hold the pulsing glow's light.
+    const bool pulsing = std::any_of(chunks.begin(), chunks.end(), [](const ChunkBake* c) { return !c->empty && c->pulses(); });
+    std::vector<gi::Field> layers(std::size_t(pulsing ? 2 * gi::baked_layers : gi::baked_layers));
     for (gi::Field& f : layers) f = gi::Field(width, height);
     for (const ChunkBake* c : chunks) {
         const glm::ivec2 at = (glm::ivec2(c->id.x, c->id.z) - lo) * side;
@@ -185,10 +194,10 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
             for (int x = 0; x < side; ++x) {
                 const std::size_t dst = std::size_t(at.y + y) * std::size_t(width) + std::size_t(at.x + x);
                 const glm::ivec2 tile(c->id.x * chunk_tiles + x / res, c->id.z * chunk_tiles + y / res);
-                for (int layer = 0; layer < gi::baked_layers; ++layer) {
+                for (int layer = 0; layer < int(layers.size()); ++layer) {
                     gi::Field& field = layers[std::size_t(layer)];
                     field.air[dst] = holds_light(walls, layer, tile) ? 1 : 0;
-                    if (c->empty) continue; // no baked light reaches it: zero
+                    if (c->empty || (layer >= gi::baked_layers && !c->pulses())) continue; // no such light reaches it: zero
                     glm::vec3 v;
                     if (coarser) {
                         v = resample(*c, walls, layer, res, x, y);

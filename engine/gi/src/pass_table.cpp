@@ -393,7 +393,7 @@ InputKeys input_keys_of(const FrameInputs& in) {
     k.mixed = Hasher().add_span(std::span(in.mixed_lights)).add_span(std::span(in.mixed_emissives)).value();
     k.proxies = Hasher().add_span(std::span(in.proxies)).value();
     k.suns = Hasher().add_span(std::span(in.directional_lights)).value();
-    k.baked = in.baked ? in.baked->key : 0;
+    k.baked = !in.baked ? 0 : in.baked->pulsing ? Hasher().add(in.baked->key).add(in.baked_pulse).value() : in.baked->key;
     return k;
 }
 

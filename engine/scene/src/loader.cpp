@@ -295,14 +295,28 @@ void read_materials(Reader& reader, const Fields& top, std::vector<Material>& ou
         const std::string path = reading::index_path("materials", i);
         Material m;
         std::string symbol;
-        Fields fields(reader, items[i], path, {"name", "albedo", "emission", "gi", "opacity", "symbol"});
+        Fields fields(reader, items[i], path, {"name", "albedo", "emission", "gi", "opacity", "pulse", "symbol"});
         fields.required("name", m.name)
             .optional("albedo", m.albedo, between(0.0, 1.0))
             .optional("emission", m.emission, at_least(0.0))
             .optional("gi", m.emission_gi, emission_gi_modes)
             .optional("opacity", m.opacity, between(0.0, 1.0))
+            .optional("pulse", m.pulse, between(0.0, 60.0))
             .optional("symbol", symbol);
         if (!reader.ok()) return;
+        if (m.pulse > 0.0f) {
+            if (m.emission_gi != EmissionGi::baked) {
+                fields.fail("pulse", "only a baked glow pulses (\"gi\": \"baked\"): its light is baked apart and "
+                                     "scaled at run time");
+                return;
+            }
+            for (const Material& earlier : out)
+                if (earlier.pulse > 0.0f && earlier.pulse != m.pulse) {
+                    fields.fail("pulse", "every pulsing material pulses at one frequency (the bake keeps one pulsing "
+                                         "part); \"" + earlier.name + "\" pulses at " + reading::format_number(earlier.pulse) + " Hz");
+                    return;
+                }
+        }
         const bool word = !m.name.empty() && m.name.size() <= 64 &&
                           std::all_of(m.name.begin(), m.name.end(), [](char c) {
                               return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||

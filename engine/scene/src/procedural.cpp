@@ -38,7 +38,7 @@ std::vector<Material> cave_materials() {
     // Emission in the transport model's units: a lava wall seen over half the horizon gives
     // the ground about pi / 2 x 0.5 = 0.8 of fluence, a torch's light at a few tiles.
     return {{"lava", {0.35f, 0.12f, 0.05f}, {0.5f, 0.17f, 0.04f}},
-            {"crystal", {0.45f, 0.55f, 0.8f}, {0.06f, 0.14f, 0.35f}}};
+            {"crystal", {0.45f, 0.55f, 0.8f}, {0.06f, 0.14f, 0.35f}, EmissionGi::baked, 1.0f, crystal_pulse_hz}};
 }
 
 std::uint8_t cave_cell(int x, int z, const CaveParams& p) {

@@ -98,6 +98,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
                 const float e = std::max({m.emission.r, m.emission.g, m.emission.b});
                 color = e > 0.0f ? m.emission / e : m.albedo;
                 emissive = e > 0.0f ? std::clamp(3.0f * e, 0.6f, 1.5f) : 0.0f;
+                emissive *= scene::pulse_factor(m.pulse, ctx.time); // seed 004's pulsing emission (1 when steady)
             }
             out.boxes.push_back(box({float(x) + 0.5f, h * 0.5f, float(z) + 0.5f}, {0.5f, h * 0.5f, 0.5f}, color,
                                     Material::wall, emissive, float(mask)));

@@ -112,7 +112,9 @@ const char* sample_not_needed(const FrameInputs& in, bool, bool) {
 }
 
 struct SampleParams {
-    std::int32_t origin_x = 0, origin_z = 0, resolution = 0, width = 0, height = 0, pad0 = 0, pad1 = 0;
+    std::int32_t origin_x = 0, origin_z = 0, resolution = 0, width = 0, height = 0;
+    std::int32_t pulsing = 0; // the atlas holds the pulsing part (layers 5..9)
+    float pulse = 1.0f;       // FrameInputs::baked_pulse
     float intensity = 1.0f;
 };
 
@@ -196,7 +198,7 @@ void record_sample(PassRecorder& r) {
     r.cmd.push_descriptors(writes);
     auto p = r.params<SampleParams>(w.width, w.height);
     p.pass = {.origin_x = b.origin.x, .origin_z = b.origin.y, .resolution = b.resolution, .width = b.width, .height = b.height,
-              .intensity = in.settings.baked_intensity};
+              .pulsing = b.pulsing ? 1 : 0, .pulse = in.baked_pulse, .intensity = in.settings.baked_intensity};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -218,13 +220,13 @@ void reference_sample_row(ReferenceContext& c) {
             const glm::vec2 p = w.texel_center(x, y);
             const glm::ivec2 cell(int(std::floor(p.x)), int(std::floor(p.y)));
             const bool wall = in.walls.is_wall(cell.x, cell.y);
-            const glm::vec4 g(wall ? glm::vec3(0.0f) : b.sample(0, p) * k, 0.0f);
+            const glm::vec4 g(wall ? glm::vec3(0.0f) : b.light(0, p, in.baked_pulse) * k, 0.0f);
             glm::vec4 shown(glm::vec3(g), wall ? 0.0f : float(b.level(0, p) + 1));
             ground.store(x, y, &g.x);
             const glm::vec4 mask = wall && faces != 0 ? wall_face_mask(in.walls, cell) * face_bits : glm::vec4(0.0f);
             for (int f = 0; f < 4; ++f) {
                 if (!computes_face(faces, f)) continue;
-                const glm::vec3 v = mask[f] > 0.0f ? b.sample(1 + f, p) * k : glm::vec3(0.0f);
+                const glm::vec3 v = mask[f] > 0.0f ? b.light(1 + f, p, in.baked_pulse) * k : glm::vec3(0.0f);
                 const glm::vec4 texel(v, wall ? 1.0f : 0.0f); // as wall_indirect writes it
                 face[std::size_t(f)].store(x, y, &texel.x);
                 if (mask[f] > 0.0f) {

@@ -41,8 +41,11 @@ struct BakerOptions {
 // The baked chunks the frame uses (a world resource the bake system writes).
 struct BakedChunks {
     std::unordered_map<std::uint64_t, std::shared_ptr<const bake::ChunkBake>> chunks; // by chunk_id_key
+    // The pulsing glow's factor this frame (seed 004's pulsing emission; scene::pulse_factor).
+    float pulse = 1.0f;
     // The baked light arriving at p (circular harmonics), interpolated between the probes
-    // around it (bake::interpolate_probes); zero where no baked chunk has one.
+    // around it (bake::interpolate_probes), the pulsing part's scaled by `pulse`; zero where
+    // no baked chunk has one.
     bake::CircularHarmonics probes_at(glm::vec2 p) const;
 };
 std::uint64_t chunk_id_key(bake::ChunkId c);

@@ -61,6 +61,7 @@ struct GiConfig {
 // materials in the world must then leave out what it holds (bake::live_scene).
 struct BakedGi {
     std::shared_ptr<const gi::BakedLight> light;
+    float pulse = 1.0f; // the pulsing glow's factor this frame (gi::FrameInputs::baked_pulse)
 };
 
 struct GiView {

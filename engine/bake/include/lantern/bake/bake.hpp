@@ -14,6 +14,8 @@
 //                centres of tiles (32 x + 2 i + 0.5, 32 z + 2 j + 0.5), the same light as
 //                circular harmonics (the baked lights' direct light as point sources, the
 //                bounce light by rays); none in walls.
+//   pulse_*      the same three for the glow of pulsing materials alone (seed 004's pulsing
+//                emission, scaled at run time), when any reaches the chunk.
 // Light from outside the chunk is included: lights in reach of it, and walls within
 // BakeSettings::margin tiles that reflect light into it (the gather's margin).
 //
@@ -115,8 +117,16 @@ struct ChunkBake {
     // chunk_probes^2, row-major; probe_valid[i] 0 where the probe's tile is a wall.
     std::vector<CircularHarmonics> probes;
     std::vector<std::uint8_t> probe_valid;
+    // Seed 004's pulsing emission: the light of the pulsing materials' glow alone, at full
+    // emission (ground, faces and probes as above; the steady part above leaves it out).
+    // Empty when no pulsing glow reaches the chunk. The run time adds it scaled by
+    // scene::pulse_factor: a colour-only update, not a re-bake.
+    std::vector<float> pulse_ground;
+    std::array<std::vector<float>, 4> pulse_faces;
+    std::vector<CircularHarmonics> pulse_probes;
 
     int side() const { return chunk_tiles * resolution; }
+    bool pulses() const { return !pulse_ground.empty(); }
     friend bool operator==(const ChunkBake&, const ChunkBake&) = default;
 };
 

@@ -107,6 +107,11 @@ struct FrameInputs {
     // indirect textures by the `baked` row; nullptr: none. The live lights and materials
     // then leave out what it holds (bake::live_scene).
     std::shared_ptr<const BakedLight> baked;
+    // Seed 004's pulsing emission: the factor the bake's pulsing part is added with
+    // (scene::pulse_factor of the scene's pulse frequency at the frame's time; 1 = the glow
+    // at full emission). Read only when `baked` is pulsing; a change reruns the baked rows
+    // (a colour-only update, not a re-bake).
+    float baked_pulse = 1.0f;
 };
 
 // The material of a wall cell value (0, air: all zero).

@@ -26,6 +26,8 @@ struct CaveParams {
 
 // The mineral materials, in cell order: cave_lava (material_cell(0)), cave_crystal (1).
 inline constexpr int cave_lava = 0, cave_crystal = 1;
+// The crystal veins' glow breathes (seed 004's pulsing emission): a cycle every five seconds.
+inline constexpr float crystal_pulse_hz = 0.2f;
 std::vector<Material> cave_materials();
 
 bool cave_wall(int x, int z, const CaveParams& params);

@@ -8,6 +8,7 @@
 // is the world tile (origin.x + col, origin.z + row); tiles outside the grid are air.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -217,9 +218,28 @@ struct Material {
     // Seed 004's meta-pass opacity, [0, 1]: multiplies albedo and emission in the GI (the
     // bounce and glow of see-through tiles: glass, ice, water). The tile still blocks light.
     float opacity = 1.0f;
+    // Seed 004's pulsing emission, in Hz (0: steady): the glow scales by
+    // 0.5 + 0.5 cos(2 pi pulse t). A baked glow's light is baked apart from the steady light
+    // and scaled at run time (a colour-only update, not a re-bake: docs/baked.md, "Pulsing
+    // emission"); every pulsing material of a scene pulses at one frequency.
+    float pulse = 0.0f;
 
     friend bool operator==(const Material&, const Material&) = default;
 };
+
+// The glow factor of a material pulsing at `hz` at time `t` seconds: 0.5 + 0.5 cos(2 pi hz t)
+// (1 when steady).
+inline float pulse_factor(float hz, double t) {
+    if (hz <= 0.0f) return 1.0f;
+    const double cycles = double(hz) * t;
+    return float(0.5 + 0.5 * std::cos(6.283185307179586 * (cycles - std::floor(cycles))));
+}
+// The frequency the scene's pulsing materials share (0: none pulses).
+inline float pulse_frequency(const std::vector<Material>& materials) {
+    for (const Material& m : materials)
+        if (m.pulse > 0.0f) return m.pulse;
+    return 0.0f;
+}
 
 // Wall cell values: 0 air, 1 the default wall (grey gi.wall_albedo, no emission), and
 // 2 + k the scene's material k. Every wall test is `cell != 0`.
