@@ -52,7 +52,7 @@ std::string format_tables(const GameTables& t) {
         w.key(m.name).begin_object(json::Layout::one_line);
         write_vec3(w, "albedo", m.albedo);
         write_vec3(w, "emission", m.emission);
-        w.field("pulse", double(m.pulse));
+        w.field("pulse", m.pulse);
         w.end();
     }
     w.end();
@@ -103,7 +103,7 @@ Result<GameTables> parse_tables(std::string_view text, const std::string& file_n
             for (const scene::Material& other : t.materials)
                 if (&other != &*m && other.pulse > 0.0f && m->pulse > 0.0f && other.pulse != m->pulse) {
                     mf.fail("pulse", "every pulsing material pulses at one frequency (the bake keeps one pulsing part); \"" +
-                                         other.name + "\" pulses at " + scene::reading::format_number(other.pulse) + " Hz");
+                                         other.name + "\" pulses at " + scene::reading::format_float(other.pulse) + " Hz");
                     break;
                 }
             if (!r.ok()) break;

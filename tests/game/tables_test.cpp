@@ -66,6 +66,8 @@ TEST(Tables, MalformedFilesAreRefusedWithPositions) {
         {R"({"lantern_tables": 1, "lights": {"torch": {"radius": 0}}})", "t.json:1:54: lights.torch.radius"},
         {R"({"lantern_tables": 1, "lights": {"torch": {"color": [1, 1]}}})", "t.json:1:53: lights.torch.color"},
         {R"({"lantern_tables": 1,)", "t.json:1:"},
+        {R"({"lantern_tables": 1, "materials": {"lava": {"pulse": 1}}})", "t.json:1:55: materials.lava.pulse: every pulsing material pulses at one frequency (the bake keeps one pulsing part); \"crystal\" pulses at 0.2 Hz"},
+        {R"({"lantern_tables": 1, "materials": {"crystal": {"pulse": -1}}})", "t.json:1:58: materials.crystal.pulse: must be in [0, 60], got -1"},
     };
     for (const Case& c : cases) {
         auto t = parse_tables(c.text, "t.json");

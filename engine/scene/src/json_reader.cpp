@@ -72,6 +72,12 @@ std::string format_number(double v) {
     return std::string(buffer, result.ptr);
 }
 
+std::string format_float(float v) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v);
+    return std::string(buffer, result.ptr);
+}
+
 std::string shorten(std::string_view text) { return printable(text, 40); }
 
 bool Range::contains(double v) const {

@@ -313,7 +313,7 @@ void read_materials(Reader& reader, const Fields& top, std::vector<Material>& ou
             for (const Material& earlier : out)
                 if (earlier.pulse > 0.0f && earlier.pulse != m.pulse) {
                     fields.fail("pulse", "every pulsing material pulses at one frequency (the bake keeps one pulsing "
-                                         "part); \"" + earlier.name + "\" pulses at " + reading::format_number(earlier.pulse) + " Hz");
+                                         "part); \"" + earlier.name + "\" pulses at " + reading::format_float(earlier.pulse) + " Hz");
                     return;
                 }
         }

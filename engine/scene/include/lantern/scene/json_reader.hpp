@@ -70,6 +70,8 @@ struct EnumName {
 
 // Shortest text that reads back as `v` ("1.5", "64", "1e+300").
 std::string format_number(double v);
+// The shortest text that reads back as `v` (0.2f is "0.2", not 0.2f's double "0.2000000029...").
+std::string format_float(float v);
 
 // A character of a file as messages quote it: 'x' when printable ASCII, else byte 0xNN.
 std::string quote_char(char c);
