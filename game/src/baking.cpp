@@ -129,8 +129,10 @@ void WorldBaker::run() {
             LANTERN_PROFILE_SCOPE("bake_compose");
             std::vector<const bake::ChunkBake*> pointers;
             for (const auto& b : job->bakes) pointers.push_back(b.get());
+            std::string why; // the resident chunks always fit one atlas; said if they ever do not
             result->light = bake::runtime_light(pointers, gi::WallView::of(job->walls), options_.settings.eps,
-                                                options_.settings.max_level);
+                                                options_.settings.max_level, &why);
+            if (!why.empty()) result->warning = why;
             result->bakes = std::move(job->bakes);
         }
         result->ms = double(now_ns() - start) * 1e-6;

@@ -127,3 +127,20 @@ TEST(Bricks, LayersShareOneAtlasAndEachReadsItsOwnField) {
             EXPECT_EQ(sample_bricks(a, px, py, 2), glm::vec3(0.0f));
         }
 }
+
+// More bricks than the atlas's 12-bit indices address (here 4,225 level-0 bricks in rows of
+// one, 4,096 at most): reported in `too_many`, nothing stored, no abort. bake::runtime_light
+// turns it into an error naming the world's size (lantern-render --bake of a huge world).
+TEST(Bricks, MoreBricksThanTheIndicesAddressAreReportedNotStored) {
+    const Field noisy = field(260, 260, [](int x, int y) {
+        const float v = float((x * 7919 + y * 104729) % 97) / 97.0f;
+        return glm::vec3(v, 1.0f - v, 0.5f);
+    });
+    const BrickAtlas a = build_bricks(noisy, 0.0f, 1);
+    EXPECT_EQ(a.too_many, 65 * 65);
+    EXPECT_TRUE(a.atlas.empty());
+    EXPECT_TRUE(a.indirection.empty());
+    const BrickAtlas fits = build_bricks(noisy, 0.0f, 2);
+    EXPECT_EQ(fits.too_many, 0);
+    EXPECT_EQ(fits.bricks(), 65 * 65);
+}

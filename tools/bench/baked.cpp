@@ -104,8 +104,12 @@ int baked(const BakedOptions& o) {
     settings.ambient = o.ambient;
     if (o.coarse > 0) // texel density per chunk: the west half of the world at its own resolution
         settings.density.push_back({{0, 0}, {o.chunks / 2 - 1, o.chunks - 1}, o.coarse});
-    const scene::Scene baked_world = caves_world(o.chunks, o.lights, scene::LightMode::baked);
-    const fs::path dir = fs::temp_directory_path() / ("lantern-bench-baked-" + std::to_string(now_ns()));
+    scene::Scene baked_world = caves_world(o.chunks, o.lights, scene::LightMode::baked);
+    if (o.steady)
+        for (scene::Material& m : baked_world.materials) m.pulse = 0.0f;
+    // --dir: the cache folder is kept, and what it holds for these inputs is read, not baked.
+    const bool keep = !o.dir.empty();
+    const fs::path dir = keep ? fs::path(o.dir) : fs::temp_directory_path() / ("lantern-bench-baked-" + std::to_string(now_ns()));
 
     // 1. The bake, on 1 and 2 threads.
     std::printf("\n## Bake (solver %s, resolution %d, margin %d, %d ground and %d face rays)\n\n",
@@ -121,7 +125,7 @@ int baked(const BakedOptions& o) {
         jobs::JobSystem jobs(config);
         bake::BakeOptions options;
         options.jobs = &jobs;
-        options.force = true;
+        options.force = !keep;
         int shown = -1; // progress on stderr, every 5 %, for large worlds
         options.progress = [&](const bake::BakeProgress& p) {
             const int pct = p.total ? p.done * 100 / p.total : 100;
@@ -180,41 +184,66 @@ int baked(const BakedOptions& o) {
         std::printf("dense RGBM8 at each chunk's own resolution: %.3f MB\n", double(own * 5 * 4) / 1e6);
     }
     std::printf("\n");
+    // One atlas addresses 262,144 bricks: a larger world is composed in blocks of at most
+    // 16 x 16 chunks (a frame never reads more than a few), their bricks and bytes summed.
+    // (A block's border cells see their apron clamped instead of the neighbour's texels, which
+    // can only keep them finer: the sum is an upper bound, equal for worlds of one block.)
+    constexpr int block = 16;
+    const int blocks = (o.chunks + block - 1) / block;
+    if (blocks > 1) std::printf("composed in %d x %d blocks of up to %d x %d chunks (one atlas each)\n\n", blocks, blocks, block, block);
     std::printf("| eps | bricks (level 0/1/2/3) | atlas + indirection | of dense RGBM8 | rel. RMS error (ground) |\n|---|---|---|---|---|\n");
     const gi::WallView walls = gi::WallView::of(baked_world.walls);
-    for (float eps : {0.0f, 0.01f, 0.05f, 0.2f}) {
-        auto light = bake::runtime_light(pointers, walls, eps);
+    const std::vector<float> eps_list = o.chunks > block ? std::vector<float>{0.01f, 0.2f} : std::vector<float>{0.0f, 0.01f, 0.05f, 0.2f};
+    for (float eps : eps_list) {
         double err2 = 0.0, ref2 = 0.0;
-        for (const auto& b : chunks) {
-            if (b.empty) continue;
-            const int s = b.side();
-            for (int y = 0; y < s; ++y)
-                for (int x = 0; x < s; ++x) {
-                    const glm::vec2 p = glm::vec2(float(b.id.x * bake::chunk_tiles), float(b.id.z * bake::chunk_tiles)) +
-                                        (glm::vec2(float(x), float(y)) + 0.5f) / float(b.resolution);
-                    if (baked_world.walls.is_wall_tile(int(std::floor(p.x)), int(std::floor(p.y)))) continue;
-                    const std::size_t i = (std::size_t(y) * std::size_t(s) + std::size_t(x)) * 3;
-                    const glm::vec3 want(b.ground[i], b.ground[i + 1], b.ground[i + 2]);
-                    const glm::vec3 d = light->sample(0, p) - want;
-                    err2 += double(glm::dot(d, d));
-                    ref2 += double(glm::dot(want, want));
+        std::size_t bytes = 0;
+        int per_level[gi::brick_levels] = {0, 0, 0, 0};
+        for (int bz = 0; bz < blocks; ++bz)
+            for (int bx = 0; bx < blocks; ++bx) {
+                std::vector<const bake::ChunkBake*> in_block;
+                for (const auto& b : chunks)
+                    if (b.id.x / block == bx && b.id.z / block == bz) in_block.push_back(&b);
+                if (in_block.empty()) continue;
+                std::string why;
+                auto light = bake::runtime_light(in_block, walls, eps, gi::brick_levels - 1, &why);
+                if (!light) {
+                    std::fprintf(stderr, "lantern-bench baked: %s\n", why.c_str());
+                    return 1;
                 }
-        }
-        const gi::BrickAtlas& a = light->bricks;
-        std::printf("| %g | %d (%d/%d/%d/%d) | %.3f MB | %.1f %% | %.2f %% |\n", double(eps), a.bricks(), a.bricks_per_level[0],
-                    a.bricks_per_level[1], a.bricks_per_level[2], a.bricks_per_level[3], double(a.bytes()) / 1e6,
-                    100.0 * double(a.bytes()) / double(texels * 5 * 4), 100.0 * std::sqrt(err2 / std::max(ref2, 1e-30)));
+                for (const bake::ChunkBake* b : in_block) {
+                    if (b->empty) continue;
+                    const int s = b->side();
+                    for (int y = 0; y < s; ++y)
+                        for (int x = 0; x < s; ++x) {
+                            const glm::vec2 p = glm::vec2(float(b->id.x * bake::chunk_tiles), float(b->id.z * bake::chunk_tiles)) +
+                                                (glm::vec2(float(x), float(y)) + 0.5f) / float(b->resolution);
+                            if (baked_world.walls.is_wall_tile(int(std::floor(p.x)), int(std::floor(p.y)))) continue;
+                            const std::size_t i = (std::size_t(y) * std::size_t(s) + std::size_t(x)) * 3;
+                            const glm::vec3 want(b->ground[i], b->ground[i + 1], b->ground[i + 2]);
+                            const glm::vec3 d = light->sample(0, p) - want;
+                            err2 += double(glm::dot(d, d));
+                            ref2 += double(glm::dot(want, want));
+                        }
+                }
+                bytes += light->bricks.bytes();
+                for (int l = 0; l < gi::brick_levels; ++l) per_level[l] += light->bricks.bricks_per_level[l];
+            }
+        std::printf("| %g | %d (%d/%d/%d/%d) | %.3f MB | %.1f %% | %.2f %% |\n", double(eps),
+                    per_level[0] + per_level[1] + per_level[2] + per_level[3], per_level[0], per_level[1], per_level[2],
+                    per_level[3], double(bytes) / 1e6, 100.0 * double(bytes) / double(texels * 5 * 4),
+                    100.0 * std::sqrt(err2 / std::max(ref2, 1e-30)));
+        std::fflush(stdout);
     }
 
     // 3. The frame.
     if (!o.frame) {
-        fs::remove_all(dir);
+        if (!keep) fs::remove_all(dir);
         return 0;
     }
     auto device = gpu::Device::create();
     if (!device) {
         std::fprintf(stderr, "lantern-bench baked: %s\n", device.error().message.c_str());
-        fs::remove_all(dir);
+        if (!keep) fs::remove_all(dir);
         return 1;
     }
     // Without dirty light bins: the same still frame repeats, and with them every repeat
@@ -223,7 +252,7 @@ int baked(const BakedOptions& o) {
     auto renderer = gi::vk::Renderer::create(**device, {.dirty_bins = false});
     if (!renderer) {
         std::fprintf(stderr, "lantern-bench baked: %s\n", renderer.error().message.c_str());
-        fs::remove_all(dir);
+        if (!keep) fs::remove_all(dir);
         return 1;
     }
     auto light = bake::runtime_light(pointers, walls);
@@ -258,7 +287,7 @@ int baked(const BakedOptions& o) {
                         at(gi::Pass::baked), own);
         }
     }
-    fs::remove_all(dir);
+    if (!keep) fs::remove_all(dir);
     return 0;
 }
 

@@ -50,6 +50,8 @@ struct BakedOptions {
     int threads = 0;     // bake on this many threads only (0: on 1 and on 2, for the comparison)
     bool frame = true;   // time the frame on the device (off for worlds too large for one window's bench)
     int coarse = 0;      // > 0: the west half of the chunks bakes at this resolution (texel density per chunk)
+    std::string dir;     // the cache folder, kept and reused (default: a temporary one, removed)
+    bool steady = false; // the crystal veins do not pulse (a world baked before pulsing emission)
 };
 int baked(const BakedOptions& options);
 

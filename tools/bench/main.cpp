@@ -6,7 +6,7 @@
 //   lantern-bench dirty-bins [--frames N] [--resolution R]
 //   lantern-bench baked [--chunks N] [--lights N] [--repeats N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
 //                       [--solver gather|seed002] [--falloff TILES] [--ambient E] [--threads N] [--no-frame]
-//                       [--coarse R]
+//                       [--coarse R] [--dir DIR] [--steady]
 //   lantern-bench accuracy [--quick] [--repeats N] [--out DIR] [--scenes A,B] [--maps DIR]
 //                          [--albedo A] [--target E] [--cache DIR | --no-cache] [--backend B]
 //                          [--images]
@@ -156,6 +156,13 @@ int baked_main(int argc, char** argv) {
     p.number("--ambient", "E", "seed002: the ambient fill (default 0)", o.ambient, 0.0f, 1000.0f);
     p.integer("--threads", "N", "bake on N threads only (default: on 1 and on 2)", o.threads, 1, 256);
     p.integer("--coarse", "R", "texel density per chunk: the west half of the chunks bakes at R texels a tile", o.coarse, 1, 16);
+    p.custom("--dir", "DIR", "the cache folder: kept, and its valid files read instead of baked (default: a temporary one)",
+             [&o](std::string_view v) -> std::optional<std::string> {
+                 if (v.empty()) return "needs a folder";
+                 o.dir = std::string(v);
+                 return std::nullopt;
+             });
+    p.flag("--steady", "the crystal veins do not pulse", [&] { o.steady = true; });
     p.flag("--no-frame", "leave out the frame's timing (the bake and the memory only)", [&] { o.frame = false; });
     if (auto exit = p.parse(argc, argv, 2)) return *exit;
     return lantern::bench::baked(o);

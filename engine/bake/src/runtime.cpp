@@ -167,7 +167,7 @@ glm::vec3 resample(const ChunkBake& c, const gi::WallView& walls, int layer, int
 } // namespace
 
 std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,
-                                                    float eps, int max_level) {
+                                                    float eps, int max_level, std::string* why) {
     if (chunks.empty()) return nullptr;
     int res = 1; // the finest chunk's (texel density per chunk)
     for (const ChunkBake* c : chunks) res = std::max(res, c->resolution);
@@ -223,9 +223,18 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
         for (int y = 0; y < cells; ++y)
             for (int x = 0; x < cells; ++x) finest[std::size_t(at.y + y) * std::size_t(cells_x) + std::size_t(at.x + x)] = std::uint8_t(level);
     }
-    return std::make_shared<const gi::BakedLight>(gi::make_baked_light(lo * chunk_tiles, res, layers, eps, key.value(), max_level,
-                                                                       coarser ? std::span<const std::uint8_t>(finest)
-                                                                               : std::span<const std::uint8_t>()));
+    auto light = std::make_shared<const gi::BakedLight>(gi::make_baked_light(lo * chunk_tiles, res, layers, eps, key.value(), max_level,
+                                                                             coarser ? std::span<const std::uint8_t>(finest)
+                                                                                     : std::span<const std::uint8_t>()));
+    if (light->bricks.too_many > 0) {
+        if (why)
+            *why = "the baked light of " + std::to_string(chunks.size()) + " chunks (" + std::to_string(width) + " x " +
+                   std::to_string(height) + " texels a layer) needs " + std::to_string(light->bricks.too_many) +
+                   " bricks, more than one atlas holds (" + std::to_string(gi::baked_bricks_per_row * gi::brick_max_atlas) +
+                   "): read a smaller part of the world, or coarsen it (eps, density)";
+        return nullptr;
+    }
+    return light;
 }
 
 scene::Scene live_scene(const scene::Scene& s) {
@@ -252,7 +261,10 @@ Result<std::shared_ptr<const gi::BakedLight>> load_world_light(const scene::Scen
     }
     std::vector<const ChunkBake*> pointers;
     for (const ChunkBake& b : bakes) pointers.push_back(&b);
-    return runtime_light(pointers, gi::WallView::of(scene.walls), settings.eps, settings.max_level);
+    std::string why;
+    auto light = runtime_light(pointers, gi::WallView::of(scene.walls), settings.eps, settings.max_level, &why);
+    if (!light && !why.empty()) return make_error(dir + ": " + why);
+    return light;
 }
 
 } // namespace lantern::bake

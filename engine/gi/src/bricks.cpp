@@ -191,8 +191,12 @@ BrickAtlas build_bricks(std::span<const Field> fields, float eps, int bricks_per
     out.atlas_bricks_x = bricks_per_row > 0 ? std::min(bricks_per_row, brick_max_atlas)
                                             : std::max(1, int(std::ceil(std::sqrt(double(n)))));
     out.atlas_bricks_y = std::max(1, (n + out.atlas_bricks_x - 1) / out.atlas_bricks_x);
-    LANTERN_ASSERT(out.atlas_bricks_x <= brick_max_atlas && out.atlas_bricks_y <= brick_max_atlas,
-                   "build_bricks: more bricks than 12-bit indices address");
+    if (out.atlas_bricks_x > brick_max_atlas || out.atlas_bricks_y > brick_max_atlas) {
+        // More bricks than 12-bit indices address: the caller reports it (nothing stored).
+        out.too_many = n;
+        out.atlas_bricks_x = out.atlas_bricks_y = 0;
+        return out;
+    }
     const int aw = out.atlas_width();
     out.atlas.assign(std::size_t(aw) * std::size_t(out.atlas_height()) * 4, 0);
     for (int k = 0; k < n; ++k) {

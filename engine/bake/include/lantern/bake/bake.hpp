@@ -222,8 +222,11 @@ Result<BakeReport> bake_world(const scene::Scene& scene, const std::string& dir,
 // laid out at the finest one: a coarser chunk's texels are resampled bilinearly, over the
 // texels of its own that hold light in that layer (open ground; the face's exposed wall
 // texels), clamped at its border. Empty `chunks`: nullptr.
+// nullptr too when the rectangle needs more bricks than one atlas addresses (a world far
+// larger than a frame's window: compose the chunks around it), saying so in `why`.
 std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* const> chunks, const gi::WallView& walls,
-                                                    float eps = gi::baked_eps, int max_level = gi::brick_levels - 1);
+                                                    float eps = gi::baked_eps, int max_level = gi::brick_levels - 1,
+                                                    std::string* why = nullptr);
 
 // The scene as the live passes light it once its bake is used: without the `baked` lights
 // and the materials' glow, which the baked light holds. (Mixed lights stay: their direct

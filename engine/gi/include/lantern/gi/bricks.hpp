@@ -58,6 +58,9 @@ struct BrickAtlas {
     std::vector<std::uint8_t> indirection; // cells_x x (cells_y x layers) x RGBA8
     int bricks_per_level[brick_levels] = {0, 0, 0, 0};
     int empty_cells = 0; // level-0 cells without a brick, over every layer
+    // > 0: the field needs this many bricks, more than the atlas's 12-bit indices address in
+    // rows of the requested width; nothing is stored (no atlas, no indirection).
+    int too_many = 0;
 
     int atlas_width() const { return atlas_bricks_x * brick_texels; }
     int atlas_height() const { return atlas_bricks_y * brick_texels; }
