@@ -161,7 +161,7 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, g
                                                      : Hasher().add(wall_version).add_span(std::span(in.materials)).value();
     const gi::InputKeys inputs{gi::hash_window(in.window), walls,
                                lights_hash, proxies_hash,
-                               suns_hash,   in.baked ? in.baked->key : 0,
+                               suns_hash,   gi::baked_input_key(in),
                                Hasher().add_span(std::span(in.mixed_lights)).add_span(std::span(in.mixed_emissives)).value()};
     return gi::derive_keys(in, plan, inputs, convergence);
 }

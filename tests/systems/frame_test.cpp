@@ -4,12 +4,14 @@
 #include "gpu_test_support.hpp"
 #include "test_scenes.hpp"
 
+#include "lantern/gi/baked_light.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/profile/profiler.hpp"
 #include "lantern/systems/scene_world.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <set>
 
@@ -117,6 +119,40 @@ TEST_P(FrameCaching, EachChangeRerunsExactlyItsPasses) {
     view.center.x += 1.0f;
     EXPECT_EQ(names(h.step()), names(all)) << "camera moved a tile";
     EXPECT_EQ(names(h.step()), names(PassSet{})) << "unchanged again";
+}
+
+// Seed 004's pulsing emission through the frame systems: with a bake that has a pulsing part
+// (systems::BakedGi::light), a new pulse (BakedGi::pulse) reruns the baked rows and what they
+// add to in place (a colour-only update, nothing else); the same pulse reruns nothing; a
+// steady bake ignores the pulse.
+TEST_P(FrameCaching, ANewPulseRerunsTheBakedRows) {
+    Harness h(full_scene(), 1, device());
+    auto window = gi::compute_window(full_scene().view, full_scene().gi);
+    ASSERT_TRUE(window);
+    const glm::ivec2 origin(int(std::floor(window->view.min_x)) - 1, int(std::floor(window->view.min_z)) - 1);
+    const int w = int(window->view.width) + 2, hgt = int(window->view.height) + 2;
+    auto bake = [&](bool pulsing, std::uint64_t key) {
+        std::vector<gi::Field> layers(std::size_t(gi::baked_layers * (pulsing ? 2 : 1)), gi::Field(w, hgt));
+        for (std::size_t l = 0; l < layers.size(); ++l) {
+            std::fill(layers[l].air.begin(), layers[l].air.end(), std::uint8_t(1));
+            std::fill(layers[l].rgb.begin(), layers[l].rgb.end(), 0.1f * float(l + 1));
+        }
+        return std::make_shared<const gi::BakedLight>(gi::make_baked_light(origin, 1, layers, 0.01f, key));
+    };
+    systems::BakedGi& baked = h.world.resource<systems::BakedGi>();
+    baked.light = bake(true, 77);
+    baked.pulse = 0.25f;
+    const PassSet first = h.step();
+    EXPECT_TRUE(first.has(Pass::baked_sample)) << names(first);
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "the same pulse";
+    baked.pulse = 0.5f;
+    const PassSet pulsed = h.step();
+    EXPECT_TRUE(pulsed.has(Pass::baked_sample) && pulsed.has(Pass::baked)) << names(pulsed);
+    EXPECT_FALSE(pulsed.has(Pass::ao) || pulsed.has(Pass::conduction)) << names(pulsed);
+    baked.light = bake(false, 78);
+    h.step();
+    baked.pulse = 0.75f;
+    EXPECT_EQ(names(h.step()), names(PassSet{})) << "a steady bake ignores the pulse";
 }
 
 // Seed 003's radiosity in the frame: it refines for gi.radiosity.frames frames, then a still

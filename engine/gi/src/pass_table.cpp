@@ -393,8 +393,13 @@ InputKeys input_keys_of(const FrameInputs& in) {
     k.mixed = Hasher().add_span(std::span(in.mixed_lights)).add_span(std::span(in.mixed_emissives)).value();
     k.proxies = Hasher().add_span(std::span(in.proxies)).value();
     k.suns = Hasher().add_span(std::span(in.directional_lights)).value();
-    k.baked = !in.baked ? 0 : in.baked->pulsing ? Hasher().add(in.baked->key).add(in.baked_pulse).value() : in.baked->key;
+    k.baked = baked_input_key(in);
     return k;
+}
+
+std::uint64_t baked_input_key(const FrameInputs& in) {
+    if (!in.baked) return 0;
+    return in.baked->pulsing ? Hasher().add(in.baked->key).add(in.baked_pulse).value() : in.baked->key;
 }
 
 void Convergence::advance(PassSet ran) {

@@ -196,6 +196,9 @@ struct InputKeys {
     std::uint64_t mixed = 0; // the mixed lights
 };
 InputKeys input_keys_of(const FrameInputs& in);
+// InputKeys::baked of a frame: the baked light's key, with the pulsing glow's factor when
+// the bake has a pulsing part (so a new pulse reruns the baked rows); 0 without a bake.
+std::uint64_t baked_input_key(const FrameInputs& in);
 
 namespace vk {
 class PassRecorder; // lantern/gi/vulkan/pass_recorder.hpp
