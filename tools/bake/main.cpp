@@ -2,7 +2,7 @@
 //
 //   lantern-bake WORLD --out DIR [--shard I/N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
 //                [--solver gather|seed002] [--falloff TILES] [--ambient E] [--non-directional] [--eps E]
-//                [--max-level L]
+//                [--max-level L] [--density X0,Z0,X1,Z1,R ...]
 //                [--threads N] [--force] [--image FILE.png] [--bricks EPS,...]
 //
 // The settings start from the scene's own "bake" section (seed 002: saved with the world);
