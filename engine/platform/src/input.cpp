@@ -150,6 +150,7 @@ std::optional<Key> key_by_name(std::string_view name) {
 void InputState::begin_frame() {
     keys_pressed_.reset();
     keys_released_.reset();
+    keys_pressed_with_control_.reset();
     buttons_pressed_.reset();
     buttons_released_.reset();
     frame_start_mouse_ = mouse_;
@@ -161,6 +162,8 @@ void InputState::key_event(Key key, bool is_down) {
     if (is_down == keys_down_[i]) return; // repeats and duplicate releases carry no edge
     keys_down_[i] = is_down;
     (is_down ? keys_pressed_ : keys_released_).set(i);
+    if (is_down && (keys_down_[index(Key::left_control)] || keys_down_[index(Key::right_control)]))
+        keys_pressed_with_control_.set(i);
 }
 
 void InputState::button_event(MouseButton button, bool is_down) {

@@ -76,7 +76,7 @@ void Game::input_system(Session& s) {
         if (key_pressed(Action::scene_editor)) toggle_editor(s);
         if (editor_.is_open()) {
             if (in.pressed(Key::del)) apply_edit(editor_.remove_selected());
-            if ((in.down(Key::left_control) || in.down(Key::right_control)) && in.pressed(Key::s)) save_scene_edits();
+            if (in.pressed_with_control(Key::s)) save_scene_edits(); // Control held when S went down, even if up by now
         }
     }
     cursor_world_.reset();

@@ -174,6 +174,10 @@ class InputState {
     bool down(Key key) const { return keys_down_[index(key)]; }
     // Went down since the previous frame (even if already released again).
     bool pressed(Key key) const { return keys_pressed_[index(key)]; }
+    // Went down since the previous frame while a Control key was held at that moment (a
+    // shortcut: Ctrl+S tapped within one slow frame, Control already up again at its end,
+    // still counts).
+    bool pressed_with_control(Key key) const { return keys_pressed_with_control_[index(key)]; }
     // Went up since the previous frame.
     bool released(Key key) const { return keys_released_[index(key)]; }
     bool down(MouseButton button) const { return buttons_down_[index(button)]; }
@@ -198,7 +202,7 @@ class InputState {
     static std::size_t index(Key key) { return static_cast<std::size_t>(key); }
     static std::size_t index(MouseButton button) { return static_cast<std::size_t>(button); }
 
-    std::bitset<key_count> keys_down_, keys_pressed_, keys_released_;
+    std::bitset<key_count> keys_down_, keys_pressed_, keys_released_, keys_pressed_with_control_;
     std::bitset<button_count> buttons_down_, buttons_pressed_, buttons_released_;
     glm::vec2 mouse_{0.0f};
     glm::vec2 frame_start_mouse_{0.0f};
