@@ -196,7 +196,9 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
                 const glm::ivec2 tile(c->id.x * chunk_tiles + x / res, c->id.z * chunk_tiles + y / res);
                 for (int layer = 0; layer < int(layers.size()); ++layer) {
                     gi::Field& field = layers[std::size_t(layer)];
-                    field.air[dst] = holds_light(walls, layer, tile) ? 1 : 0;
+                    // The pulsing layers hold light where their steady twins do.
+                    field.air[dst] = layer < gi::baked_layers ? (holds_light(walls, layer, tile) ? 1 : 0)
+                                                              : layers[std::size_t(layer - gi::baked_layers)].air[dst];
                     if (c->empty || (layer >= gi::baked_layers && !c->pulses())) continue; // no such light reaches it: zero
                     glm::vec3 v;
                     if (coarser) {
