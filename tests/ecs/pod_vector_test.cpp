@@ -85,6 +85,39 @@ TEST(PodVector, ResizeValueInitialisesReserveKeepsContentsMoveTransfers) {
     EXPECT_TRUE(v.empty());
 }
 
+TEST(PodVector, LargeBlocksAreMappedGrownInPlaceAndKeepTheirContents) {
+    // Across pod_map_bytes the block moves from the heap to a mapping (one copy), then grows
+    // by mremap; moves hand the mapping over, and assigning over a mapped vector unmaps it.
+    constexpr std::size_t large = 3 * lantern::ecs::detail::pod_map_bytes / sizeof(Pair);
+    PodVector<Pair> v;
+    bool crossed = false;
+    for (std::uint64_t i = 0; i < large; ++i) {
+        const bool was_mapped = v.mapped();
+        v.push_back(Pair{i, ~i});
+        crossed |= !was_mapped && v.mapped();
+    }
+#if defined(__linux__)
+    EXPECT_TRUE(crossed);
+    EXPECT_TRUE(v.mapped());
+#endif
+    for (std::uint64_t i = 0; i < large; ++i) ASSERT_TRUE(v[i].a == i && v[i].b == ~i) << i;
+    PodVector<Pair> w;
+    w.reserve(2 * large); // mapped straight from empty
+    w.push_back(Pair{7, 7});
+    EXPECT_EQ(w.mapped(), v.mapped());
+    w = std::move(v); // unmaps w's own block
+    EXPECT_EQ(v.data(), nullptr);
+    EXPECT_FALSE(v.mapped());
+    ASSERT_EQ(w.size(), large);
+    EXPECT_EQ(w[large - 1].a, large - 1);
+    PodVector<Pair> x(std::move(w));
+    EXPECT_FALSE(w.mapped());
+    EXPECT_EQ(x[12345].b, ~std::uint64_t(12345));
+    x.resize(large + 10); // grows a mapped block; new elements value-initialised
+    EXPECT_EQ(x[large + 9].a, 0u);
+    EXPECT_EQ(x[large - 2].a, large - 2);
+}
+
 TEST(PodVector, PoolsUseItOnlyForTriviallyCopyableComponents) {
     static_assert(lantern::ecs::pod_vector_compatible<Pair>);
     static_assert(!lantern::ecs::pod_vector_compatible<std::string>);

@@ -198,6 +198,41 @@ TEST(JobSystem, ABurstOfSpawnsWakesEverySleepingWorker) {
     std::printf("backstop wake-ups: %llu\n", static_cast<unsigned long long>(jobs.stats().backstop_wakeups));
 }
 
+TEST(JobSystem, AThiefTakesHalfOfWhatItsVictimHoldsInOneVisit) {
+    // One worker; the main thread spawns a burst into its own deque while the worker is held
+    // in a job, then only watches (it runs nothing), so the worker must take every job of the
+    // burst by stealing. One job at a time that is one visit per job; taking half of what is
+    // left on each visit (steal_more) makes it about log2(burst) visits. Conditions, not
+    // times: a busy machine only makes it slower.
+    JobSystem jobs(workers(1));
+    constexpr std::uint32_t burst = 256;
+    std::atomic<bool> holding{false}, release{false};
+    std::atomic<std::uint32_t> done{0}, on_main{0};
+    Counter hold, c;
+    jobs.spawn(&hold, {}, [&](std::uint32_t) {
+        holding.store(true);
+        while (!release.load()) std::this_thread::yield();
+    });
+    while (!holding.load()) std::this_thread::yield(); // the worker stole it and runs it
+    const auto before = jobs.stats();
+    for (std::uint32_t i = 0; i < burst; ++i)
+        jobs.spawn(&c, {}, [&](std::uint32_t w) {
+            if (w == 0) on_main.fetch_add(1);
+            done.fetch_add(1);
+        });
+    release.store(true);
+    while (done.load() < burst) std::this_thread::yield();
+    jobs.wait(c);
+    jobs.wait(hold);
+    const auto after = jobs.stats();
+    EXPECT_EQ(on_main.load(), 0u);
+    EXPECT_EQ(after.steals - before.steals, burst);
+    const std::uint64_t visits = after.steal_visits - before.steal_visits;
+    std::printf("%u jobs stolen in %llu visits\n", burst, static_cast<unsigned long long>(visits));
+    EXPECT_LE(visits, 16u);
+    EXPECT_GE(visits, 1u);
+}
+
 TEST(JobSystem, ZeroWorkersRunInlineInDeterministicOrder) {
     auto run = [] {
         JobSystem jobs(workers(0));

@@ -68,6 +68,14 @@ class WorkStealingDeque {
         return item;
     }
 
+    // How many items a thief saw: a hint (it may change before the caller acts on it).
+    std::int64_t size_hint() const {
+        std::int64_t n = bottom_.load(std::memory_order_relaxed) - top_.load(std::memory_order_relaxed);
+        return n > 0 ? n : 0;
+    }
+
+    static constexpr std::uint32_t capacity() { return Capacity; }
+
     // Whether the deque looked empty at some instant during the call. The loads are seq_cst
     // so that a thread about to sleep cannot miss a push it must see (JobSystem::idle_sleep).
     bool empty_hint() const {

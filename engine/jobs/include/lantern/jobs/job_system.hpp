@@ -118,7 +118,8 @@ class JobSystem {
 
     struct Stats {
         std::uint64_t jobs_run = 0;
-        std::uint64_t steals = 0;
+        std::uint64_t steals = 0;      // jobs taken from another thread's deque (each job of a batch counts)
+        std::uint64_t steal_visits = 0; // successful visits to a victim: one job, then half of what it held
         std::uint64_t inline_overflows = 0;
         std::uint64_t pool_blocks = 0; // job blocks allocated so far (grows during warm-up only)
         // Sleeps that ran to the backstop and found work queued: a wake-up the protocol
@@ -137,6 +138,7 @@ class JobSystem {
     void submit(Job* job, ThreadState& t);
     Job* find_job(ThreadState& t);
     bool has_visible_work(const ThreadState& t) const;
+    void steal_more(WorkStealingDeque<Job>& victim, WorkStealingDeque<Job>& own, ThreadState& t);
     void execute(Job* job, ThreadState& t);
     void wake_one();
     void signal_all();
