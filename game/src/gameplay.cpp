@@ -184,6 +184,9 @@ PropParts prop_parts(PropKind kind, glm::vec2 position, const GameTables& tables
         proxy.size = {0.45f, 0.45f};
         proxy.max_length = 3.0f;
         out.proxy = ShadowProxy{proxy};
+        // Its parts take the baked light's probes where it stands: the crown sways (so its
+        // own centre would drift between probes frame by frame) and overhangs rock or shade.
+        out.anchor = ProbeAnchor{position};
         break;
     case PropKind::lamp_post: {
         proxy.shape = scene::ProxyShape::box;
@@ -219,6 +222,7 @@ ecs::Entity spawn_prop(ecs::World& world, PropKind kind, glm::vec2 position, con
     if (parts.emissive) world.emplace<EmissiveLight>(e, *parts.emissive);
     if (parts.proxy) world.emplace<ShadowProxy>(e, *parts.proxy);
     if (parts.light) world.emplace<PointLight>(e, *parts.light);
+    if (parts.anchor) world.emplace<ProbeAnchor>(e, *parts.anchor);
     return e;
 }
 
@@ -396,6 +400,7 @@ void interact(ecs::SystemContext& ctx) {
         if (parts.emissive) cb.emplace<EmissiveLight>(e, *parts.emissive);
         if (parts.proxy) cb.emplace<ShadowProxy>(e, *parts.proxy);
         if (parts.light) cb.emplace<PointLight>(e, *parts.light);
+        if (parts.anchor) cb.emplace<ProbeAnchor>(e, *parts.anchor);
     }
     --inventory[item];
     edited(SoundCue::place, *tile);

@@ -125,6 +125,7 @@ void write_entity(json::Writer& w, const SavedEntity& e) {
         write_vec(w, "position", e.item->position);
         w.end();
     }
+    if (e.probe_anchor) write_vec(w, "probe_anchor", e.probe_anchor->position);
     if (e.sun) w.field("sun", true);
     w.end();
 }
@@ -156,7 +157,8 @@ constexpr auto item_kinds = enum_names<Item>(inventory_keys);
 constexpr auto world_kinds = enum_names<WorldKind>(kind_names);
 
 void read_entity(Reader& r, const json::Value& v, const std::string& path, SavedEntity& e) {
-    Fields f(r, v, path, {"point_light", "emissive_light", "directional_light", "shadow_proxy", "torch", "prop", "item", "sun"});
+    Fields f(r, v, path, {"point_light", "emissive_light", "directional_light", "shadow_proxy", "torch", "prop", "item",
+                                 "probe_anchor", "sun"});
     if (const json::Value* m = f.find("point_light")) {
         scene::PointLight l;
         scene::reading::read_point_light(r, *m, f.path_of("point_light"), l);
@@ -201,6 +203,11 @@ void read_entity(Reader& r, const json::Value& v, const std::string& path, Saved
             .required("position", item.position, world_coordinate);
         item.age = item_pickup_delay; // on the ground already: no hop
         e.item = item;
+    }
+    if (f.find("probe_anchor")) {
+        ProbeAnchor anchor;
+        f.required("probe_anchor", anchor.position, world_coordinate);
+        e.probe_anchor = anchor;
     }
     f.optional("sun", e.sun);
     if (e.sun && !e.directional_light && r.ok()) f.fail("sun", "a sun needs a directional_light");
@@ -286,6 +293,7 @@ SaveState capture_save(ecs::World& world, const systems::Streaming& streaming, c
         }
         if (auto* c = world.try_get<Prop>(e)) out.prop = *c;
         if (auto* c = world.try_get<DroppedItem>(e)) out.item = *c;
+        if (auto* c = world.try_get<ProbeAnchor>(e)) out.probe_anchor = *c;
         out.sun = world.try_get<Sun>(e) != nullptr;
         s.entities.push_back(std::move(out));
     }
@@ -512,6 +520,7 @@ void apply_save(const SaveState& state, ecs::World& world, ecs::Entity player) {
         if (s.torch) world.emplace<Torch>(e, *s.torch);
         if (s.prop) world.emplace<Prop>(e, *s.prop);
         if (s.item) world.emplace<DroppedItem>(e, *s.item);
+        if (s.probe_anchor) world.emplace<ProbeAnchor>(e, *s.probe_anchor);
         if (s.sun) world.emplace<Sun>(e);
     }
     if (!player.is_null()) {

@@ -345,6 +345,48 @@ TEST(Saves, DroppedItemsAreCheckedLikeEverythingElse) {
     }
 }
 
+// Seed 004's anchor override in the game: a tree samples the baked light's probes at its base
+// (its crown sways and overhangs), wherever it comes from: the world's setup, the player's
+// placing it, a save. Saves carry the anchor, checked like everything else.
+TEST(Saves, ATreesProbeAnchorIsItsBaseAndSavesKeepIt) {
+    const glm::vec2 at{12.5f, 7.5f};
+    ASSERT_TRUE(prop_parts(PropKind::tree, at).anchor);
+    EXPECT_EQ(prop_parts(PropKind::tree, at).anchor->position, at);
+    EXPECT_FALSE(prop_parts(PropKind::lamp_post, at).anchor);
+    EXPECT_FALSE(prop_parts(PropKind::crystal, at).anchor);
+    ecs::World world;
+    const ecs::Entity tree = spawn_prop(world, PropKind::tree, at, default_tables());
+    ASSERT_NE(world.try_get<ProbeAnchor>(tree), nullptr);
+    EXPECT_EQ(world.get<ProbeAnchor>(tree).position, at);
+
+    const std::string head = "{\"lantern_save\": 1, \"world\": {\"kind\": \"caves\"}, \"player\": [1, 2], \"entities\": [";
+    auto good = parse_save(head + "{\"prop\": {\"kind\": \"tree\", \"position\": [4.5, 6]}, \"probe_anchor\": [4.5, 6.25]}]}", "t.json");
+    ASSERT_TRUE(good) << good.error().message;
+    ASSERT_TRUE(good->entities[0].probe_anchor);
+    EXPECT_EQ(good->entities[0].probe_anchor->position, glm::vec2(4.5f, 6.25f));
+    auto again = parse_save(format_save(*good), "t.json");
+    ASSERT_TRUE(again) << again.error().message;
+    ASSERT_TRUE(again->entities[0].probe_anchor);
+    EXPECT_EQ(again->entities[0].probe_anchor->position, glm::vec2(4.5f, 6.25f));
+    // Applied to a world, the entity gets its anchor back.
+    ecs::World fresh;
+    fresh.set_resource<DayCycle>();
+    apply_save(*again, fresh, ecs::Entity{});
+    int anchored = 0;
+    fresh.view<Prop, ProbeAnchor>().each([&](const Prop& p, const ProbeAnchor& a) {
+        ++anchored;
+        EXPECT_EQ(p.kind, PropKind::tree);
+        EXPECT_EQ(a.position, glm::vec2(4.5f, 6.25f));
+    });
+    EXPECT_EQ(anchored, 1);
+    for (const char* bad : {"\"probe_anchor\": [1]", "\"probe_anchor\": \"base\"", "\"probe_anchor\": [1e30, 0]"}) {
+        auto r = parse_save(head + "{\"prop\": {\"kind\": \"tree\", \"position\": [4.5, 6]}, " + bad + "}]}", "t.json");
+        ASSERT_FALSE(r) << bad;
+        EXPECT_NE(r.error().message.find("t.json:1:"), std::string::npos) << r.error().message;
+        EXPECT_NE(r.error().message.find("entities[0].probe_anchor"), std::string::npos) << r.error().message;
+    }
+}
+
 // The inventory in saves: a save without one (written before it existed) gives a new game's;
 // counts outside [0, 999] and unknown items are refused with their position.
 TEST(Saves, InventoryDefaultsAndBadCountsAreRefused) {

@@ -56,6 +56,7 @@ struct PropParts {
     std::optional<EmissiveLight> emissive;
     std::optional<ShadowProxy> proxy;
     std::optional<PointLight> light;
+    std::optional<ProbeAnchor> anchor; // a tree: its base (its crown sways and overhangs)
 };
 PropParts prop_parts(PropKind kind, glm::vec2 position, const GameTables& tables = default_tables());
 struct TorchParts {

@@ -30,6 +30,7 @@ struct SavedEntity {
     std::optional<Torch> torch;
     std::optional<Prop> prop;
     std::optional<DroppedItem> item; // its age is not saved (read back: resting)
+    std::optional<ProbeAnchor> probe_anchor;
     bool sun = false;
 };
 
