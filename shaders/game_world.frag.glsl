@@ -212,12 +212,13 @@ void main() {
         vec3 light = texel_lit[texel].rgb;
         const vec3 albedo = texel_albedo[texel].rgb * in_color.rgb;
         const vec2 knobs = bounce_knobs(MATERIAL_TEXEL_LIT);
-        if (HAS_GI && bounce_styled(knobs)) {
-            const vec3 bounce = ground_indirect_light(texel_surfaces[3 * texel].xyz) + in_probe_light;
+        // The GI's bounce at the texel, and the baked light's direction on a side face: read
+        // once for both branches (lavapipe runs both).
+        const vec3 bounce = HAS_GI ? ground_indirect_light(texel_surfaces[3 * texel].xyz) + in_probe_light : vec3(0.0);
+        if (HAS_GI && BOUNCE_STYLED && bounce_styled(knobs)) {
             color = max(albedo * light + reflected_bounce(bounce, albedo, knobs), vec3(0.0)) + albedo * in_color.a;
         } else {
-            // The GI's bounce at the texel, and the baked light's direction on a side face.
-            if (HAS_GI) light = max(light + ground_indirect_light(texel_surfaces[3 * texel].xyz) + in_probe_light, vec3(0.0));
+            if (HAS_GI) light = max(light + bounce, vec3(0.0));
             color = albedo * (light + in_color.a); // a: its glow (a crystal)
         }
     } else {
@@ -228,19 +229,17 @@ void main() {
         if (pc.art.w != 0) albedo *= pattern(in_material, FACE, pos);
         const vec3 normals[5] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, 0, -1), vec3(0, 1, 0));
         const vec2 knobs = bounce_knobs(in_material);
+        // The light, read once for both branches (lavapipe runs both).
         vec3 light = vec3(0.0);
-        if (HAS_GI && bounce_styled(knobs)) {
+        if (HAS_GI) light = WALL_TOP_PER_FACE ? in_face_light : surface_light(pos, normals[FACE]);
+        if (HAS_GI && BOUNCE_STYLED && bounce_styled(knobs)) {
             // The light split into its direct part and its bounce, which the knobs reshape.
-            light = WALL_TOP_PER_FACE ? in_face_light : surface_light(pos, normals[FACE]);
             const vec3 gi_bounce = WALL_TOP_PER_FACE ? in_face_bounce : surface_bounce(pos, normals[FACE]);
             const vec3 direct = light - gi_bounce;
             const vec3 bounce = in_material == MATERIAL_LIT_PROBES ? gi_bounce + in_probe_light : gi_bounce;
             color = max(albedo * direct + reflected_bounce(bounce, albedo, knobs), vec3(0.0)) + in_color.rgb * in_color.a;
         } else {
-            if (HAS_GI) {
-                light = WALL_TOP_PER_FACE ? in_face_light : surface_light(pos, normals[FACE]);
-                if (in_material == MATERIAL_LIT_PROBES) light = max(light + in_probe_light, vec3(0.0));
-            }
+            if (HAS_GI && in_material == MATERIAL_LIT_PROBES) light = max(light + in_probe_light, vec3(0.0));
             color = albedo * light + in_color.rgb * in_color.a;
         }
     }

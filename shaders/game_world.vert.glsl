@@ -91,6 +91,7 @@ void main() {
     if (WALL_TOP_PER_FACE && HAS_GI) {
         set_gi_shading();
         out_face_light = surface_light(vec3(center.x, center.y + half_extent.y, center.z), vec3(0.0, 1.0, 0.0));
-        out_face_bounce = surface_bounce(vec3(center.x, center.y + half_extent.y, center.z), vec3(0.0, 1.0, 0.0));
+        if (BOUNCE_STYLED)
+            out_face_bounce = surface_bounce(vec3(center.x, center.y + half_extent.y, center.z), vec3(0.0, 1.0, 0.0));
     }
 }

@@ -158,7 +158,7 @@ std::optional<ViewSource> view_source(GiDebugView v, const gi::FrameInputs& in) 
 }
 
 gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int face, bool gi, bool art, int lookup,
-                                        int view, bool xray = false, bool texel = false) {
+                                        int view, bool xray = false, bool texel = false, bool styled = false) {
     gpu::GraphicsPipelineDesc p;
     p.vertex_spirv = lantern_game_shaders_spirv("game_world.vert");
     p.fragment_spirv = lantern_game_shaders_spirv("game_world.frag");
@@ -177,7 +177,8 @@ gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int 
                         {3, std::uint32_t(lookup)},
                         {4, std::uint32_t(view)},
                         {5, xray ? 1u : 0u},
-                        {6, texel ? 1u : 0u}};
+                        {6, texel ? 1u : 0u},
+                        {7, styled ? 1u : 0u}};
     p.cull = VK_CULL_MODE_NONE; // faces turned away are never listed
     // The x-ray pass draws where the depth buffer holds something nearer, and keeps it.
     p.depth = xray ? gpu::DepthState{true, false, VK_COMPARE_OP_GREATER} : gpu::DepthState{true, true, VK_COMPARE_OP_LESS};
@@ -263,9 +264,9 @@ std::span<const Palette> builtin_palettes() {
 struct WorldRenderer::Impl {
     gpu::Device* device = nullptr;
     render::RenderTarget target;
-    // By face, wall lookup, GI on, art on, GI view mode (specialisation constants), created on
-    // first use.
-    std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4 * view_modes * 2> pipelines;
+    // By face, wall lookup, GI on, art on, GI view mode, texel lit, bounce styled (specialisation
+    // constants), created on first use.
+    std::array<gpu::GraphicsPipeline, face_count * lookup_count * 4 * view_modes * 2 * 2> pipelines;
     std::array<gpu::GraphicsPipeline, face_count> xray_pipelines; // by face, created on first use
     std::array<std::vector<BoxInstance>, face_count> xray_faces;   // this frame's (reused)
     render::StreamBuffer instances;
@@ -289,13 +290,16 @@ struct WorldRenderer::Impl {
                                                      VK_WHOLE_SIZE, "game world box texels");
     }
 
-    const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art, ViewMode view, bool texel) {
-        if (!gi || view != view_off) lookup = lookup_grid; // compiled out anyway
-        if (view != view_off) art = false, texel = false;  // GI views show the GI texture only
-        const int key = face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0) +
-                                                                           4 * (int(view) + view_modes * (texel ? 1 : 0))));
+    const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art, ViewMode view, bool texel,
+                                          bool styled = false) {
+        if (!gi || view != view_off) lookup = lookup_grid;         // compiled out anyway
+        if (view != view_off) art = false, texel = false;          // GI views show the GI texture only
+        if (!gi || view != view_off) styled = false;               // no bounce to style
+        const int key =
+            face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0) +
+                                                               4 * (int(view) + view_modes * ((texel ? 1 : 0) + (styled ? 2 : 0)))));
         gpu::GraphicsPipeline& p = pipelines[std::size_t(key)];
-        if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, gi, art, lookup, view, false, texel));
+        if (!p) p = device->create_graphics_pipeline(pipeline_desc(target, face, gi, art, lookup, view, false, texel, styled));
         return p;
     }
     const gpu::GraphicsPipeline& xray_pipeline(int face) {
@@ -540,6 +544,7 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     writes.storage_buffer(binding_texel_albedo, texel_on ? *view.texel_albedo : m.dummy_storage);
 
     const bool art_on = levels || art.dither || colors;
+    const bool styled = view.world_bounce != BounceStyle{} || view.character_bounce != BounceStyle{};
     m.view_drawn = view_mode == view_off ? GiDebugView::lit : view.gi_view;
     m.target.begin(cmd, {{0.0f, 0.0f, 0.0f, 1.0f}});
     bool pushed = false;
@@ -556,7 +561,8 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
         for (std::size_t d = 0; d < groups.size(); ++d) {
             const auto count = std::uint32_t(groups[d].size());
             if (count) {
-                cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on, view_mode, draw_groups[d].texel));
+                cmd.bind(m.pipeline(draw_groups[d].face, draw_groups[d].lookup, gi_on, art_on, view_mode,
+                                    draw_groups[d].texel, styled));
                 push_once();
                 cmd.draw(6 * count, 1, 6 * first, 0);
             }

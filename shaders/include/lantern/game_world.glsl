@@ -31,6 +31,12 @@ layout(constant_id = 5) const bool XRAY = false;
 // The texel_lit boxes' draws (Material texel_lit, docs/texel.md): their faces take the light of
 // the per-texel passes at the texel under the pixel (bindings 20..22).
 layout(constant_id = 6) const bool TEXEL = false;
+// Seed 002's bounce knobs (pc.bounce) away from their defaults for the world or for characters.
+// Their branch reads the GI a second time (surface_bounce), and on lavapipe a branch not
+// taken still costs every pixel: with the knobs at their defaults (self 1, bleed 0) it doubled
+// the ground's cost (lantern-bench-world, "ground only": 15.6 ms against 8 without it), so the
+// renderer picks pipelines with it compiled in only while a knob is moved.
+layout(constant_id = 7) const bool BOUNCE_STYLED = false;
 
 // The frame constants (WorldFrame in game/src/world_renderer.cpp), read as frames[slot] with
 // `slot` a push constant that is always 0. Why the indirection: lavapipe specialises a shader
