@@ -338,8 +338,8 @@ JobSystem::Job* JobSystem::find_job(ThreadState& t) {
 // Each move is an ordinary steal(), so the deque's correctness argument is unchanged (a
 // Chase-Lev deque cannot hand out a range in one CAS: the owner's pops do not see a thief's
 // range until its CAS lands). Only the owner pushes to its deque, so the room measured
-// before the batch can only grow while it runs: every push fits. The
-// jobs stay visible to every thread; a sleeper is woken once for the batch, as a spawn would.
+// before the batch can only grow while it runs: every push fits. The jobs stay visible to
+// every thread; a sleeper is woken once for the batch, as a spawn would wake one.
 void JobSystem::steal_more(WorkStealingDeque<Job>& victim, WorkStealingDeque<Job>& own, ThreadState& t) {
     std::int64_t take = victim.size_hint() / 2;
     if (take <= 0) return;
