@@ -730,10 +730,12 @@ TEST(DrawList, AProbeAnchorMovesWhereAnObjectSamplesTheProbes) {
     BakedChunks baked;
     baked.chunks[chunk_id_key({0, 0})] = chunk;
     spawn_player(world, {10.5f, 10.5f}, true);
+    // The game's trees carry an anchor at their base (Saves.ATreesProbeAnchorIsItsBaseAndSavesKeepIt):
+    // the plain one loses it, the anchored one gets one elsewhere.
     const ecs::Entity plain = spawn_prop(world, PropKind::tree, {12.5f, 9.5f});
     const ecs::Entity anchored = spawn_prop(world, PropKind::tree, {8.5f, 9.5f});
-    world.emplace<ProbeAnchor>(anchored, ProbeAnchor{{20.5f, 9.5f}});
-    (void)plain;
+    world.remove<ProbeAnchor>(plain);
+    world.emplace_or_replace<ProbeAnchor>(anchored, ProbeAnchor{{20.5f, 9.5f}});
     DrawContext ctx;
     ctx.camera = follow_camera({10.5f, 0.0f, 10.5f}, CameraRig{});
     ctx.probes = &baked;
