@@ -157,8 +157,9 @@ constexpr auto item_kinds = enum_names<Item>(inventory_keys);
 constexpr auto world_kinds = enum_names<WorldKind>(kind_names);
 
 void read_entity(Reader& r, const json::Value& v, const std::string& path, SavedEntity& e) {
-    Fields f(r, v, path, {"point_light", "emissive_light", "directional_light", "shadow_proxy", "torch", "prop", "item",
-                                 "probe_anchor", "sun"});
+    Fields f(r, v, path,
+             {"point_light", "emissive_light", "directional_light", "shadow_proxy", "torch", "prop", "item", "probe_anchor",
+              "sun"});
     if (const json::Value* m = f.find("point_light")) {
         scene::PointLight l;
         scene::reading::read_point_light(r, *m, f.path_of("point_light"), l);

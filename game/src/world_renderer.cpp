@@ -292,9 +292,8 @@ struct WorldRenderer::Impl {
 
     const gpu::GraphicsPipeline& pipeline(int face, Lookup lookup, bool gi, bool art, ViewMode view, bool texel,
                                           bool styled = false) {
-        if (!gi || view != view_off) lookup = lookup_grid;         // compiled out anyway
-        if (view != view_off) art = false, texel = false;          // GI views show the GI texture only
-        if (!gi || view != view_off) styled = false;               // no bounce to style
+        if (!gi || view != view_off) lookup = lookup_grid, styled = false; // compiled out anyway
+        if (view != view_off) art = false, texel = false;                  // GI views show the GI texture only
         const int key =
             face + face_count * (int(lookup) + lookup_count * ((gi ? 1 : 0) + (art ? 2 : 0) +
                                                                4 * (int(view) + view_modes * ((texel ? 1 : 0) + (styled ? 2 : 0)))));

@@ -9,7 +9,7 @@
 // docs/ecs.md). Values must be trivially copyable and no more aligned than malloc
 // guarantees; Pool falls back to std::vector for other component types.
 //
-// Blocks of `map_bytes` and more are mapped from the kernel directly on Linux and grown with
+// Blocks of `detail::pod_map_bytes` (1 MiB) and more are mapped from the kernel directly on Linux and grown with
 // mremap. realloc would do the same only while glibc keeps such blocks mapped: after a few
 // large frees it raises its mmap threshold (up to 32 MiB) and serves them from the heap,
 // where growing copies (the 1M-entity create spent 8 % of its time in memmove). Mapped
