@@ -1,5 +1,6 @@
 // Directional lights (sun, moon): traversal towards the light with the wall-height test,
 // added into the direct colour and wall faces; writes shadow map G (max visibility).
+// Each workgroup visits only the proxies whose shadow from the sun can reach it (PROXY_BINS).
 // Parameters: DirectionalParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -15,6 +16,9 @@ struct DirectionalParams {
 
 const bool UPPER = (FEATURES & 1u) != 0u;   // unfolded proxy shadows: the upper-face textures
 const bool SUN_MAP = (FEATURES & 2u) != 0u; // the suns' grid shadows by their shadow map
+// The proxies whose shadow from each sun can reach each workgroup's texels (a mask per sun and
+// workgroup, built on the host: record_directional); the others are not visited.
+const bool PROXY_BINS = (FEATURES & 4u) != 0u;
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
@@ -42,6 +46,23 @@ layout(std430, binding = 22) writeonly buffer UpperPX { uvec2 texels[]; } o_uppe
 layout(std430, binding = 23) writeonly buffer UpperNX { uvec2 texels[]; } o_upper_nx;
 layout(std430, binding = 24) writeonly buffer UpperPZ { uvec2 texels[]; } o_upper_pz;
 layout(std430, binding = 25) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
+layout(std430, binding = 26) readonly buffer SunProxyBins { uint masks[]; } u_sun_proxy_bins;
+
+// The proxies the current sun's mask lists for this workgroup, in ascending order.
+int g_bin, g_bins_total, g_proxy_base, g_proxy_words;
+#define GI_PROXY_LIST
+int proxy_next(int i) {
+    int j = i + 1;
+    if (!PROXY_BINS) return j;
+    int w = j >> 5;
+    if (w >= g_proxy_words) return pc.counts.w;
+    uint bits = u_sun_proxy_bins.masks[g_proxy_base + w] & (~0u << uint(j & 31));
+    while (bits == 0u) {
+        if (++w >= g_proxy_words) return pc.counts.w;
+        bits = u_sun_proxy_bins.masks[g_proxy_base + w];
+    }
+    return w * 32 + findLSB(bits);
+}
 
 #include "lantern/gi_shadow.glsl"
 #include "lantern/gi_sun_map.glsl"
@@ -69,6 +90,7 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
     for (int i = 0; i < pc.counts.z; ++i) {
         GpuDirectionalLight sun = u_suns.suns[i];
+        g_proxy_base = (i * g_bins_total + g_bin) * g_proxy_words;
         vec3 color = sun.color_multiplier.rgb * sun_angle(sun);
         if (!wall) {
             float visibility = sun_visibility(i, sun, p);
@@ -118,6 +140,9 @@ void merge_upper(inout TexelLight t, uint faces, int index) {
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
+    g_bin = int(gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x);
+    g_bins_total = int(gl_NumWorkGroups.x * gl_NumWorkGroups.y);
+    g_proxy_words = (pc.counts.w + 31) >> 5;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);
         if (y >= pc.size.y) return;

@@ -89,6 +89,27 @@ TEST_F(GiGpuCompare, FadingProxiesMatchReference) {
     EXPECT_EQ(scenes, 2) << "two comparison scenes with shadow proxies";
 }
 
+// The sun's pass visits only the proxies whose shadow can reach each workgroup (masks built
+// on the host, gi_directional.comp's PROXY_BINS); the reference visits every proxy. The
+// proxies scene (every shape, width mode, penumbra mode and end-cap blend) over a cave at
+// giRes 8, so that the window spans many workgroups, under low suns whose shadows cross them, towards each
+// quadrant and along an axis, with folded and unfolded proxy shadows on tall walls.
+TEST_F(GiGpuCompare, SunsSkipOnlyProxiesWhoseShadowsCannotReachAWorkgroup) {
+    NamedScene named = gi_test::comparison_scene("proxies");
+    named.scene.gi.resolution = 8;
+    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f); // faces for the proxies' shadows to climb
+    named.scene.wall_height = 2.5f;
+    for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
+    int suns = 0;
+    for (glm::vec3 dir : {glm::vec3(0.7f, -0.35f, 0.4f), glm::vec3(-0.5f, -0.3f, -0.6f), glm::vec3(0.0f, -0.4f, 1.0f)})
+        named.scene.directional_lights.push_back({glm::normalize(dir), {0.9f, 0.8f, 0.6f}, 0.5f + 0.2f * float(suns++), 4.0f, 0.3f});
+    for (auto unfold : {lantern::scene::ProxyWallShadows::full, lantern::scene::ProxyWallShadows::unfold}) {
+        named.scene.gi.proxy_wall_shadows = unfold;
+        SCOPED_TRACE(unfold == lantern::scene::ProxyWallShadows::unfold ? "unfolded" : "folded");
+        compare_scene(named, Pass::directional, false);
+    }
+}
+
 TEST_F(GiGpuCompare, RealMapDen312d) {
     auto s = gi_test::map_scene("den312d.map", {32.0f, 40.0f}, 1);
     if (!s) GTEST_SKIP() << "../shared is absent";

@@ -174,9 +174,10 @@ float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
     return edge * len * p.fade.x; // a strength of 1 changes nothing, bit for bit
 }
 
-// The shadow proxies a point light's loops visit: all of them, unless the including shader
-// defines GI_PROXY_LIST and its own proxy_next (the direct pass: the proxies its
-// workgroup's bin lists; one left out occludes nothing there, so the result is the same).
+// The shadow proxies a light's loops visit: all of them, unless the including shader
+// defines GI_PROXY_LIST and its own proxy_next (the direct and directional passes: the
+// proxies its workgroup's bin lists for the light; one left out occludes nothing there, so
+// the result is the same).
 #ifndef GI_PROXY_LIST
 int proxy_next(int i) { return i + 1; }
 #endif
@@ -219,7 +220,7 @@ float directional_proxy_shadow(vec2 pixel, vec3 light_dir) {
     if (xz_length < 1e-4) return 1.0;
     precise vec2 travel = vec2(gi_div(light_dir.x, xz_length), gi_div(light_dir.z, xz_length));
     float shadow = 1.0;
-    for (int i = 0; i < pc.counts.w; ++i) {
+    for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
         shadow = min(shadow, 1.0 - proxy_occlusion(u_proxies.proxies[i], pixel, travel));
         if (shadow <= 0.001) break;
     }
@@ -274,7 +275,7 @@ vec3 directional_proxy_face_shadow(vec2 target, vec3 light_dir, float height) {
     s.y = directional_proxy_shadow(target + travel * height, light_dir);
     if (!(s.y > s.x)) return s;
     float reach = 0.0;
-    for (int i = 0; i < pc.counts.w; ++i) {
+    for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
         GpuShadowProxy p = u_proxies.proxies[i];
         if (proxy_occlusion(p, target, travel) > 0.0) reach = max(reach, unfolded_reach(p, target, travel, travel));
     }

@@ -8,11 +8,14 @@
 #include "lantern/gi/sun_map.hpp"
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 
+#include <glm/common.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <array>
 #include <cstring>
+#include <span>
 #include <tuple>
 #include <vector>
 
@@ -117,10 +120,11 @@ constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
 constexpr std::uint32_t feature_linear_falloff = 8; // gi.light_softness 1: no pow (gi_direct.comp)
 constexpr std::uint32_t feature_list = 16; // gi_direct.comp: one workgroup per listed bin (dirty light bins)
 constexpr std::uint32_t feature_no_lights = 32; // gi_direct.comp: bins no light reaches (the light loops left out)
+constexpr std::uint32_t feature_sun_proxy_bins = 4; // gi_directional.comp: visits the proxies its workgroup's mask lists
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
-    return (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (sun_map ? feature_sun_map : 0u);
+    return (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (sun_map ? feature_sun_map : 0u) | feature_sun_proxy_bins;
 }
 
 // ---- conduction
@@ -525,10 +529,69 @@ void reference_mixed_row(ReferenceContext& c) {
 // ---- directional lights
 
 // The suns' shadow maps on the GPU (sun_map.hpp): rebuilt and uploaded whenever the pass
-// runs with gi.sun_shadow_method = shadow_map; a one-element stand-in otherwise.
+// runs with gi.sun_shadow_method = shadow_map; a one-element stand-in otherwise. And the
+// proxies each workgroup visits (sun_proxy_bins), every time it runs.
 struct SunMapState : vk::PassState {
     UploadedArray headers, first, entries;
+    UploadedArray proxy_bins;
 };
+
+// For each sun and workgroup of the pass (row-major), a mask of the proxies whose shadow from
+// that sun can reach the workgroup's texels or their wall faces' targets (and, unfolded, the
+// tops of those faces): gi_shadow.glsl's proxy_occlusion is 0 beyond `along` in
+// (0, max length + penumbra length] and a perpendicular distance of the proxy's width plus
+// its penumbra width, so the others are skipped without changing a result. Boxes, padded.
+std::vector<std::uint32_t> sun_proxy_bins(const PassRecorder& r) {
+    const FrameInputs& in = r.in;
+    const GiWindow& w = in.window;
+    const int group_w = int(r.group_x()) * 4, group_h = int(r.group_y() * r.block_h());
+    const int bins_x = (r.pitch(direct_set[0]) / 4 + int(r.group_x()) - 1) / int(r.group_x());
+    const int bins_y = ((w.height + int(r.block_h()) - 1) / int(r.block_h()) + int(r.group_y()) - 1) / int(r.group_y());
+    const int words = (int(in.proxies.size()) + 31) / 32;
+    std::vector<std::uint32_t> masks(std::max<std::size_t>(1, in.directional_lights.size() * std::size_t(bins_x) *
+                                                                   std::size_t(bins_y) * std::size_t(words)),
+                                     0u);
+    if (words == 0) return masks;
+    // A texel's face targets lie on its tile's edges (within a tile of it); unfolded shadows
+    // also test a face's top, the wall height further along the sun's travel.
+    const float margin = 1.01f + (unfolds_proxy_shadows(in) ? std::max(in.wall_height, 0.0f) : 0.0f);
+    const float texel = 1.0f / float(w.resolution);
+    for (std::size_t sun = 0; sun < in.directional_lights.size(); ++sun) {
+        const glm::vec3 dir = glm::vec3(in.directional_lights[sun].direction_base);
+        const float xz = std::sqrt(dir.x * dir.x + dir.z * dir.z);
+        if (!(xz >= 1e-4f)) continue; // straight down: the shader tests no proxy
+        const glm::vec2 travel(dir.x / xz, dir.z / xz);
+        for (std::size_t i = 0; i < in.proxies.size(); ++i) {
+            const GpuShadowProxy& p = in.proxies[i];
+            const glm::vec2 c(p.position_size.x, p.position_size.y);
+            const float width = (p.modes.y > 0.5f ? p.position_size.z : p.position_size.z + p.position_size.w) +
+                                std::max(p.lengths.z, 0.0f) + margin + 0.01f;
+            const glm::vec2 end = c + travel * (std::max(p.lengths.x, 0.0f) + std::max(p.lengths.w, 0.0f));
+            const glm::vec2 lo = glm::min(c, end) - width, hi = glm::max(c, end) + width;
+            // The bins whose texel centres' box meets [lo, hi].
+            const auto texel_of = [&](float world, float min, int size, int count) { // clamped before the int
+                return int(std::floor(std::clamp((world - min) / texel, -1.0f, float(size * count))));
+            };
+            const auto first = [&](float world, float min, int size, int count) {
+                return std::clamp(texel_of(world, min, size, count) / size, 0, count);
+            };
+            const auto last = [&](float world, float min, int size, int count) {
+                const int t = texel_of(world, min, size, count);
+                return t < 0 ? -1 : std::min(t / size, count - 1);
+            };
+            if (!(lo.x <= hi.x && lo.y <= hi.y)) continue; // not finite
+            const int x0 = first(lo.x, w.view.min_x, group_w, bins_x), x1 = last(hi.x, w.view.min_x, group_w, bins_x);
+            const int y0 = first(lo.y, w.view.min_z, group_h, bins_y), y1 = last(hi.y, w.view.min_z, group_h, bins_y);
+            for (int by = y0; by <= y1; ++by)
+                for (int bx = x0; bx <= x1; ++bx) {
+                    const std::size_t bin = std::size_t(by) * std::size_t(bins_x) + std::size_t(bx);
+                    const std::size_t at = (sun * std::size_t(bins_x) * std::size_t(bins_y) + bin) * std::size_t(words);
+                    masks[at + i / 32] |= 1u << (i % 32);
+                }
+        }
+    }
+    return masks;
+}
 
 // Uploads this frame's maps; false (use the DDA) when they exceed what a texel buffer holds.
 bool upload_sun_maps(PassRecorder& r, bool wanted) {
@@ -551,8 +614,11 @@ void record_directional(PassRecorder& r) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
     const bool sun_map = upload_sun_maps(r, in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map);
-    const SunMapState& maps = r.state<SunMapState>();
+    SunMapState& maps = r.state<SunMapState>();
     const std::uint32_t faces = computed_faces(in.settings);
+    upload_array(r, maps.proxy_bins, std::span<const std::uint32_t>(sun_proxy_bins(r)), VK_FORMAT_UNDEFINED,
+                 "sun proxy bins");
+    r.cmd.barrier_transfer_to_compute();
     if (!r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
         for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz,
                       Tex::wall_upper_px, Tex::wall_upper_nx, Tex::wall_upper_pz, Tex::wall_upper_nz})
@@ -575,6 +641,7 @@ void record_directional(PassRecorder& r) {
         writes.uniform_texel_buffer(18 + f, r.view(r.has(in_upper) ? in_upper : point_set[0]));
         writes.storage_buffer(22 + f, r.buffer(r.has(out_upper) ? out_upper : direct_set[0]));
     }
+    writes.storage_buffer(26, maps.proxy_bins.buffer);
     r.cmd.push_descriptors(writes);
     auto p = r.params<DirectionalParams>(w.width, w.height);
     p.pass = {.wall_height = in.wall_height,
