@@ -49,22 +49,12 @@ layout(std430, binding = 14) readonly buffer PointMapBins { uvec2 bins[]; } u_po
 layout(std430, binding = 15) readonly buffer ProxyBins { uint masks[]; } u_proxy_bins; // gi_light_bins
 layout(std430, binding = 16) readonly buffer DirtyBins { uint bins[]; } u_dirty; // LIST
 
-// The proxies this workgroup's bin lists, in ascending order (gi_shadow.glsl's loops).
+// The proxies this workgroup's bin lists (gi_shadow.glsl's loops).
 int g_proxy_base;
 int g_proxy_words;
 int g_bin, g_bins_total;
-#define GI_PROXY_LIST
-int proxy_next(int i) {
-    int j = i + 1;
-    int w = j >> 5;
-    if (w >= g_proxy_words) return pc.counts.w;
-    uint bits = u_proxy_bins.masks[g_proxy_base + w] & (~0u << uint(j & 31));
-    while (bits == 0u) {
-        if (++w >= g_proxy_words) return pc.counts.w;
-        bits = u_proxy_bins.masks[g_proxy_base + w];
-    }
-    return w * 32 + findLSB(bits);
-}
+#define GI_PROXY_MASK(w) u_proxy_bins.masks[g_proxy_base + (w)]
+#define GI_PROXY_WORDS g_proxy_words
 
 #include "lantern/gi_shadow.glsl"
 #include "lantern/gi_point_map.glsl"

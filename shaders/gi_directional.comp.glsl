@@ -1,6 +1,7 @@
 // Directional lights (sun, moon): traversal towards the light with the wall-height test,
 // added into the direct colour and wall faces; writes shadow map G (max visibility).
-// Each workgroup visits only the proxies whose shadow from the sun can reach it (PROXY_BINS).
+// Each workgroup visits only the proxies whose shadow from the sun can reach it (a mask per
+// sun and workgroup, built on the host: record_directional's sun_proxy_bins).
 // Parameters: DirectionalParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -16,9 +17,6 @@ struct DirectionalParams {
 
 const bool UPPER = (FEATURES & 1u) != 0u;   // unfolded proxy shadows: the upper-face textures
 const bool SUN_MAP = (FEATURES & 2u) != 0u; // the suns' grid shadows by their shadow map
-// The proxies whose shadow from each sun can reach each workgroup's texels (a mask per sun and
-// workgroup, built on the host: record_directional); the others are not visited.
-const bool PROXY_BINS = (FEATURES & 4u) != 0u;
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
@@ -48,21 +46,10 @@ layout(std430, binding = 24) writeonly buffer UpperPZ { uvec2 texels[]; } o_uppe
 layout(std430, binding = 25) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
 layout(std430, binding = 26) readonly buffer SunProxyBins { uint masks[]; } u_sun_proxy_bins;
 
-// The proxies the current sun's mask lists for this workgroup, in ascending order.
+// The proxies the current sun's mask lists for this workgroup (gi_shadow.glsl's loops).
 int g_bin, g_bins_total, g_proxy_base, g_proxy_words;
-#define GI_PROXY_LIST
-int proxy_next(int i) {
-    int j = i + 1;
-    if (!PROXY_BINS) return j;
-    int w = j >> 5;
-    if (w >= g_proxy_words) return pc.counts.w;
-    uint bits = u_sun_proxy_bins.masks[g_proxy_base + w] & (~0u << uint(j & 31));
-    while (bits == 0u) {
-        if (++w >= g_proxy_words) return pc.counts.w;
-        bits = u_sun_proxy_bins.masks[g_proxy_base + w];
-    }
-    return w * 32 + findLSB(bits);
-}
+#define GI_PROXY_MASK(w) u_sun_proxy_bins.masks[g_proxy_base + (w)]
+#define GI_PROXY_WORDS g_proxy_words
 
 #include "lantern/gi_shadow.glsl"
 #include "lantern/gi_sun_map.glsl"

@@ -175,10 +175,23 @@ float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
 }
 
 // The shadow proxies a light's loops visit: all of them, unless the including shader
-// defines GI_PROXY_LIST and its own proxy_next (the direct and directional passes: the
-// proxies its workgroup's bin lists for the light; one left out occludes nothing there, so
-// the result is the same).
-#ifndef GI_PROXY_LIST
+// defines GI_PROXY_MASK(w), word w of a mask of the proxies to visit (the direct and
+// directional passes: the proxies its workgroup's bin lists for the light; one left out
+// occludes nothing there, so the result is the same), and GI_PROXY_WORDS, its length. Then
+// they are visited in ascending order, as without a mask.
+#ifdef GI_PROXY_MASK
+int proxy_next(int i) {
+    int j = i + 1;
+    int w = j >> 5;
+    if (w >= GI_PROXY_WORDS) return pc.counts.w;
+    uint bits = GI_PROXY_MASK(w) & (~0u << uint(j & 31));
+    while (bits == 0u) {
+        if (++w >= GI_PROXY_WORDS) return pc.counts.w;
+        bits = GI_PROXY_MASK(w);
+    }
+    return w * 32 + findLSB(bits);
+}
+#else
 int proxy_next(int i) { return i + 1; }
 #endif
 

@@ -120,11 +120,10 @@ constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
 constexpr std::uint32_t feature_linear_falloff = 8; // gi.light_softness 1: no pow (gi_direct.comp)
 constexpr std::uint32_t feature_list = 16; // gi_direct.comp: one workgroup per listed bin (dirty light bins)
 constexpr std::uint32_t feature_no_lights = 32; // gi_direct.comp: bins no light reaches (the light loops left out)
-constexpr std::uint32_t feature_sun_proxy_bins = 4; // gi_directional.comp: visits the proxies its workgroup's mask lists
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
-    return (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (sun_map ? feature_sun_map : 0u) | feature_sun_proxy_bins;
+    return (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (sun_map ? feature_sun_map : 0u);
 }
 
 // ---- conduction
