@@ -92,8 +92,9 @@ TEST_F(GiGpuCompare, FadingProxiesMatchReference) {
 // The sun's pass visits only the proxies whose shadow can reach each workgroup (masks built
 // on the host, record_directional's sun_proxy_bins); the reference visits every proxy. The
 // proxies scene (every shape, width mode, penumbra mode and end-cap blend) over a cave at
-// giRes 8, so that the window spans many workgroups, under low suns whose shadows cross them, towards each
-// quadrant and along an axis, with folded and unfolded proxy shadows on tall walls.
+// giRes 8, so that the window spans many workgroups, under low suns whose shadows cross
+// them, towards each quadrant and along an axis, with folded and unfolded proxy shadows on
+// tall walls.
 TEST_F(GiGpuCompare, SunsSkipOnlyProxiesWhoseShadowsCannotReachAWorkgroup) {
     NamedScene named = gi_test::comparison_scene("proxies");
     named.scene.gi.resolution = 8;

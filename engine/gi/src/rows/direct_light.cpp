@@ -17,6 +17,7 @@
 #include <cstring>
 #include <span>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace lantern::gi::rows {
@@ -233,6 +234,17 @@ std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uin
 }
 
 // A bin no light reaches (bin_lights).
+// The workgroup grid of a pass over a texture of this pitch and height (Renderer's
+// dispatch_blocks: blocks of 4 x block_h texels, group_x x group_y blocks a workgroup).
+struct WorkgroupGrid {
+    std::uint32_t x = 0, y = 0;
+};
+WorkgroupGrid workgroup_grid(const PassRecorder& r, int pitch, int height) {
+    const std::uint32_t blocks_x = std::uint32_t(pitch / 4);
+    const std::uint32_t blocks_y = (std::uint32_t(height) + r.block_h() - 1) / r.block_h();
+    return {(blocks_x + r.group_x() - 1) / r.group_x(), (blocks_y + r.group_y() - 1) / r.group_y()};
+}
+
 constexpr std::uint64_t no_light_bin = 0x62696e73ull;
 
 // Per bin (row-major, bins_x x bins_y of bin_w x bin_h texels), a hash of the lights that
@@ -345,9 +357,8 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
         return;
     }
     const bool want_map = in.settings.shadow_method == scene::ShadowMethod::shadow_map && !lights.point_lights.empty();
-    const std::uint32_t blocks_x = std::uint32_t(r.pitch(out[0]) / 4);
-    const std::uint32_t blocks_y = (std::uint32_t(w.height) + r.block_h() - 1) / r.block_h();
-    const std::uint32_t bins_x = (blocks_x + r.group_x() - 1) / r.group_x(), bins_y = (blocks_y + r.group_y() - 1) / r.group_y();
+    const WorkgroupGrid grid = workgroup_grid(r, r.pitch(out[0]), w.height);
+    const std::uint32_t bins_x = grid.x, bins_y = grid.y;
     const std::uint32_t words = std::uint32_t((lights.point_lights.size() + lights.emissive_lights.size() + 31) / 32);
     const VkDeviceSize bin_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(bins_x) * bins_y * std::max(words, 1u) * 4);
     const std::uint32_t proxy_words = std::uint32_t((in.proxies.size() + 31) / 32);
@@ -543,9 +554,9 @@ struct SunMapState : vk::PassState {
 std::vector<std::uint32_t> sun_proxy_bins(const PassRecorder& r) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
-    const int group_w = int(r.group_x()) * 4, group_h = int(r.group_y() * r.block_h());
-    const int bins_x = (r.pitch(direct_set[0]) / 4 + int(r.group_x()) - 1) / int(r.group_x());
-    const int bins_y = ((w.height + int(r.block_h()) - 1) / int(r.block_h()) + int(r.group_y()) - 1) / int(r.group_y());
+    const WorkgroupGrid grid = workgroup_grid(r, r.pitch(direct_set[0]), w.height);
+    const int bins_x = int(grid.x), bins_y = int(grid.y);
+    const int group_w = int(r.group_x()) * 4, group_h = int(r.group_y() * r.block_h()); // texels
     const int words = (int(in.proxies.size()) + 31) / 32;
     std::vector<std::uint32_t> masks(std::max<std::size_t>(1, in.directional_lights.size() * std::size_t(bins_x) *
                                                                    std::size_t(bins_y) * std::size_t(words)),
@@ -554,7 +565,14 @@ std::vector<std::uint32_t> sun_proxy_bins(const PassRecorder& r) {
     // A texel's face targets lie on its tile's edges (within a tile of it); unfolded shadows
     // also test a face's top, the wall height further along the sun's travel.
     const float margin = 1.01f + (unfolds_proxy_shadows(in) ? std::max(in.wall_height, 0.0f) : 0.0f);
-    const float texel = 1.0f / float(w.resolution);
+    // The first and last bin of `count` bins of `size` texels whose texels meet [lo, hi] (world
+    // units from `min`); clamped as floats before the int, so far coordinates stay in range.
+    const auto bin_range = [&](float lo, float hi, float min, int size, int count) {
+        const float res = float(w.resolution), end = float(size * count);
+        const int a = int(std::floor(std::clamp((lo - min) * res, -1.0f, end)));
+        const int b = int(std::floor(std::clamp((hi - min) * res, -1.0f, end)));
+        return std::pair{std::clamp(a / size, 0, count), b < 0 ? -1 : std::min(b / size, count - 1)};
+    };
     for (std::size_t sun = 0; sun < in.directional_lights.size(); ++sun) {
         const glm::vec3 dir = glm::vec3(in.directional_lights[sun].direction_base);
         const float xz = std::sqrt(dir.x * dir.x + dir.z * dir.z);
@@ -567,20 +585,9 @@ std::vector<std::uint32_t> sun_proxy_bins(const PassRecorder& r) {
                                 std::max(p.lengths.z, 0.0f) + margin + 0.01f;
             const glm::vec2 end = c + travel * (std::max(p.lengths.x, 0.0f) + std::max(p.lengths.w, 0.0f));
             const glm::vec2 lo = glm::min(c, end) - width, hi = glm::max(c, end) + width;
-            // The bins whose texel centres' box meets [lo, hi].
-            const auto texel_of = [&](float world, float min, int size, int count) { // clamped before the int
-                return int(std::floor(std::clamp((world - min) / texel, -1.0f, float(size * count))));
-            };
-            const auto first = [&](float world, float min, int size, int count) {
-                return std::clamp(texel_of(world, min, size, count) / size, 0, count);
-            };
-            const auto last = [&](float world, float min, int size, int count) {
-                const int t = texel_of(world, min, size, count);
-                return t < 0 ? -1 : std::min(t / size, count - 1);
-            };
             if (!(lo.x <= hi.x && lo.y <= hi.y)) continue; // not finite
-            const int x0 = first(lo.x, w.view.min_x, group_w, bins_x), x1 = last(hi.x, w.view.min_x, group_w, bins_x);
-            const int y0 = first(lo.y, w.view.min_z, group_h, bins_y), y1 = last(hi.y, w.view.min_z, group_h, bins_y);
+            const auto [x0, x1] = bin_range(lo.x, hi.x, w.view.min_x, group_w, bins_x);
+            const auto [y0, y1] = bin_range(lo.y, hi.y, w.view.min_z, group_h, bins_y);
             for (int by = y0; by <= y1; ++by)
                 for (int bx = x0; bx <= x1; ++bx) {
                     const std::size_t bin = std::size_t(by) * std::size_t(bins_x) + std::size_t(bx);
