@@ -33,16 +33,43 @@ const vec3 face_u[5] = vec3[](vec3(0, 0, 1), vec3(0, 0, 1), vec3(1, 0, 0), vec3(
 const vec3 face_v[5] = vec3[](vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 0, 1));
 const vec2 quad[6] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
 
-// What the baked light's probes (world_renderer.hpp ProbeRecord at texel `base` of u_boxes)
-// add to a side face of normal n: max(pi E(phi), 0) - a0 (the GI textures give the a0 part).
+// The GI's live probes at ground point p, added to c: bilinear between the four probes around
+// p, over those in open ground (bake::interpolate_probes' rule).
+void add_live_probes(vec2 p, inout vec3 c[5]) {
+    const ivec2 count = ivec2(pc.probes.z & 0xFFFF, pc.probes.z >> 16);
+    const vec2 g = (p - 0.5 - vec2(pc.probes.xy)) / 2.0;
+    const ivec2 i0 = ivec2(floor(g));
+    const vec2 f = g - vec2(i0);
+    vec3 sum[5] = vec3[5](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+    float weight = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        const ivec2 i = i0 + ivec2(k & 1, k >> 1);
+        if (i.x < 0 || i.y < 0 || i.x >= count.x || i.y >= count.y) continue;
+        const int base = i.y * pc.probes.w + 5 * i.x;
+        const vec4 a0 = texelFetch(u_probes, base);
+        if (a0.a < 0.5) continue; // in a wall
+        const float w = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k >> 1) != 0 ? f.y : 1.0 - f.y);
+        sum[0] += a0.rgb * w;
+        for (int h = 1; h < 5; ++h) sum[h] += texelFetch(u_probes, base + h).rgb * w;
+        weight += w;
+    }
+    if (weight > 0.0)
+        for (int h = 0; h < 5; ++h) c[h] += sum[h] / weight;
+}
+
+// What the light probes (world_renderer.hpp ProbeRecord at texel `base` of u_boxes: the baked
+// light's, and with its `live` texel the GI's live probes at its anchor) add to a side face of
+// normal n: max(pi E(phi), 0) - a0 (the GI textures give the a0 part).
 vec3 probe_face_light(int base, vec3 n) {
     const float pi = 3.14159265;
     const float phi = atan(n.z, n.x);
-    const vec3 a0 = texelFetch(u_boxes, base).rgb;
-    const vec3 e = a0 / pi + (texelFetch(u_boxes, base + 1).rgb * cos(phi) + texelFetch(u_boxes, base + 2).rgb * sin(phi)) * 0.5 +
-                   (texelFetch(u_boxes, base + 3).rgb * cos(2.0 * phi) + texelFetch(u_boxes, base + 4).rgb * sin(2.0 * phi)) *
-                       (2.0 / (3.0 * pi));
-    return max(pi * e, vec3(0.0)) - a0;
+    vec3 c[5];
+    for (int h = 0; h < 5; ++h) c[h] = texelFetch(u_boxes, base + h).rgb;
+    const vec4 live = texelFetch(u_boxes, base + 5);
+    if (HAS_GI && live.z > 0.5 && pc.probes.w > 0) add_live_probes(live.xy, c);
+    const vec3 e = c[0] / pi + (c[1] * cos(phi) + c[2] * sin(phi)) * 0.5 +
+                   (c[3] * cos(2.0 * phi) + c[4] * sin(2.0 * phi)) * (2.0 / (3.0 * pi));
+    return max(pi * e, vec3(0.0)) - c[0];
 }
 
 void main() {

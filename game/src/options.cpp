@@ -55,6 +55,9 @@ scene::GiSettings default_game_gi() {
     // docs/accuracy.md: about 0.25-0.5 matches an albedo-0.5 world in level; 1.0 (the seed's)
     // washes a torch-lit cave out.
     gi.emission_strength = 0.5f;
+    // Live light probes (docs/baked.md, "Live probes"): the walls' light on the things that
+    // move, from the side it comes from. 16 rays: 1.3 ms a frame on lavapipe (32: 2.4 ms).
+    gi.probe_rays = 16;
     return gi;
 }
 

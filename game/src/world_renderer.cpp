@@ -3,6 +3,7 @@
 
 #include "lantern/game/settings.hpp"
 
+#include "lantern/gi/probes.hpp"
 #include "lantern/gi/radiosity.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gpu/command_list.hpp"
@@ -44,10 +45,11 @@ struct alignas(16) WorldFrame {
     glm::vec4 bounce{1.0f, 0.0f, 1.0f, 0.0f}; // BounceStyle: world self, bleed; characters self, bleed
     glm::ivec4 view_tex{0};     // the GI view's texture: width, height, pitch
     glm::vec4 view_params{0.0f}; // its texels per world unit
+    glm::ivec4 probes{0};       // the live probes: first tile x, z, count x | count z << 16, pitch (0: none)
     std::array<glm::vec4, max_palette_colors> palette{};
     std::array<gi::GpuDirectionalLight, 8> suns{};
 };
-static_assert(sizeof(WorldFrame) == 64 + 12 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
+static_assert(sizeof(WorldFrame) == 64 + 13 * 16 + 16 * 16 + 8 * 48, "WorldFrame mirrors lantern/game_world.glsl");
 
 static_assert(offsetof(BoxInstance, half) == 16 && offsetof(BoxInstance, color) == 32,
               "BoxInstance must match game_world.vert.glsl's three texels per box");
@@ -88,6 +90,7 @@ constexpr std::uint32_t binding_view = binding_boxes + 1;                       
 constexpr std::uint32_t binding_texel_lit = binding_view + 1;      // the per-texel light (storage)
 constexpr std::uint32_t binding_texel_surfaces = binding_view + 2; // its texels' world positions
 constexpr std::uint32_t binding_texel_albedo = binding_view + 3;   // its texels' albedo
+constexpr std::uint32_t binding_probes = binding_view + 4;         // the GI's live probes (gi::Tex::probes)
 constexpr VkDeviceSize initial_box_capacity = 4096;
 
 // Shading-library texture ids (shading.glsl GI_*) in binding order.
@@ -171,6 +174,7 @@ gpu::GraphicsPipelineDesc pipeline_desc(const render::RenderTarget& target, int 
         p.bindings.push_back(gpu::BindingType::uniform_texel_buffer);
     for (std::uint32_t i = binding_texel_lit; i <= binding_texel_albedo; ++i)
         p.bindings.push_back(gpu::BindingType::storage_buffer);
+    p.bindings.push_back(gpu::BindingType::uniform_texel_buffer); // binding_probes
     p.specialization = {{0, std::uint32_t(face)},
                         {1, gi ? 1u : 0u},
                         {2, art ? 1u : 0u},
@@ -503,6 +507,14 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
         const bool walls = bool(r.walls_view());
         writes.uniform_texel_buffer(binding_walls, walls ? r.walls_view() : m.dummy_walls);
         if (!walls) f.grid = glm::ivec4(0); // nothing uploaded: every tile is air
+        // The live probes, when this frame captured them.
+        if (const gpu::BufferView* probes = r.view(gi::vk::Tex::probes)) {
+            const gi::ProbeGrid g = gi::probe_grid(in);
+            f.probes = glm::ivec4(g.first_tile, g.count.x | (g.count.y << 16), r.pitch(gi::vk::Tex::probes));
+            writes.uniform_texel_buffer(binding_probes, *probes);
+        } else {
+            writes.uniform_texel_buffer(binding_probes, m.dummy_texels);
+        }
         // The GI view: its texture when this frame has it, else the lit scene.
         if (const auto source = view_source(view.gi_view, in); source && r.view(source->tex)) {
             const glm::ivec2 size = r.size(source->tex);
@@ -516,6 +528,7 @@ void WorldRenderer::record(gpu::CommandList& cmd, const WorldView& view, const D
     } else {
         writes.uniform_texel_buffer(binding_view, m.dummy_texels);
         writes.uniform_texel_buffer(binding_walls, m.dummy_walls);
+        writes.uniform_texel_buffer(binding_probes, m.dummy_texels);
         for (int i = 0; i < gi_texture_count; ++i)
             writes.uniform_texel_buffer(binding_first_texture + std::uint32_t(i), m.dummy_texels);
     }

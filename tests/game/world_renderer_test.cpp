@@ -11,6 +11,7 @@
 #include "lantern/gi/passes.hpp"
 #include "lantern/gi/radiosity.hpp"
 #include "lantern/gi/shading.hpp"
+#include "lantern/gi/probes.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gi/window.hpp"
 #include "lantern/gpu/device.hpp"
@@ -896,6 +897,84 @@ TEST_F(WorldRendererTest, ProbesLightATexelLitFaceFromWhereTheBakedLightComes) {
     std::printf("texel-lit +x face: %d %d %d -> %d %d %d\n", p0[0], p0[1], p0[2], p1[0], p1[1], p1[2]);
     EXPECT_GT(p1[0], p0[0] + 10) << "lit orange from the side the baked light comes from";
     EXPECT_GT(p1[0] - p1[2], p0[0] - p0[2] + 5) << "and orange, not white";
+}
+
+// The GI's live probes (gi.probe_rays; docs/baked.md, "Live probes"): a crate between a lamp
+// and the wall it lights takes that wall's light on the face turned to it. Its record asks for
+// the live probes at its anchor (ProbeRecord::live); the same crate with a record that does not
+// (and no baked light) is the plain crate. The probes the GPU captured say so too: facing the
+// wall (+z) the interpolated probe gives more than it takes away, turned away it takes.
+TEST_F(WorldRendererTest, LiveProbesLightAFaceFromTheLitWallItFaces) {
+    // A room with a wall along z = 12 (x 7..15), a warm lamp at z 9.3 lighting its -z face,
+    // the crate at z 10.8 between them. The camera looks towards -z from z 19 and 14 up: it sees
+    // the crate's +z face over the wall.
+    std::vector<std::string> rows(20, std::string(22, '.'));
+    for (int x = 0; x < 22; ++x) rows[0][std::size_t(x)] = rows[19][std::size_t(x)] = '#';
+    for (int z = 0; z < 20; ++z) rows[std::size_t(z)][0] = rows[std::size_t(z)][21] = '#';
+    for (int x = 7; x < 16; ++x) rows[12][std::size_t(x)] = '#';
+    scene::Scene s;
+    s.walls = grid_from_rows(rows);
+    s.wall_height = 1.5f;
+    s.gi.resolution = 4;
+    s.gi.padding = 1.1f;
+    s.gi.heat_rounds = 12;
+    s.gi.probe_rays = 32;
+    s.point_lights.push_back({{11.0f, 9.3f}, 1.0f, {1.0f, 0.7f, 0.4f}, 0.5f, 10.0f}); // dim: the face stays off white
+    auto frame = make_gi_frame(std::move(s), follow({11.0f, 10.0f}));
+    ASSERT_TRUE(frame);
+    ASSERT_TRUE(frame->plan.run.has(gi::Pass::probes));
+    WorldView view;
+    view.camera = std::get<scene::PerspectiveCamera>(frame->scene.view);
+    view.art.texture_pattern = false;
+    const glm::vec2 at(11.0f, 10.8f);
+    auto render = [&](bool live) {
+        DrawList list = world_list(*frame, false);
+        BoxInstance b;
+        b.center = {at.x, 0.3f, at.y};
+        b.half = glm::vec3(0.3f);
+        b.material = float(int(Material::lit_probes));
+        b.color = {0.7f, 0.7f, 0.7f};
+        b.emissive = 0.0f; // the record's index
+        list.boxes.push_back(b);
+        game::ProbeRecord record;
+        if (live) record.live = glm::vec4(at, 1.0f, 0.0f);
+        list.probes.push_back(record);
+        return draw(view, list, frame.get());
+    };
+    const auto plain = render(false), probed = render(true);
+    maybe_write_png(probed, "live_probes");
+    const glm::ivec2 px = project_pixel(view.camera, {at.x, 0.3f, at.y + 0.3f}); // the +z face, towards the wall
+    const auto p0 = pixel(plain, px.x, px.y), p1 = pixel(probed, px.x, px.y);
+    std::printf("+z face: %d %d %d -> %d %d %d\n", p0[0], p0[1], p0[2], p1[0], p1[1], p1[2]);
+    EXPECT_GT(p1[0], p0[0] + 8) << "lit by the wall it faces";
+
+    // What the GPU captured, interpolated at the crate as the vertex stage does.
+    const gi::Texture probes = read(gi::vk::Tex::probes);
+    const gi::ProbeGrid g = gi::probe_grid(frame->in);
+    ASSERT_EQ(probes.width, 5 * g.count.x);
+    const glm::vec2 u = (at - 0.5f - glm::vec2(g.first_tile)) / 2.0f;
+    const glm::ivec2 i0(int(std::floor(u.x)), int(std::floor(u.y)));
+    const glm::vec2 f = u - glm::vec2(i0);
+    game::ProbeRecord sum;
+    float weight = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        const glm::ivec2 i = i0 + glm::ivec2(k & 1, k >> 1);
+        if (probes.at(5 * i.x, i.y)[3] < 0.5f) continue; // in a wall
+        const float w = ((k & 1) ? f.x : 1.0f - f.x) * ((k >> 1) ? f.y : 1.0f - f.y);
+        for (int h = 0; h < 5; ++h) {
+            const float* v = probes.at(5 * i.x + h, i.y);
+            sum.c[h] += glm::vec4(v[0], v[1], v[2], 0.0f) * w;
+        }
+        weight += w;
+    }
+    ASSERT_GT(weight, 0.0f);
+    for (glm::vec4& c : sum.c) c /= weight;
+    const float half_pi = 1.5707963f;
+    const glm::vec3 toward = game::probe_face_light(sum, half_pi), away = game::probe_face_light(sum, -half_pi);
+    std::printf("live probe at the crate: +z %.3f, -z %.3f (fluence %.3f)\n", toward.r, away.r, sum.c[0].r);
+    EXPECT_GT(toward.r, 0.1f);
+    EXPECT_GT(toward.r, 1.5f * toward.b) << "in the warm lamp's colour (before the tone map)";
+    EXPECT_LT(away.r, 0.0f);
 }
 
 // A glowing texel-lit part (a crystal: TexelRecord.texture.w, its box's colour the tint)

@@ -89,6 +89,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"wall_albedo", {0.3, "0.3"}},
         {"albedo_boost", {2.0, "2.0"}},
         {"baked_intensity", {0.5, "0.5"}},
+        {"probe_rays", {8, "8"}},
     };
     const std::map<std::string, std::string> second = {
         {"resolution", "5"}, {"padding", "1.5"}, {"window_snap", "tile"}, {"sun_shadow_method", "dda"}, {"shadow_method", "shadow_map"}, {"proxy_wall_shadows", "full"}, {"heat_rounds", "11"}, {"heat_scale", "quarter"},
@@ -101,7 +102,7 @@ std::optional<std::string> perturbed(const std::string& key, const scene::GiSett
         {"radiosity.accumulate", "5"}, {"radiosity.noise", "off"}, {"radiosity.frames", "7"},
         {"gather.scale", "full"}, {"gather.rays", "5"}, {"gather.face_rays", "6"}, {"gather.bounces", "1"},
         {"gather.frames", "7"}, {"gather.margin", "3"}, {"wall_albedo", "0.7"},
-        {"albedo_boost", "3.0"}, {"baked_intensity", "2.0"},
+        {"albedo_boost", "3.0"}, {"baked_intensity", "2.0"}, {"probe_rays", "12"},
     };
     if (auto it = values.find(key); it != values.end())
         return it->second.first != v ? it->second.second : second.at(key);
@@ -311,13 +312,15 @@ TEST(PassTable, AllocationFollowsThePlannedRowsWrites) {
 TEST(PassTable, TextureBudget) {
     scene::Scene s = every_pass_scene();
     s.gi.heat_scale = scene::HeatScale::full;
+    s.gi.probe_rays = 0; // the live probes' texture is per probe (40 bytes every 2 x 2 tiles), not per texel
     auto window = compute_window(s.view, s.gi);
     ASSERT_TRUE(window);
     FrameInputs in = gather_frame_inputs(s, *window); // without a bake: the figures docs/gi.md quotes
     const PassPlan plan = plan_passes(in, true);
     PassSet live = rows_of(method(scene::GiMethod::heat));
-    live.bits &= ~((1u << int(Pass::mixed)) | (1u << int(Pass::baked_sample)) | (1u << int(Pass::baked)));
-    ASSERT_EQ(plan.run, live) << "every pass runs but those of a bake";
+    live.bits &= ~((1u << int(Pass::mixed)) | (1u << int(Pass::baked_sample)) | (1u << int(Pass::baked)) |
+                   (1u << int(Pass::probes)));
+    ASSERT_EQ(plan.run, live) << "every pass runs but those of a bake and the probes";
     const std::uint64_t texels = std::uint64_t(in.window.width) * std::uint64_t(in.window.height);
     ASSERT_EQ(in.window.width % 4, 0); // no row padding in the per-texel figure
     EXPECT_EQ(texture_bytes(in, plan, TextureStorage::gpu), 166 * texels);

@@ -89,6 +89,7 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.point_lights.push_back(point({4.5f, 4.5f}, {1.0f, 0.8f, 0.5f}, 2.0f, 9.0f));
         s.point_lights.push_back(point({18.2f, 15.7f}, {0.3f, 0.6f, 1.0f}, 1.5f, 8.0f));
         s.emissive_lights.push_back(emissive({16.5f, 3.5f}, {0.2f, 1.0f, 0.4f}, 1.0f, 4.0f));
+        s.gi.probe_rays = 32; // live probes: four materials, a glowing one
         out.push_back({"rooms", s});
     }
     {   // 3. Diagonal gaps: corners with both, one and no side walls.
@@ -142,6 +143,7 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.gi.resolution = 2;
         s.point_lights.push_back(point({18.5f, 17.5f}, {1, 0.7f, 0.4f}, 2.0f, 10.0f));
         s.point_lights.push_back(point({25.5f, 20.5f}, {0.5f, 0.7f, 1.0f}, 1.0f, 8.0f));
+        s.gi.probe_rays = 24; // live probes at giRes 2, rays that do not divide 4096 evenly
         out.push_back({"camera_cave", s});
     }
     {   // 7. Lights and walls outside the window reaching in.
@@ -202,6 +204,7 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.shadow_proxies.push_back(post);
         s.point_lights.push_back(point({8.5f, 8.5f}, {1, 0.6f, 0.3f}, 1.5f, 7.0f));
         s.emissive_lights.push_back(emissive({4.5f, 11.5f}, {0.3f, 0.5f, 1.0f}, 0.8f, 3.0f));
+        s.gi.probe_rays = 16; // live probes with two faces not computed
         out.push_back({"culled_faces_wall_ao", s});
     }
     {   // 12. Wall lighting off: no face passes or textures; walls shade as (dark) ground.
@@ -223,6 +226,7 @@ inline std::vector<NamedScene> comparison_scenes() {
         s.directional_lights.push_back({glm::normalize(glm::vec3(0.3f, -0.7f, 0.5f)), {1.0f, 0.9f, 0.8f}, 0.6f, 5.0f, 0.3f});
         s.point_lights.push_back(point({6.3f, 9.1f}, {1, 0.7f, 0.4f}, 1.5f, 8.0f));
         s.emissive_lights.push_back(emissive({11.5f, 5.5f}, {0.4f, 1.0f, 0.5f}, 0.8f, 3.0f));
+        s.gi.probe_rays = 16; // live probes in a window that starts mid-tile
         out.push_back({"texel_window", s});
     }
     {   // 14. The suns' shadows by the shadow map (gi.sun_shadow_method): a low sun along an

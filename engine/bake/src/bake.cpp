@@ -44,6 +44,7 @@ scene::GiSettings bake_gi(const scene::Scene& s, const BakeSettings& b) {
     gi.wall_faces = {};
     gi.blur = false;
     gi.baked_intensity = 1.0f; // a run-time knob: the bake is the same whatever it is
+    gi.probe_rays = 0;         // live probes: the frame's, never the bake's (it captures its own)
     gi.max_lights = std::max(gi.max_lights, 1 << 20); // the bake is not a frame: no cap
     gi.max_shadow_proxies = std::max(gi.max_shadow_proxies, 1 << 20);
     return gi;

@@ -7,6 +7,7 @@
 #include "lantern/core/hash.hpp"
 #include "lantern/gi/reference_indirect.hpp"
 #include "lantern/gi/gather.hpp"
+#include "lantern/gi/probes.hpp"
 #include "lantern/gi/radiosity.hpp"
 #include "lantern/scene/loader.hpp"
 #include "rows/rows.hpp"
@@ -91,6 +92,7 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {baked_face_nx, "baked_face_nx", TexFormat::rgba16f, TexScale::window, false, true},
     {baked_face_pz, "baked_face_pz", TexFormat::rgba16f, TexScale::window, false, true},
     {baked_face_nz, "baked_face_nz", TexFormat::rgba16f, TexScale::window, false, true},
+    {probes, "probes", TexFormat::rgba16f, TexScale::custom, false, false, probe_texture_size},
 };
 
 constexpr bool rows_in_order() {
@@ -103,20 +105,20 @@ static_assert(rows_in_order(), "builtin_textures must list the textures in the o
 // Seed 000's heat diffusion: the pipeline order.
 constexpr const PassRow* heat_rows[] = {
     &rows::conduction, &rows::ao,   &rows::direct,        &rows::directional, &rows::emission,
-    &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
+    &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::probes, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 // Seed 003's radiosity: the same direct light and emission, then the distance field and the
 // raymarch in place of heat; the blur is the seed's denoiser.
 constexpr const PassRow* radiosity_rows[] = {
     &rows::conduction,     &rows::ao,        &rows::direct, &rows::directional,   &rows::emission,
-    &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
+    &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::probes, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 
 // The gather method (physical): Lantern's direct light, then the wall faces' bounces and the
 // ground gather in place of emission and heat; the blur smooths the gather's ray pattern.
 // (It writes wall_indirect_* itself: no wall_indirect row.)
 constexpr const PassRow* gather_rows[] = {
-    &rows::conduction, &rows::ao, &rows::direct, &rows::directional, &rows::gather, &rows::blur, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
+    &rows::conduction, &rows::ao, &rows::direct, &rows::directional, &rows::gather, &rows::blur, &rows::probes, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 
 // The registry: the built-in textures, rows and methods, then what add_texture/add_row

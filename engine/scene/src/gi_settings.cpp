@@ -108,7 +108,7 @@ struct GiField {
 
 // The one table of gi keys: JSON name, the field of `gi` it sets and the allowed values.
 // The order is that of GiSettings and docs/scenes.md.
-std::array<GiField, 52> gi_fields(GiSettings& gi) {
+std::array<GiField, 53> gi_fields(GiSettings& gi) {
     return {{
         {"method", EnumField<GiMethod>{&gi.method, method_names}},
         {"resolution", IntField{&gi.resolution, {1, 32}}},
@@ -162,6 +162,7 @@ std::array<GiField, 52> gi_fields(GiSettings& gi) {
         {"wall_albedo", FloatField{&gi.wall_albedo, between(0.0, 1.0)}},
         {"albedo_boost", FloatField{&gi.albedo_boost, between(1.0, 10.0)}},
         {"baked_intensity", FloatField{&gi.baked_intensity, between(0.0, 16.0)}},
+        {"probe_rays", IntField{&gi.probe_rays, {0, 256}}},
     }};
 }
 

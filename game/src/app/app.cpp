@@ -232,6 +232,7 @@ void Game::add_systems(ecs::Schedule& schedule, Session& s) {
         r.context.time = w.resource<GameClock>().time;
         r.context.materials = &w.resource<systems::GiConfig>().materials;
         if (w.resource<BakeStatus>().enabled) r.context.probes = &w.resource<BakedChunks>();
+        r.context.live_probes = w.resource<systems::GiConfig>().settings.probe_rays > 0;
         const IsWall is_wall = [&](int x, int z) { return streaming.is_wall({x, z}); };
         w.view<Player, Transform>().each([&](const Player&, const Transform& t) {
             if (auto target = cursor_target(w.resource<Controls>(), r.context.camera, {t.position.x, t.position.z},

@@ -108,10 +108,13 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
     // baked light in use): one record per object, a lit_probes box per part.
     // The record's index, or -1 without baked light.
     auto probe_record = [&](glm::vec2 at) -> int {
-        if (!ctx.probes) return -1;
-        const bake::CircularHarmonics probes = ctx.probes->probes_at(at);
+        if (!ctx.probes && !ctx.live_probes) return -1;
         ProbeRecord r;
-        for (int k = 0; k < 5; ++k) r.c[k] = glm::vec4(probes.c[std::size_t(k)], 0.0f);
+        if (ctx.probes) {
+            const bake::CircularHarmonics probes = ctx.probes->probes_at(at);
+            for (int k = 0; k < 5; ++k) r.c[k] = glm::vec4(probes.c[std::size_t(k)], 0.0f);
+        }
+        if (ctx.live_probes) r.live = glm::vec4(at, 1.0f, 0.0f);
         out.probes.push_back(r);
         return int(out.probes.size() - 1);
     };
@@ -121,7 +124,7 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
         return a ? a->position : at;
     };
     auto probe_lit = [&](ecs::Entity e, glm::vec2 at) -> std::pair<Material, float> {
-        if (!ctx.probes || ctx.texel_lighting) return {Material::prop, 0.0f}; // texel lit: a record per part, below
+        if ((!ctx.probes && !ctx.live_probes) || ctx.texel_lighting) return {Material::prop, 0.0f}; // texel lit: a record per part, below
         return {Material::lit_probes, float(probe_record(anchored(e, at)))};
     };
 

@@ -20,6 +20,9 @@ struct DrawContext {
     // The baked light probes (lights the player and props from the direction the baked light
     // comes from); nullptr without baked light.
     const BakedChunks* probes = nullptr;
+    // The GI's live probes (gi.probe_rays > 0): records carry the object's anchor, and the
+    // vertex stage adds the live probes there (world_renderer.hpp ProbeRecord).
+    bool live_probes = false;
     // The tile under the cursor and whether the player can act on it (highlighted).
     std::optional<glm::ivec2> cursor_tile;
     bool cursor_on_wall = false;

@@ -223,6 +223,7 @@ HudActions Hud::draw(const HudInputs& in) {
             ImGui::SliderFloat("albedo boost", &g.albedo_boost, 1.0f, 10.0f);
         }
         ImGui::SliderFloat("baked light", &g.baked_intensity, 0.0f, 4.0f); // seed 002's intensity
+        ImGui::SliderInt("live probe rays", &g.probe_rays, 0, 64); // gi.probe_rays (0: none)
         if (g.method != scene::GiMethod::heat) {
             // The bounce stepper (systems::ConvergeControl): radiosity adds a bounce a frame,
             // gather gi.gather.bounces; held, one frame's worth per click.

@@ -62,6 +62,7 @@ struct WorldFrame {
     vec4 bounce;       // seed 002's runtime knobs (BounceStyle): world self, bleed; characters self, bleed
     ivec4 view_tex;    // GI_VIEW's texture: width, height, pitch, 0
     vec4 view_params;  // x: its texels per world unit (from the window's min corner)
+    ivec4 probes;      // the GI's live probes (u_probes): first tile x, z; count x | count z << 16; pitch (0: none)
     vec4 palette[16];  // sRGB-encoded palette colours
     GpuDirectionalLight suns[8];
 };
@@ -97,6 +98,9 @@ layout(set = 0, binding = 19) uniform samplerBuffer u_view; // GI_VIEW's texture
 layout(std430, set = 0, binding = 20) readonly buffer TexelLit { vec4 texel_lit[]; };
 layout(std430, set = 0, binding = 21) readonly buffer TexelSurfaces { vec4 texel_surfaces[]; };
 layout(std430, set = 0, binding = 22) readonly buffer TexelAlbedo { vec4 texel_albedo[]; };
+// The GI's live light probes (lantern/gi/probes.hpp): five RGBA16F texels a probe (a0, a1, b1,
+// a2, b2; a0's alpha 1 in open ground), probe (i, j) at tile pc.probes.xy + 2 (i, j).
+layout(set = 0, binding = 23) uniform samplerBuffer u_probes;
 
 #include "lantern/gi_walls.glsl"
 #include "lantern/shading.glsl"

@@ -329,8 +329,12 @@ constexpr Tex baked_reads[] = {Tex::indirect,          Tex::wall_indirect_px,   
                                Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz,  Tex::baked_ground,
                                Tex::baked_face_px,        Tex::baked_face_nx,        Tex::baked_face_pz,
                                Tex::baked_face_nz};
+// With the probe row's settings too: the probes read the wall textures this row adds to in
+// place, so a change that reruns them must rerun the rows they read (this row's own key
+// changes, and so do the keys of the rows it adds to), or they would read last frame's sums.
 constexpr std::string_view baked_settings[] = {"wall_lighting", "wall_faces.px", "wall_faces.nx", "wall_faces.pz",
-                                               "wall_faces.nz", "proxy_wall_shadows", "baked_intensity"};
+                                               "wall_faces.nz", "proxy_wall_shadows", "baked_intensity",
+                                               "probe_rays", "wall_albedo", "albedo_boost"};
 
 } // namespace
 

@@ -28,6 +28,7 @@ extern const PassRow gather;
 extern const PassRow mixed;
 extern const PassRow baked_sample;
 extern const PassRow baked;
+extern const PassRow probes;
 
 // Records the upsample of a grid texture (heat, radiosity) into Tex::indirect (gi_upsample).
 void record_upsample(vk::PassRecorder& r, Tex src, const HeatGrid& grid);

@@ -87,14 +87,18 @@ inline constexpr int face_pos_x = 1, face_neg_x = 2, face_pos_z = 4, face_neg_z 
 // ground's fluence), so a face turned towards the baked light gets more of it and one turned
 // away less: E(phi) = a0 / pi + (a1 cos phi + b1 sin phi) / 2 + 2 (a2 cos 2phi + b2 sin 2phi) / (3 pi).
 // Tops add nothing (the baked light is in the ground plane). 96 bytes: two BoxInstances.
+// With `live.z` 1 the vertex stage first adds the GI's live probes (gi::Tex::probes, the
+// walls' light this frame) interpolated at (live.x, live.y), the object's anchor on the ground,
+// between the four around it that stand in open ground (docs/baked.md, "Live probes").
 struct ProbeRecord {
     glm::vec4 c[5]{};
-    glm::vec4 unused{0.0f};
+    glm::vec4 live{0.0f};
 };
 static_assert(sizeof(ProbeRecord) == 2 * sizeof(BoxInstance), "probe records ride in the box buffer");
 
 // The light the probes add to a side face of a lit_probes box whose outward normal has angle
-// phi = atan2(n.z, n.x) (the vertex stage's formula, for tests and the CPU).
+// phi = atan2(n.z, n.x) (the vertex stage's formula, for tests and the CPU; the record's own
+// harmonics: the live probes are the GPU's).
 glm::vec3 probe_face_light(const ProbeRecord& r, float phi);
 
 // Where a texel_lit box's texture lies in the per-texel atlas (96 bytes: two BoxInstances):

@@ -115,6 +115,8 @@ enum class Tex : std::uint8_t {
     baked_face_nx,
     baked_face_pz,
     baked_face_nz,
+    // Live light probes (probes.hpp): five texels a probe, every other tile of the window.
+    probes,
     builtin_count
 };
 // Texture ids: the built-ins above, then textures added at run time (add_texture) up to

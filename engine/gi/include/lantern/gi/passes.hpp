@@ -26,6 +26,7 @@ enum class Pass : std::uint8_t {
     mixed,          // mixed lights' direct light, after the indirect passes (their bounce is baked)
     baked_sample,   // the bake's atlas read into the window (cached while the bake and window stand)
     baked,          // the bake's light (FrameInputs::baked) added to the indirect textures, mixed lights' to direct
+    probes,         // live light probes: the walls' light as circular harmonics every other tile (gi.probe_rays)
     builtin_count
 };
 // Pass ids: the built-in rows above, then rows registered at run time (add_row in

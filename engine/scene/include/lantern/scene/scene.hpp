@@ -132,6 +132,10 @@ struct GiSettings {
     // Seed 002's runtime intensity: the baked light (docs/baked.md) the frame adds, scaled
     // (the light probes too). 1 is the bake as solved.
     float baked_intensity = 1.0f;
+    // Live light probes (seed 004's realtime light probes; docs/baked.md, "Live probes"): rays
+    // per probe that capture the frame's wall light as circular harmonics every other tile, for
+    // the things that move. 0: none (nothing in a scene file or lantern-render reads them).
+    int probe_rays = 0;
 
     friend bool operator==(const GiSettings&, const GiSettings&) = default;
 };
