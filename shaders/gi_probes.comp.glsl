@@ -96,16 +96,9 @@ void capture(int i, int j, int pitch) {
     for (int k = 1; k < 5; ++k) o_probes.texels[base + k] = pack_rgba16f(vec4(sum[k], 0.0));
 }
 
+// One probe an invocation (BLOCK_H 1, workgroups of 8 x 4 probes: rows/probes.cpp): a
+// window's few hundred probes spread over every core, which blocks of 4 x 4 would not.
 void main() {
-    ivec2 o = block_origin();
-    if (o.x >= pc.size.x) return;
-    int pitch = pc.size.z; // the probe texture's (5 texels a probe)
-    for (uint rr = 0; rr < BLOCK_H; ++rr) {
-        int j = o.y + int(rr);
-        if (j >= pc.size.y) return;
-        for (int k = 0; k < 4; ++k) {
-            int i = o.x + k;
-            if (i < pc.size.x) capture(i, j, pitch);
-        }
-    }
+    int i = int(gl_GlobalInvocationID.x), j = int(gl_GlobalInvocationID.y);
+    if (i < pc.size.x && j < pc.size.y) capture(i, j, pc.size.z);
 }

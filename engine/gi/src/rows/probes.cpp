@@ -55,7 +55,14 @@ void record_probes(PassRecorder& r) {
     writes.uniform_texel_buffer(9, s.directions.view)
         .uniform_texel_buffer(10, s.materials.view)
         .storage_buffer(11, r.buffer(Tex::probes));
-    r.cmd.bind(r.pipeline<ProbeParams>("gi_probes.comp", {.proxies = false, .features = indirect ? 1u : 0u, .faces = faces}));
+    // One probe an invocation, 32 a workgroup: with the renderer's blocks of 4 x 4 texels and
+    // groups of 8 x 8 blocks, a window's few hundred probes made one or two workgroups, one
+    // core's work (lavapipe runs a workgroup on one thread): in the game at 32 rays 2.4 ms p50
+    // that way, 1.5 ms this way (docs/baked.md, "Live probes").
+    constexpr std::uint32_t group_x = 8, group_y = 4;
+    r.cmd.bind(r.pipeline<ProbeParams>("gi_probes.comp", {.proxies = false, .block_h = 1, .group_x = group_x,
+                                                          .group_y = group_y, .features = indirect ? 1u : 0u,
+                                                          .faces = faces}));
     r.cmd.push_descriptors(writes);
     const GatherFrame f = gather_frame(in);
     auto p = r.params<ProbeParams>(g.count.x, g.count.y);
@@ -70,7 +77,7 @@ void record_probes(PassRecorder& r) {
               .rays = in.settings.probe_rays,
               .dtheta = probe_dtheta(in.settings.probe_rays)};
     r.cmd.push_constants(p);
-    r.dispatch(g.count.x, g.count.y);
+    r.cmd.dispatch((std::uint32_t(g.count.x) + group_x - 1) / group_x, (std::uint32_t(g.count.y) + group_y - 1) / group_y);
     r.cmd.barrier_compute_to_compute();
 }
 
