@@ -50,13 +50,6 @@ const bool HAS_PREVIOUS = (FEATURES & 4u) != 0u;
 const int NORMAL_INDEX[4] = int[4](0, 2048, 1024, 3072);
 const ivec2 NORMAL[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
 
-ivec2 origin_tile() { return ivec2(pc.pass.origin_x, pc.pass.origin_z); }
-ivec2 offset() { return ivec2(pc.pass.offset & 255, (pc.pass.offset >> 8) & 255); }
-int resolution() { return pc.pass.offset >> 16; }
-ivec2 tiles() { return ivec2(pc.pass.tiles & 0xFFFF, pc.pass.tiles >> 16); }
-ivec2 window_size() { return ivec2(pc.pass.window & 0xFFFF, pc.pass.window >> 16); }
-int window_index(int x, int y) { return y * ((window_size().x + 3) & ~3) + x; }
-
 #include "lantern/gi_gather_trace.glsl"
 
 int blue_noise_at(int x, int y) {

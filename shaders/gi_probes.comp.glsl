@@ -34,13 +34,6 @@ layout(std430, binding = 11) writeonly buffer Out { uvec2 texels[]; } o_probes;
 
 #include "lantern/gi_walls.glsl"
 
-ivec2 origin_tile() { return ivec2(pc.pass.origin_x, pc.pass.origin_z); }
-ivec2 offset() { return ivec2(pc.pass.offset & 255, (pc.pass.offset >> 8) & 255); }
-int resolution() { return pc.pass.offset >> 16; }
-ivec2 tiles() { return ivec2(pc.pass.tiles & 0xFFFF, pc.pass.tiles >> 16); }
-ivec2 window_size() { return ivec2(pc.pass.window & 0xFFFF, pc.pass.window >> 16); }
-int window_index(int x, int y) { return y * ((window_size().x + 3) & ~3) + x; }
-
 #include "lantern/gi_gather_trace.glsl"
 
 const bool HAS_INDIRECT = (FEATURES & 1u) != 0u; // the wall_indirect_* textures exist

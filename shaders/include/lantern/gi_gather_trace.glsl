@@ -1,12 +1,20 @@
 // The gather's ray traversal (gather.hpp gather_trace, integer for integer): shared by the
-// gather (gi_gather.comp.glsl) and the live probes (gi_probes.comp.glsl). The includer defines
-// origin_tile(), offset(), resolution(), tiles() and window_size() (the GatherFrame) and
-// includes lantern/gi_walls.glsl (is_wall) first.
+// gather (gi_gather.comp.glsl) and the live probes (gi_probes.comp.glsl). The includer's
+// parameters (pc.pass) have the GatherFrame's fields origin_x, origin_z, offset (x | y << 8 |
+// resolution << 16), tiles (x | y << 16) and window (width | height << 16), and it includes
+// lantern/gi_walls.glsl (is_wall) first.
 #ifndef LANTERN_GI_GATHER_TRACE_GLSL
 #define LANTERN_GI_GATHER_TRACE_GLSL
 
 const int UNIT = 4096;     // fixed point: 1/4096 tile (gather_unit)
 const int MAX_STEPS = 255; // gather_max_steps
+
+ivec2 origin_tile() { return ivec2(pc.pass.origin_x, pc.pass.origin_z); }
+ivec2 offset() { return ivec2(pc.pass.offset & 255, (pc.pass.offset >> 8) & 255); }
+int resolution() { return pc.pass.offset >> 16; }
+ivec2 tiles() { return ivec2(pc.pass.tiles & 0xFFFF, pc.pass.tiles >> 16); }
+ivec2 window_size() { return ivec2(pc.pass.window & 0xFFFF, pc.pass.window >> 16); }
+int window_index(int x, int y) { return y * ((window_size().x + 3) & ~3) + x; }
 
 // gather_trace: the first wall tile the ray enters (face -1: none), and the window texel
 // holding that face at the entry point.
