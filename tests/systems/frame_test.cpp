@@ -90,10 +90,13 @@ TEST_P(FrameCaching, EachChangeRerunsExactlyItsPasses) {
     Harness h(full_scene(), 1, d);
     ecs::World& w = h.world;
     const PassSet all = set_of({Pass::conduction, Pass::ao, Pass::direct, Pass::directional, Pass::emission, Pass::heat,
-                                Pass::blur, Pass::wall_indirect});
+                                Pass::blur, Pass::wall_indirect, Pass::probes});
+    // The live probes (rooms sets gi.probe_rays) read the wall textures: they follow every
+    // pass that writes those.
     const PassSet from_direct = set_of({Pass::direct, Pass::directional, Pass::emission, Pass::heat, Pass::blur,
-                                        Pass::wall_indirect});
-    const PassSet from_sun = set_of({Pass::directional, Pass::emission, Pass::heat, Pass::blur, Pass::wall_indirect});
+                                        Pass::wall_indirect, Pass::probes});
+    const PassSet from_sun = set_of({Pass::directional, Pass::emission, Pass::heat, Pass::blur, Pass::wall_indirect,
+                                     Pass::probes});
     EXPECT_EQ(names(h.step()), names(all)) << "first frame";
     EXPECT_EQ(names(h.step()), names(PassSet{})) << "unchanged frame";
     EXPECT_EQ(names(h.step()), names(PassSet{})) << "still unchanged";
@@ -112,7 +115,7 @@ TEST_P(FrameCaching, EachChangeRerunsExactlyItsPasses) {
     h.frame->config().settings.ao.strength = 0.3f;
     EXPECT_EQ(names(h.step()), names(set_of({Pass::ao}))) << "AO settings";
     h.frame->config().settings.heat_rounds = 12;
-    EXPECT_EQ(names(h.step()), names(set_of({Pass::heat, Pass::blur, Pass::wall_indirect}))) << "heat settings";
+    EXPECT_EQ(names(h.step()), names(set_of({Pass::heat, Pass::blur, Pass::wall_indirect, Pass::probes}))) << "heat settings";
     auto& view = std::get<scene::OrthoView>(w.patch<Camera>(h.sw.camera).view);
     view.center.x += 0.3f; // rooms: window origin at a whole tile; 0.3 stays within it
     EXPECT_EQ(names(h.step()), names(PassSet{})) << "sub-tile camera motion (phase lock)";
@@ -165,8 +168,8 @@ TEST_P(FrameCaching, RadiosityConvergesThenStopsAndTheWallDistanceFollowsTheWall
     Harness h(s, 1, device());
     ecs::World& w = h.world;
     const PassSet all = set_of({Pass::conduction, Pass::ao, Pass::direct, Pass::directional, Pass::emission,
-                                Pass::distance_field, Pass::radiosity, Pass::blur, Pass::wall_indirect});
-    const PassSet refine = set_of({Pass::radiosity, Pass::blur, Pass::wall_indirect});
+                                Pass::distance_field, Pass::radiosity, Pass::blur, Pass::wall_indirect, Pass::probes});
+    const PassSet refine = set_of({Pass::radiosity, Pass::blur, Pass::wall_indirect, Pass::probes});
     EXPECT_EQ(names(h.step()), names(all)) << "first frame";
     for (int f = 1; f < 4; ++f) EXPECT_EQ(names(h.step()), names(refine)) << "refining, frame " << f;
     EXPECT_EQ(names(h.step()), names(PassSet{})) << "converged: a still scene submits nothing";
@@ -177,7 +180,7 @@ TEST_P(FrameCaching, RadiosityConvergesThenStopsAndTheWallDistanceFollowsTheWall
     EXPECT_GT(before, 1.0f);
     w.patch<PointLight>(h.sw.point_lights[0]).position.x += 0.5f;
     EXPECT_EQ(names(h.step()), names(set_of({Pass::direct, Pass::directional, Pass::emission, Pass::radiosity,
-                                             Pass::blur, Pass::wall_indirect})))
+                                             Pass::blur, Pass::wall_indirect, Pass::probes})))
         << "a light moved: the distance field is kept";
     EXPECT_EQ(distance.builds, 1u);
     h.frame->streaming().set_wall(w, {4, 5}, true);
@@ -196,13 +199,14 @@ TEST_P(FrameCaching, GatherConvergesThenStops) {
     s.gi.method = scene::GiMethod::gather;
     s.gi.gather.frames = 3;
     Harness h(s, 1, device());
-    const PassSet all = set_of({Pass::conduction, Pass::ao, Pass::direct, Pass::directional, Pass::gather, Pass::blur});
-    const PassSet refine = set_of({Pass::gather, Pass::blur});
+    const PassSet all = set_of({Pass::conduction, Pass::ao, Pass::direct, Pass::directional, Pass::gather, Pass::blur,
+                                Pass::probes});
+    const PassSet refine = set_of({Pass::gather, Pass::blur, Pass::probes});
     EXPECT_EQ(names(h.step()), names(all)) << "first frame";
     for (int f = 1; f < 3; ++f) EXPECT_EQ(names(h.step()), names(refine)) << "refining, frame " << f;
     EXPECT_EQ(names(h.step()), names(PassSet{})) << "converged: a still scene submits nothing";
     h.world.patch<PointLight>(h.sw.point_lights[0]).position.x += 0.5f;
-    EXPECT_EQ(names(h.step()), names(set_of({Pass::direct, Pass::directional, Pass::gather, Pass::blur})))
+    EXPECT_EQ(names(h.step()), names(set_of({Pass::direct, Pass::directional, Pass::gather, Pass::blur, Pass::probes})))
         << "a light moved";
     EXPECT_GT(h.world.resource<systems::FramePasses>().plan.history[int(Pass::gather)], 0) << "history kept";
 }
@@ -217,7 +221,7 @@ TEST_P(FrameCaching, RadiosityBouncesStepFrameByFrame) {
     Harness h(s, 1, device());
     systems::ConvergeControl& control = h.frame->config().converge;
     control.hold = true;
-    const PassSet refine = set_of({Pass::radiosity, Pass::blur, Pass::wall_indirect});
+    const PassSet refine = set_of({Pass::radiosity, Pass::blur, Pass::wall_indirect, Pass::probes});
     const auto history = [&] { return h.world.resource<systems::FramePasses>().plan.history[int(Pass::radiosity)]; };
     EXPECT_TRUE(h.step().has(Pass::radiosity)) << "first frame";
     EXPECT_EQ(history(), 0);
