@@ -157,7 +157,8 @@ TEST(LiveProbesReference, AProbeTakesALitWallsLightFromTheWallsSide) {
 }
 
 TEST(LiveProbesReference, NotNeededWithoutRays) {
-    const FrameInputs in = inputs_of(lit_wall(0));
+    const Scene s = lit_wall(0); // the inputs point into it
+    const FrameInputs in = inputs_of(s);
     const PassPlan plan = plan_passes(in, false);
     EXPECT_FALSE(plan.run.has(Pass::probes));
     EXPECT_EQ(plan.reason[int(Pass::probes)], "gi.probe_rays is 0");
