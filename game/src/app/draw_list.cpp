@@ -104,9 +104,9 @@ void build_draw_list(ecs::World& world, const systems::Streaming& streaming, con
                                     Material::wall, emissive, float(mask)));
         }
 
-    // Things that move or stand in the open are lit by the baked light's probes too (with
-    // baked light in use): one record per object, a lit_probes box per part.
-    // The record's index, or -1 without baked light.
+    // Things that move or stand in the open are lit by the light probes too (the baked light's,
+    // with baked light in use, and the GI's live ones): one record per object, a lit_probes box
+    // per part. The record's index, or -1 without either.
     auto probe_record = [&](glm::vec2 at) -> int {
         if (!ctx.probes && !ctx.live_probes) return -1;
         ProbeRecord r;

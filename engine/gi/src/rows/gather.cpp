@@ -168,13 +168,14 @@ void record_gather(PassRecorder& r) {
     r.cmd.push_descriptors(writes);
     const glm::ivec2 size = mode == 1 ? glm::ivec2(in.window.width, in.window.height) : glm::ivec2(list_width, rows);
     auto p = r.params<GatherParams>(size.x, size.y);
-    p.pass = {.origin_x = f.origin_tile.x,
-              .origin_z = f.origin_tile.y,
-              .offset = f.offset.x | (f.offset.y << 8) | (f.resolution << 16),
-              .tiles = f.tiles.x | (f.tiles.y << 16),
+    const PackedGatherFrame packed = pack(f);
+    p.pass = {.origin_x = packed.origin_x,
+              .origin_z = packed.origin_z,
+              .offset = packed.offset,
+              .tiles = packed.tiles,
               .rays = mode == 0 ? in.settings.gather.face_rays : in.settings.gather.rays,
               .noise = f.noise_origin.x | (f.noise_origin.y << 8) | (g.scale << 16),
-              .window = in.window.width | (in.window.height << 16)};
+              .window = packed.window};
     r.cmd.push_constants(p);
     r.dispatch(size.x, size.y);
     r.cmd.barrier_compute_to_compute();

@@ -68,11 +68,12 @@ void record_probes(PassRecorder& r) {
     auto p = r.params<ProbeParams>(g.count.x, g.count.y);
     p.size.z = r.pitch(Tex::probes);
     const glm::ivec2 first = g.first_tile - f.origin_tile; // 0 or 1 each
-    p.pass = {.origin_x = f.origin_tile.x,
-              .origin_z = f.origin_tile.y,
-              .offset = f.offset.x | (f.offset.y << 8) | (f.resolution << 16),
-              .tiles = f.tiles.x | (f.tiles.y << 16),
-              .window = f.size.x | (f.size.y << 16),
+    const PackedGatherFrame packed = pack(f);
+    p.pass = {.origin_x = packed.origin_x,
+              .origin_z = packed.origin_z,
+              .offset = packed.offset,
+              .tiles = packed.tiles,
+              .window = packed.window,
               .first = first.x | (first.y << 16),
               .rays = in.settings.probe_rays,
               .dtheta = probe_dtheta(in.settings.probe_rays)};

@@ -56,6 +56,15 @@ struct GatherFrame {
     glm::ivec2 noise_origin{0}; // window texel 0's blue-noise coordinate (world-fixed, mod 64)
 };
 GatherFrame gather_frame(const FrameInputs& in);
+// The frame as the shaders' parameters carry it (lantern/gi_gather_trace.glsl's fields): the
+// origin tile, offset x | y << 8 | resolution << 16, tiles x | z << 16, window width | height << 16.
+struct PackedGatherFrame {
+    std::int32_t origin_x = 0, origin_z = 0, offset = 0, tiles = 0, window = 0;
+};
+inline PackedGatherFrame pack(const GatherFrame& f) {
+    return {f.origin_tile.x, f.origin_tile.y, f.offset.x | (f.offset.y << 8) | (f.resolution << 16),
+            f.tiles.x | (f.tiles.y << 16), f.size.x | (f.size.y << 16)};
+}
 
 // A ray's first wall: the face it enters (0 +X, 1 -X, 2 +Z, 3 -Z; -1: it left the window
 // first) and the window texel inside the wall that holds that face at the entry point.
