@@ -4,7 +4,9 @@
 // the texels of a wall tile whose face f is exposed into baked_face_f (layer 1 + f, alpha 1
 // at wall texels, as wall_indirect writes), and the HUD's view. The baked pass adds them to
 // the frame's textures (gi_add.comp). With a pulsing part (layers 5..9) its light is added
-// scaled by this frame's pulse. C++ reference: engine/gi/src/rows/baked.cpp.
+// scaled by this frame's pulse; with a keyed moving sun, its colour x the two sun keys around
+// its time of day, blended (baked_light.hpp BakedSun). C++ reference:
+// engine/gi/src/rows/baked.cpp.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -12,7 +14,8 @@ struct BakedParams {
     int origin_x, origin_z; // world tile of the baked grid's texel (0, 0)
     int resolution;         // baked grid texels per tile
     int width, height;      // baked grid texels
-    int pulsing;            // 1: layers 5..9 hold the pulsing glow's light (seed 004's pulsing emission)
+    int parts;              // bit 0: layers 5..9 hold the pulsing glow's light (seed 004's pulsing
+                            // emission); bits 1..: the moving sun's first key layer + 1 (0: none)
     float pulse;            // FrameInputs::baked_pulse, its factor this frame
     float intensity;        // gi.baked_intensity
 };
@@ -29,6 +32,7 @@ layout(std430, binding = 6) writeonly buffer FaceNX { uvec2 texels[]; } o_face_n
 layout(std430, binding = 7) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
 layout(std430, binding = 8) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
 layout(std430, binding = 9) writeonly buffer View { uvec2 texels[]; } o_view; // the HUD's: rgb baked, a level + 1
+layout(binding = 10) uniform samplerBuffer u_sun; // the sun keys' weights: colour x (1 - blend), colour x blend
 
 #include "lantern/gi_shadow.glsl"
 
@@ -60,9 +64,16 @@ vec3 baked_sample(int layer, vec2 p, out float level) {
 // layer's brick level + 1.
 vec3 baked_light(int layer, vec2 p, out float level) {
     vec3 v = baked_sample(layer, p, level);
-    if (pc.pass.pulsing != 0) {
+    if ((pc.pass.parts & 1) != 0) {
         float pulse_level;
         v += pc.pass.pulse * baked_sample(LAYERS + layer, p, pulse_level);
+    }
+    int sun_layer = (pc.pass.parts >> 1) - 1;
+    if (sun_layer >= 0) {
+        float key_level;
+        vec3 below = baked_sample(sun_layer + layer, p, key_level);
+        vec3 above = baked_sample(sun_layer + LAYERS + layer, p, key_level);
+        v += texelFetch(u_sun, 0).rgb * below + texelFetch(u_sun, 1).rgb * above;
     }
     return v * pc.pass.intensity;
 }

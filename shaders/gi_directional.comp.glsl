@@ -1,5 +1,7 @@
 // Directional lights (sun, moon): traversal towards the light with the wall-height test,
-// added into the direct colour and wall faces; writes shadow map G (max visibility).
+// added into the direct colour and wall faces; writes shadow map G (max visibility). The
+// directional row lights the realtime suns (point-light textures in, contract textures out);
+// the mixed row the mixed suns, in place on its own textures (FEATURES & 64).
 // Each workgroup visits only the proxies whose shadow from the sun can reach it (a mask per
 // sun and workgroup, built on the host: record_directional's sun_proxy_bins).
 // Parameters: DirectionalParams.
@@ -17,6 +19,9 @@ struct DirectionalParams {
 
 const bool UPPER = (FEATURES & 1u) != 0u;   // unfolded proxy shadows: the upper-face textures
 const bool SUN_MAP = (FEATURES & 2u) != 0u; // the suns' grid shadows by their shadow map
+// The mixed suns (the mixed row: in place on its textures), else the realtime ones
+// (frame_inputs.hpp is_mixed_sun: bounce.y != 0).
+const bool MIXED_SUNS = (FEATURES & 64u) != 0u;
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
@@ -77,6 +82,7 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
     for (int i = 0; i < pc.counts.z; ++i) {
         GpuDirectionalLight sun = u_suns.suns[i];
+        if ((sun.bounce.y != 0.0) != MIXED_SUNS) continue;
         g_proxy_base = (i * g_bins_total + g_bin) * g_proxy_words;
         vec3 color = sun.color_multiplier.rgb * sun_angle(sun);
         if (!wall) {

@@ -1,5 +1,7 @@
 #include "lantern/game/gameplay.hpp"
 
+#include "lantern/scene/day.hpp"
+
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -149,20 +151,9 @@ float flicker(double time, float phase) {
     return 0.8f + 0.17f * noise(time * 7.0 + phase, salt) + 0.08f * noise(time * 1.3 + phase, salt + 17u);
 }
 
-glm::vec3 sun_direction(float time_of_day) {
-    // The sun rises in the east (+x), sets in the west, leaning south (-z).
-    const float angle = (time_of_day - 0.25f) * 6.2831853f; // 0 at sunrise, pi at sunset
-    const float elevation = std::sin(angle);
-    return glm::normalize(glm::vec3(-std::cos(angle), -elevation, 0.35f));
-}
+glm::vec3 sun_direction(float time_of_day) { return scene::day_sun_direction(time_of_day); }
 
-glm::vec3 sun_light(float time_of_day) {
-    const float elevation = -sun_direction(time_of_day).y;
-    const float day = std::clamp(elevation * 3.0f, 0.0f, 1.0f);
-    const glm::vec3 noon(1.0f, 0.95f, 0.85f), dusk(1.0f, 0.55f, 0.3f);
-    // 0.6 at noon: with the ground's bounce on top, a full-strength sun washes the view out.
-    return glm::mix(dusk, noon, std::clamp(elevation * 2.0f, 0.0f, 1.0f)) * (day * 0.6f);
-}
+glm::vec3 sun_light(float time_of_day) { return scene::day_sun_light(time_of_day); }
 
 // A lamp post's light hangs from its arm, a little towards +z of the post.
 const glm::vec2 lamp_light_offset{0.0f, 0.4f};

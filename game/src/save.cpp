@@ -100,7 +100,9 @@ void write_entity(json::Writer& w, const SavedEntity& e) {
         write_vec(w, "direction", l.direction);
         write_vec(w, "color", l.color);
         w.field("intensity", l.intensity).field("base_shadow_distance", l.base_shadow_distance);
-        w.field("bounce_intensity", l.bounce_intensity).end();
+        w.field("bounce_intensity", l.bounce_intensity);
+        if (l.mode != scene::LightMode::realtime) w.field("mode", light_mode_name(l.mode));
+        w.end();
     }
     if (e.shadow_proxy) {
         const scene::ShadowProxy& p = e.shadow_proxy->shape;
@@ -174,7 +176,7 @@ void read_entity(Reader& r, const json::Value& v, const std::string& path, Saved
         scene::DirectionalLight l;
         scene::reading::read_directional_light(r, *m, f.path_of("directional_light"), l);
         e.directional_light =
-            DirectionalLight{l.direction, l.color, l.intensity, l.base_shadow_distance, l.bounce_intensity};
+            DirectionalLight{l.direction, l.color, l.intensity, l.base_shadow_distance, l.bounce_intensity, l.mode};
     }
     if (const json::Value* m = f.find("shadow_proxy")) {
         scene::ShadowProxy proxy;

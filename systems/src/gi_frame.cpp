@@ -111,11 +111,13 @@ void gather_lights(ecs::SystemContext& ctx, LightGatherState& state) {
             const EmissiveLight& l = *emissives[i].second;
             (mixed(l.mode) ? out.mixed_emissives : out.emissives).push_back(gi::pack_light(l.position, l.color, l.intensity, l.radius));
         }
-        for (const auto& [e, d] : by_entity<DirectionalLight>(w))
-            if (gi::sun_adds_light(d->color, d->intensity))
-                out.suns.push_back(gi::pack_directional(
-                    {d->direction, d->color, d->intensity, d->base_shadow_distance, d->bounce_intensity},
-                    config.settings.method));
+        for (const auto& [e, d] : by_entity<DirectionalLight>(w)) {
+            if (!gi::sun_adds_light(d->color, d->intensity) || !live(d->mode)) continue;
+            out.suns.push_back(gi::pack_directional(
+                {d->direction, d->color, d->intensity, d->base_shadow_distance, d->bounce_intensity},
+                config.settings.method));
+            if (mixed(d->mode)) gi::mark_mixed(out.suns.back());
+        }
     }
     out.hash = hash_vector(Hasher(hash_vector(Hasher(), out.points)), out.emissives);
     out.suns_hash = hash_vector(Hasher(), out.suns);

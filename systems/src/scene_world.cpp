@@ -24,7 +24,7 @@ SceneWorld populate_world(const scene::Scene& s, ecs::World& world) {
     for (const scene::DirectionalLight& l : s.directional_lights) {
         ecs::Entity e = world.create();
         world.emplace<DirectionalLight>(
-            e, DirectionalLight{l.direction, l.color, l.intensity, l.base_shadow_distance, l.bounce_intensity});
+            e, DirectionalLight{l.direction, l.color, l.intensity, l.base_shadow_distance, l.bounce_intensity, l.mode});
         out.directional_lights.push_back(e);
     }
     for (const scene::ShadowProxy& p : s.shadow_proxies) {

@@ -12,6 +12,7 @@
 #include "lantern/gi/reference.hpp"
 #include "lantern/gi/window.hpp"
 #include "lantern/jobs/job_system.hpp"
+#include "lantern/scene/day.hpp"
 
 #include <gtest/gtest.h>
 
@@ -74,10 +75,11 @@ void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes
     f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
-// The scene with its one light realtime and the live gather at the bake's settings, viewing
+// The scene with its lights realtime and the live gather at the bake's settings, viewing
 // chunk (1, 0) with the bake's margin: what the bake of that chunk solves.
 scene::Scene as_live_gather(scene::Scene s, const BakeSettings& b) {
-    s.point_lights[0].mode = LightMode::realtime;
+    for (auto& l : s.point_lights) l.mode = LightMode::realtime;
+    for (auto& l : s.directional_lights) l.mode = LightMode::realtime;
     s.gi.method = scene::GiMethod::gather;
     s.gi.resolution = b.resolution;
     s.gi.padding = 1.0f;
@@ -171,30 +173,41 @@ TEST(Bake, LightModesDecideWhatIsBaked) {
 
 // A mixed light's baked bounce light is what the live gather method computes for it, texel
 // for texel, when the live method runs with the bake's settings (its frames x bounces
-// spread over 8 frames instead of one).
+// spread over 8 frames instead of one). A mixed point light, and a mixed sun.
 TEST(Bake, BakedBounceEqualsTheLiveGather) {
-    scene::Scene s = world();
-    s.point_lights = {s.point_lights[0]}; // the mixed light at (44.5, 15.5)
-    s.materials.clear();
-    for (auto& c : s.walls.cells) c = c != 0 ? 1 : 0;
-    const BakeSettings b = quick();
-    const bake::ChunkBake baked = bake::bake_chunk(s, {1, 0}, b);
-    ASSERT_FALSE(baked.empty);
-    const scene::Scene live = as_live_gather(s, b);
-    const gi::GiWindow w = *gi::compute_window(live.view, live.gi);
-    const gi::FrameInputs in = gi::gather_frame_inputs(live, w);
-    const gi::ReferenceStore store = run_frames(in, live.gi.gather.frames);
-    const gi::Texture& indirect = store.at(gi::Tex::indirect);
-    const int side = baked.side(), offset = b.margin * b.resolution;
-    int lit = 0;
-    for (int y = 0; y < side; ++y)
-        for (int x = 0; x < side; ++x) {
-            const float* v = indirect.at(x + offset, y + offset);
-            const glm::vec3 got = texel(baked.ground, side, x, y);
-            for (int c = 0; c < 3; ++c) ASSERT_EQ(got[c], v[c]) << x << ", " << y;
-            lit += v[0] > 0.0f ? 1 : 0;
+    for (bool sun : {false, true}) {
+        SCOPED_TRACE(sun ? "a mixed sun" : "a mixed point light");
+        scene::Scene s = world();
+        s.point_lights = {s.point_lights[0]}; // the mixed light at (44.5, 15.5)
+        if (sun) {
+            s.point_lights.clear();
+            scene::DirectionalLight d;
+            d.direction = glm::normalize(glm::vec3(0.5f, -0.7f, -0.4f));
+            d.intensity = 0.8f;
+            d.mode = LightMode::mixed;
+            s.directional_lights = {d};
         }
-    EXPECT_GT(lit, 1000);
+        s.materials.clear();
+        for (auto& c : s.walls.cells) c = c != 0 ? 1 : 0;
+        const BakeSettings b = quick();
+        const bake::ChunkBake baked = bake::bake_chunk(s, {1, 0}, b);
+        ASSERT_FALSE(baked.empty);
+        const scene::Scene live = as_live_gather(s, b);
+        const gi::GiWindow w = *gi::compute_window(live.view, live.gi);
+        const gi::FrameInputs in = gi::gather_frame_inputs(live, w);
+        const gi::ReferenceStore store = run_frames(in, live.gi.gather.frames);
+        const gi::Texture& indirect = store.at(gi::Tex::indirect);
+        const int side = baked.side(), offset = b.margin * b.resolution;
+        int lit = 0;
+        for (int y = 0; y < side; ++y)
+            for (int x = 0; x < side; ++x) {
+                const float* v = indirect.at(x + offset, y + offset);
+                const glm::vec3 got = texel(baked.ground, side, x, y);
+                for (int c = 0; c < 3; ++c) ASSERT_EQ(got[c], v[c]) << x << ", " << y;
+                lit += v[0] > 0.0f ? 1 : 0;
+            }
+        EXPECT_GT(lit, 1000);
+    }
 }
 
 TEST(Bake, SecondRunReusesEveryCacheAndAnEditRebakesOnlyTheChunksItReaches) {
@@ -1109,4 +1122,120 @@ TEST(Bake, APulsingGlowIsBakedApartAndAddsUpToTheSteadyBake) {
             ++checked;
         }
     EXPECT_GT(checked, 200);
+}
+
+namespace {
+
+// The world's walls lit by one mixed sun alone (default walls, no glow).
+scene::Scene sunlit_world(glm::vec3 direction, glm::vec3 color = glm::vec3(1.0f), float intensity = 1.0f) {
+    scene::Scene s = world();
+    s.point_lights.clear();
+    s.materials.clear();
+    for (auto& c : s.walls.cells) c = c != 0 ? scene::default_wall_cell : 0;
+    scene::DirectionalLight sun;
+    sun.direction = direction;
+    sun.color = color;
+    sun.intensity = intensity;
+    sun.mode = LightMode::mixed;
+    s.directional_lights = {sun};
+    return s;
+}
+
+double relative_rms(const std::vector<float>& got, const std::vector<float>& want) {
+    double e2 = 0.0, r2 = 0.0;
+    for (std::size_t i = 0; i < want.size(); ++i) {
+        e2 += (double(got[i]) - want[i]) * (double(got[i]) - want[i]);
+        r2 += double(want[i]) * want[i];
+    }
+    return r2 > 0.0 ? std::sqrt(e2 / r2) : 0.0;
+}
+
+} // namespace
+
+// Seed 004's precomputed GI for the moving sun: with bake.sun_keys the mixed sun's bounce is
+// baked at each key's time of the day's path, at unit colour, apart from the steady light;
+// key k is exactly the bake of the sun fixed there; the cache file keeps the keys; at run time
+// the two keys around the sun's time blend, scaled by its colour. Between keys the blend is an
+// approximation: its error against the exact bake at the midpoint is printed.
+TEST(Bake, SunKeysHoldTheMovingSunsBounceAtEachKeyOfTheDay) {
+    BakeSettings b = quick();
+    b.rays = 64;
+    b.face_rays = 32;
+    BakeSettings keyed_settings = b;
+    keyed_settings.sun_keys = 5; // sunrise, 0.375, noon, 0.625, sunset
+    const scene::Scene s = sunlit_world(glm::normalize(glm::vec3(0.3f, -0.8f, 0.2f)), {1.0f, 0.5f, 0.2f}, 0.7f);
+    const ChunkId c{1, 0};
+    EXPECT_NE(bake::chunk_key(s, c, keyed_settings), bake::chunk_key(s, c, b));
+    const bake::ChunkBake keyed = bake::bake_chunk(s, c, keyed_settings);
+    ASSERT_FALSE(keyed.empty);
+    ASSERT_EQ(keyed.sun_keys.size(), 5u);
+    // The steady part leaves the keyed sun out: nothing else lights this world.
+    for (float v : keyed.ground) ASSERT_EQ(v, 0.0f);
+    // Key 2 (noon) is the bake of a white sun fixed at noon, exactly; the authored direction
+    // and colour play no part.
+    const bake::ChunkBake noon = bake::bake_chunk(sunlit_world(scene::day_sun_direction(0.5f)), c, b);
+    EXPECT_EQ(keyed.sun_keys[2].ground, noon.ground);
+    EXPECT_EQ(keyed.sun_keys[2].faces, noon.faces);
+    EXPECT_EQ(keyed.sun_keys[2].probes, noon.probes);
+    double noon2 = 0.0;
+    for (float v : noon.ground) noon2 += double(v) * v;
+    EXPECT_GT(noon2, 1.0) << "the noon sun's bounce lights the chunk";
+    // Sunrise: the sun on the horizon adds nothing.
+    for (float v : keyed.sun_keys[0].ground) ASSERT_EQ(v, 0.0f);
+    // Halfway between noon and the next key: the blend against the exact bake there, for 5,
+    // 9 and 17 keys. The light between keys is an interpolation: more keys, less error.
+    double last = 1.0;
+    for (int keys : {5, 9, 17}) {
+        BakeSettings k_settings = b;
+        k_settings.sun_keys = keys;
+        const bake::ChunkBake k = keys == 5 ? keyed : bake::bake_chunk(s, c, k_settings);
+        const int noon_key = (keys - 1) / 2;
+        const float t = 0.5f * (scene::sun_key_time(noon_key, keys) + scene::sun_key_time(noon_key + 1, keys));
+        const bake::ChunkBake mid = bake::bake_chunk(sunlit_world(scene::day_sun_direction(t)), c, b);
+        std::vector<float> blend(mid.ground.size());
+        for (std::size_t i = 0; i < blend.size(); ++i)
+            blend[i] = 0.5f * (k.sun_keys[std::size_t(noon_key)].ground[i] + k.sun_keys[std::size_t(noon_key + 1)].ground[i]);
+        const double error = relative_rms(blend, mid.ground);
+        std::printf("moving sun, %d keys (%.1f degrees apart): the blend at t = %.4f against the exact bake: relative RMS %.1f %%\n",
+                    keys, 180.0 / double(keys - 1), double(t), 100.0 * error);
+        EXPECT_LT(error, last) << keys << " keys";
+        last = error;
+    }
+    EXPECT_LT(last, 0.1) << "17 keys";
+    // The cache file keeps the keys (as halves); a truncated one is refused.
+    TempDir dir;
+    ASSERT_TRUE(bake::save_chunk(dir.path().string(), keyed).ok());
+    auto back = bake::load_chunk(dir.path().string(), c, keyed.key);
+    ASSERT_TRUE(back);
+    ASSERT_EQ(back->sun_keys.size(), 5u);
+    for (std::size_t i = 0; i < keyed.sun_keys[2].ground.size(); ++i)
+        ASSERT_NEAR(back->sun_keys[2].ground[i], keyed.sun_keys[2].ground[i], 1e-3f * keyed.sun_keys[2].ground[i] + 1e-6f);
+    EXPECT_EQ(back->sun_keys[3].probes, keyed.sun_keys[3].probes);
+    auto bytes = bytes_of((dir.path() / bake::chunk_file_name(c)).string());
+    bytes.resize(bytes.size() - 1);
+    EXPECT_FALSE(bake::decode_chunk(bytes).ok()) << "a truncated keyed file is refused";
+    // At run time: the sun at noon with colour C reads C x key 2.
+    const bake::ChunkBake* kp[] = {&keyed};
+    const bake::ChunkBake* np[] = {&noon};
+    const gi::WallView walls = gi::WallView::of(s.walls);
+    auto lk = bake::runtime_light(kp, walls, 0.0f), ln = bake::runtime_light(np, walls, 0.0f);
+    ASSERT_EQ(lk->sun_keys, 5);
+    const glm::vec3 color(1.0f, 0.5f, 0.2f);
+    const gi::BakedSun at_noon{2, 0.0f, color};
+    int checked = 0;
+    for (float z = 1.3f; z < 30.0f; z += 1.7f)
+        for (float x = 33.3f; x < 62.0f; x += 1.7f) {
+            if (s.walls.is_wall_tile(int(x), int(z))) continue;
+            const glm::vec2 q(x, z);
+            const glm::vec3 want = color * ln->sample(0, q), got = lk->light(0, q, 1.0f, at_noon);
+            for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(got[ch], want[ch], 0.01f + 0.01f * want[ch]) << x << ", " << z;
+            ++checked;
+        }
+    EXPECT_GT(checked, 200);
+    // Settings: 1 key, or more than 32, is refused.
+    BakeSettings bad = b;
+    bad.sun_keys = 1;
+    EXPECT_FALSE(bake::validate_settings(bad).ok());
+    bad.sun_keys = 33;
+    EXPECT_FALSE(bake::validate_settings(bad).ok());
 }

@@ -12,9 +12,12 @@
 #include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/reference.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
+#include "lantern/scene/day.hpp"
 #include "shared_renderer.hpp"
 
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include <cmath>
 
@@ -311,15 +314,67 @@ TEST(BakedReference, AMixedLightIsLitDirectlyAndLeftOutOfTheLiveBounce) {
     }
 }
 
+// A mixed sun likewise (seed 004's mixed mode for suns): its direct light equals the same sun
+// realtime (ground, faces, upper faces), and the live bounce is that of the frame without it.
+// A second sun stays realtime, so both suns' passes run.
+TEST(BakedReference, AMixedSunIsLitDirectlyAndLeftOutOfTheLiveBounce) {
+    for (auto method : {lantern::scene::GiMethod::heat, lantern::scene::GiMethod::gather}) {
+        Scene s = gi_test::comparison_scene("rooms").scene;
+        s.gi.method = method;
+        s.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::unfold;
+        lantern::scene::ShadowProxy proxy;
+        proxy.position = {6.5f, 6.5f};
+        proxy.size = {0.4f, 0.4f};
+        s.shadow_proxies.push_back(proxy);
+        lantern::scene::DirectionalLight sun, moon;
+        sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.3f));
+        sun.intensity = 0.4f;
+        moon.direction = glm::normalize(glm::vec3(-0.6f, -0.5f, 0.2f));
+        moon.intensity = 0.15f;
+        s.directional_lights = {sun, moon};
+        const Scene all_realtime = s;
+        s.directional_lights[0].mode = lantern::scene::LightMode::mixed;
+        Scene realtime_only = s;
+        realtime_only.directional_lights.erase(realtime_only.directional_lights.begin());
+        FrameInputs mixed = inputs_of(s);
+        std::array<Field, baked_layers> empty;
+        for (Field& f : empty) f = Field(8, 8);
+        mixed.baked = std::make_shared<const BakedLight>(make_baked_light(glm::ivec2(-100), 1, empty, 0.01f, 7));
+        split_for_bake(mixed, s);
+        ASSERT_EQ(mixed.directional_lights.size(), 2u) << "a mixed sun stays in the frame's sun list";
+        EXPECT_TRUE(is_mixed_sun(mixed.directional_lights[0]));
+        EXPECT_FALSE(is_mixed_sun(mixed.directional_lights[1]));
+        EXPECT_EQ(mixed.directional_lights[0].bounce.x, 0.0f) << "no bounce fill: the bake holds its bounce";
+        const ReferenceStore a = reference_frame(inputs_of(all_realtime)), b = reference_frame(mixed),
+                             c = reference_frame(inputs_of(realtime_only));
+        std::vector<Tex> direct = {Tex::direct};
+        for (int f = 0; f < 4; ++f) {
+            direct.push_back(Tex(int(Tex::wall_direct_px) + f));
+            direct.push_back(Tex(int(Tex::wall_upper_px) + f));
+        }
+        for (Tex t : direct) {
+            ASSERT_TRUE(a.find(t) && b.find(t)) << tex_name(t);
+            auto diff = gi_test::compare_textures(b.at(t), a.at(t), 4.0f);
+            EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " mixed sun against realtime", diff);
+        }
+        for (Tex t : {Tex::indirect, Tex::wall_indirect_px, Tex::wall_indirect_nz}) {
+            auto diff = gi_test::compare_textures(b.at(t), c.at(t), 0.0f);
+            EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " live bounce without the mixed sun", diff);
+        }
+    }
+}
+
 TEST_F(Baked, MixedLightsOnVulkanEqualTheReference) {
     using lantern::scene::GiMethod;
     std::uint64_t key = 200;
+    // 0: a mixed light; 1: mixed lights only, a realtime sun and unfolded proxy shadows; 2: as
+    // 1 with a mixed sun beside the realtime one (the mixed row adds it in place).
     for (auto method : {GiMethod::heat, GiMethod::radiosity, GiMethod::gather})
-        for (bool sun_and_proxies : {false, true}) {
+        for (int variant : {0, 1, 2}) {
             Scene s = gi_test::comparison_scene("rooms").scene;
             s.gi.method = method;
             s.point_lights[1].mode = lantern::scene::LightMode::mixed;
-            if (sun_and_proxies) {
+            if (variant > 0) {
                 s.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::unfold;
                 lantern::scene::ShadowProxy proxy;
                 proxy.position = {6.5f, 6.5f};
@@ -331,13 +386,53 @@ TEST_F(Baked, MixedLightsOnVulkanEqualTheReference) {
                 s.directional_lights.push_back(sun);
                 s.point_lights[0].mode = lantern::scene::LightMode::mixed; // no realtime point light left
             }
+            if (variant == 2) {
+                lantern::scene::DirectionalLight sun;
+                sun.direction = glm::normalize(glm::vec3(-0.6f, -0.5f, 0.2f));
+                sun.intensity = 0.3f;
+                sun.mode = lantern::scene::LightMode::mixed;
+                s.directional_lights.insert(s.directional_lights.begin(), sun);
+            }
             FrameInputs in = inputs_of(s);
             in.baked = synthetic_bake(in.walls, {-4, -4}, {40, 32}, 4, 0.0f, key++);
             split_for_bake(in, s);
-            const std::string name = std::string(method == GiMethod::heat ? "heat" : method == GiMethod::gather ? "gather" : "radiosity") +
-                                     (sun_and_proxies ? ", mixed lights only, a sun and unfolded proxy shadows" : ", a mixed light");
+            const char* what[] = {", a mixed light", ", mixed lights only, a sun and unfolded proxy shadows",
+                                  ", mixed lights only, a realtime and a mixed sun, unfolded proxy shadows"};
+            const std::string name =
+                std::string(method == GiMethod::heat ? "heat" : method == GiMethod::gather ? "gather" : "radiosity") + what[variant];
             compare(name, in, false);
         }
+}
+
+// Seed 004's moving sun: a bake with sun keys and a mixed sun between two of them. The baked
+// pass adds the sun's colour x the two keys blended (baked_sun_of), on Vulkan as on the
+// reference; the blend and colour are in the baked rows' key, so a sun that moves reruns them.
+TEST_F(Baked, SunKeysOnVulkanEqualTheReference) {
+    for (bool pulsing : {false, true}) {
+        Scene s = gi_test::comparison_scene("rooms").scene;
+        lantern::scene::DirectionalLight sun;
+        sun.direction = lantern::scene::day_sun_direction(0.41f);
+        sun.color = {1.0f, 0.8f, 0.6f};
+        sun.intensity = 0.7f;
+        sun.mode = lantern::scene::LightMode::mixed;
+        s.directional_lights.push_back(sun);
+        FrameInputs in = inputs_of(s);
+        in.baked = synthetic_bake(in.walls, {-4, -4}, {40, 32}, 4, 0.0f, 500 + int(pulsing), pulsing, 5);
+        in.baked_pulse = 0.37f;
+        split_for_bake(in, s);
+        const BakedSun blend = baked_sun_of(in);
+        ASSERT_EQ(blend.key, 1) << "t = 0.41 lies between keys 1 (0.375) and 2 (0.5) of five";
+        EXPECT_NEAR(blend.blend, (0.41f - 0.375f) / 0.125f, 1e-3f);
+        EXPECT_NEAR(blend.color.g, 0.8f * 0.7f, 1e-6f);
+        // The keys' light is really added: the sampled light differs from the steady part's.
+        const glm::vec2 p(3.3f, 5.6f);
+        EXPECT_GT(glm::length(in.baked->light(0, p, in.baked_pulse, blend) - in.baked->light(0, p, in.baked_pulse)), 0.1f);
+        compare(pulsing ? "sun keys and a pulsing part" : "sun keys", in, false);
+        // Another time of day: another key in the baked rows' input key.
+        FrameInputs later = in;
+        later.directional_lights[0].direction_base = glm::vec4(lantern::scene::day_sun_direction(0.6f), later.directional_lights[0].direction_base.w);
+        EXPECT_NE(baked_input_key(later), baked_input_key(in));
+    }
 }
 
 // The mixed lights' pass is cached while they stay put: a realtime light that moves (a

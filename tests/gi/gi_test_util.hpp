@@ -41,8 +41,8 @@ inline lantern::scene::Scene open_scene(glm::vec2 center, glm::vec2 size, int re
 // every layer a different pattern, open where the walls say (as bake::runtime_light does).
 // With `pulsing`, five more layers: a pulsing part (seed 004's pulsing emission).
 inline std::shared_ptr<const lantern::gi::BakedLight> synthetic_bake(const lantern::gi::WallView& walls, glm::ivec2 origin, glm::ivec2 tiles, int res,
-                                                 float eps, std::uint64_t key, bool pulsing = false) {
-    std::vector<lantern::gi::Field> layers(std::size_t(lantern::gi::baked_layers * (pulsing ? 2 : 1)));
+                                                 float eps, std::uint64_t key, bool pulsing = false, int sun_keys = 0) {
+    std::vector<lantern::gi::Field> layers(std::size_t(lantern::gi::baked_layers * ((pulsing ? 2 : 1) + sun_keys)));
     static constexpr glm::ivec2 across[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     for (int layer = 0; layer < int(layers.size()); ++layer) {
         const int l = layer % lantern::gi::baked_layers;
@@ -61,7 +61,8 @@ inline std::shared_ptr<const lantern::gi::BakedLight> synthetic_bake(const lante
                 f.rgb[i * 3 + 2] = 0.05f * float(layer + 1) + 0.02f * u;
             }
     }
-    return std::make_shared<const lantern::gi::BakedLight>(lantern::gi::make_baked_light(origin, res, layers, eps, key));
+    return std::make_shared<const lantern::gi::BakedLight>(
+        lantern::gi::make_baked_light(origin, res, layers, eps, key, lantern::gi::brick_levels - 1, {}, sun_keys));
 }
 
 

@@ -696,7 +696,7 @@ TEST(SceneLoader, TheExampleInTheDocsLoads) {
 TEST(SceneLoader, TheWorldKeepsItsBakeSettings) {
     const Scene s = parse_scene_ok(R"({"lantern_scene": 1, "world": {"rows": ["#."]}, "view": {"center": [1, 0]},
         "bake": {"resolution": 2, "margin": 8, "rays": 64, "face_rays": 32, "solver": "seed002", "falloff": 6,
-                 "ambient": 0.05, "directional": false, "eps": 0.05, "max_level": 2}})");
+                 "ambient": 0.05, "directional": false, "sun_keys": 9, "eps": 0.05, "max_level": 2}})");
     BakeSettings want;
     want.resolution = 2;
     want.margin = 8;
@@ -706,6 +706,7 @@ TEST(SceneLoader, TheWorldKeepsItsBakeSettings) {
     want.falloff = 6.0f;
     want.ambient = 0.05f;
     want.directional = false;
+    want.sun_keys = 9;
     want.eps = 0.05f;
     want.max_level = 2;
     EXPECT_EQ(s.bake, want);
@@ -795,15 +796,18 @@ INSTANTIATE_TEST_SUITE_P(
                        "t.json:2:69: materials[1].symbol: symbol 'x' is taken by material \"a\""},
         SceneErrorCase{scene_with(R"("point_lights": [{"position": [1, 1], "indirect": 0}])"),
                        "t.json:2:51: point_lights[0].indirect: only a light whose bounce is baked takes an indirect "
-                       "multiplier (\"mode\": \"mixed\" or \"baked\"; a sun: \"baked\"): the live methods' bounce is not per light"},
-        SceneErrorCase{scene_with(R"("directional_lights": [{"direction": [0, -1, 0], "mode": "mixed", "indirect": 2}])"),
-                       "t.json:2:79: directional_lights[0].indirect: only a light whose bounce is baked takes an indirect "
-                       "multiplier (\"mode\": \"mixed\" or \"baked\"; a sun: \"baked\"): the live methods' bounce is not per light"},
+                       "multiplier (\"mode\": \"mixed\" or \"baked\"): the live methods' bounce is not per light"},
+        SceneErrorCase{scene_with(R"("directional_lights": [{"direction": [0, -1, 0], "indirect": 2}])"),
+                       "t.json:2:62: directional_lights[0].indirect: only a light whose bounce is baked takes an indirect "
+                       "multiplier (\"mode\": \"mixed\" or \"baked\"): the live methods' bounce is not per light"},
         SceneErrorCase{scene_with(R"("emissive_lights": [{"position": [1, 1], "mode": "baked", "indirect": -1}])"),
                        "t.json:2:71: emissive_lights[0].indirect: must be in [0, 1000], got -1"},
         SceneErrorCase{scene_with(R"("shadow_proxies": [{"position": [1, 1], "static": 1}])"),
                        "t.json:2:51: shadow_proxies[0].static: expected true or false, got a number"},
         SceneErrorCase{scene_with(R"("bake": {"resolution": 17})"), "t.json:2:24: bake.resolution: must be an integer in [1, 16], got 17"},
+        SceneErrorCase{scene_with(R"("bake": {"sun_keys": 33})"), "t.json:2:22: bake.sun_keys: must be an integer in [0, 32], got 33"},
+        SceneErrorCase{scene_with(R"("bake": {"sun_keys": 1})"),
+                       "t.json:2:22: bake.sun_keys: must be 0 or an integer in [2, 32] (one key cannot blend), got 1"},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "emission": [1, 0, 0], "gi": "realtime", "pulse": 1}])"),
                        "t.json:2:79: materials[0].pulse: only a baked glow pulses (\"gi\": \"baked\"): its light is baked apart and scaled at run time"},
         SceneErrorCase{scene_with(R"("materials": [{"name": "a", "pulse": 1}, {"name": "b", "pulse": 2}])"),

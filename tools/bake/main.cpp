@@ -1,7 +1,7 @@
 // lantern-bake: bakes a world's static light into chunk cache files (docs/baked.md).
 //
 //   lantern-bake WORLD --out DIR [--shard I/N] [--resolution R] [--margin M] [--rays N] [--face-rays N]
-//                [--solver gather|seed002] [--falloff TILES] [--ambient E] [--non-directional] [--eps E]
+//                [--solver gather|seed002] [--falloff TILES] [--ambient E] [--non-directional] [--sun-keys K] [--eps E]
 //                [--max-level L] [--density X0,Z0,X1,Z1,R ...]
 //                [--threads N] [--force] [--image FILE.png] [--bricks EPS,...]
 //

@@ -11,6 +11,7 @@
 #include "lantern/gi/passes.hpp"
 #include "lantern/gi/reference.hpp"
 #include "lantern/gi/window.hpp"
+#include "lantern/scene/day.hpp"
 #include "lantern/scene/loader.hpp"
 
 #include <algorithm>
@@ -72,8 +73,18 @@ Light as_solved(Light l, Lights which) {
 }
 
 // Which glow a solve carries (seed 004's pulsing emission is baked apart): the steady
-// materials' with the lights, or the pulsing materials' alone, without any light.
-enum class Glow { steady, pulsing };
+// materials' with the lights, the pulsing materials' alone without any light, or none (a sun
+// key's solve: the sun alone).
+enum class Glow { steady, pulsing, none };
+
+// The mixed sun whose bounce is baked at the day's keys (BakeSettings::sun_keys): the scene's
+// first mixed sun; nullptr without keys.
+const scene::DirectionalLight* keyed_sun(const scene::Scene& s, const BakeSettings& b) {
+    if (b.sun_keys < 2) return nullptr;
+    for (const auto& l : s.directional_lights)
+        if (l.mode == LightMode::mixed) return &l;
+    return nullptr;
+}
 
 // The scene without its walls (the solve views the caller's), with the lights `which`
 // keeps, the static shadow proxies and the bake's gi settings.
@@ -84,20 +95,18 @@ scene::Scene lights_of(const scene::Scene& s, const BakeSettings& b, Lights whic
     out.view = s.view;
     out.materials = s.materials;
     for (scene::Material& m : out.materials) // realtime glow stays live: the bake leaves it out
-        if (m.emission_gi == scene::EmissionGi::realtime || (m.pulse > 0.0f) != (glow == Glow::pulsing))
+        if (glow == Glow::none || m.emission_gi == scene::EmissionGi::realtime || (m.pulse > 0.0f) != (glow == Glow::pulsing))
             m.emission = glm::vec3(0.0f);
     for (const auto& p : s.shadow_proxies) // seed 004's static flag: moving proxies shadow the live light only
         if (p.is_static) out.shadow_proxies.push_back(p);
-    if (glow == Glow::pulsing) return out;
+    if (glow != Glow::steady) return out;
     for (const auto& l : s.point_lights)
         if (keeps(l.mode, which)) out.point_lights.push_back(as_solved(l, which));
     for (const auto& l : s.emissive_lights)
         if (keeps(l.mode, which)) out.emissive_lights.push_back(as_solved(l, which));
-    // A mixed sun is lit as a realtime one (the frame's mixed row carries point and emissive
-    // lights only): its bounce stays live, so the bake leaves it out.
+    const scene::DirectionalLight* keyed = keyed_sun(s, b); // baked at the keys instead
     for (const auto& l : s.directional_lights)
-        if (keeps(l.mode == LightMode::mixed ? LightMode::realtime : l.mode, which))
-            out.directional_lights.push_back(as_solved(l, which));
+        if (keeps(l.mode, which) && &l != keyed) out.directional_lights.push_back(as_solved(l, which));
     return out;
 }
 
@@ -107,6 +116,7 @@ struct ChunkProblem {
     gi::FrameInputs bounce; // mixed and baked lights, the glow of steady materials
     gi::FrameInputs direct; // baked lights
     std::optional<gi::FrameInputs> pulse; // the glow of pulsing materials alone (when the scene has any)
+    std::vector<gi::FrameInputs> sun_keys; // the keyed sun alone at each key (BakeSettings::sun_keys)
 };
 
 gi::FrameInputs inputs_for(const scene::Scene& s, const BakeSettings& b, Lights which, const gi::GiWindow& w,
@@ -127,6 +137,20 @@ ChunkProblem make_problem(const scene::Scene& s, ChunkId c, const BakeSettings& 
     p.bounce = inputs_for(s, b, Lights::bounce, p.window);
     p.direct = inputs_for(s, b, Lights::direct, p.window);
     if (scene::pulse_frequency(s.materials) > 0.0f) p.pulse = inputs_for(s, b, Lights::bounce, p.window, Glow::pulsing);
+    if (const scene::DirectionalLight* sun = keyed_sun(s, b))
+        for (int k = 0; k < b.sun_keys; ++k) {
+            // The sun alone at the key's place on the day's path, white at intensity 1: the run
+            // time scales it by the sun's colour.
+            scene::Scene lit = lights_of(s, b, Lights::bounce, Glow::none);
+            scene::DirectionalLight key = *sun;
+            key.direction = scene::day_sun_direction(scene::sun_key_time(k, b.sun_keys));
+            key.color = glm::vec3(1.0f);
+            key.intensity = 1.0f;
+            lit.directional_lights = {as_solved(key, Lights::bounce)};
+            gi::FrameInputs in = gi::gather_frame_inputs(lit, p.window);
+            in.walls = gi::WallView::of(s.walls);
+            p.sun_keys.push_back(std::move(in));
+        }
     return p;
 }
 
@@ -316,6 +340,8 @@ Result<void> validate_settings(const BakeSettings& s) {
         return make_error("bake.eps: must be a number in [0, 1000], got " + std::to_string(s.eps));
     if (s.max_level < 0 || s.max_level > 3)
         return make_error("bake.max_level: must be an integer in [0, 3], got " + std::to_string(s.max_level));
+    if (s.sun_keys == 1 || s.sun_keys < 0 || s.sun_keys > 32)
+        return make_error("bake.sun_keys: must be 0 or an integer in [2, 32], got " + std::to_string(s.sun_keys));
     if (s.density.size() > std::size_t(scene::max_bake_density_regions))
         return make_error("bake.density: " + std::to_string(s.density.size()) + " regions, above the limit of " +
                           std::to_string(scene::max_bake_density_regions));
@@ -366,8 +392,11 @@ std::uint64_t chunk_key(const scene::Scene& s, ChunkId c, const BakeSettings& wo
     hash_inputs(h, p.bounce);
     hash_inputs(h, p.direct);
     if (p.pulse) hash_inputs(h, *p.pulse);
+    if (!p.sun_keys.empty()) h.add(std::uint32_t(0x53554e4b)).add(b.sun_keys); // (keys without them stay as they were)
+    for (const gi::FrameInputs& key : p.sun_keys) hash_inputs(h, key);
     // The walls the light can meet: the window and every light's reach around it.
-    const int reach = std::max(wall_reach(p.bounce), wall_reach(p.direct));
+    int reach = std::max(wall_reach(p.bounce), wall_reach(p.direct));
+    for (const gi::FrameInputs& key : p.sun_keys) reach = std::max(reach, wall_reach(key));
     const glm::ivec2 lo(int(std::floor(p.window.view.min_x)), int(std::floor(p.window.view.min_z)));
     const glm::ivec2 hi(int(std::ceil(p.window.view.min_x + p.window.view.width)),
                         int(std::ceil(p.window.view.min_z + p.window.view.height)));
@@ -388,7 +417,7 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& world
     const bool bounce = has_light(p.bounce) || glows_in(p.bounce) || (seed002 && b.ambient > 0.0f);
     const bool direct = has_light(p.direct);
     const bool pulse = p.pulse && glows_in(*p.pulse);
-    if (!bounce && !direct && !pulse) return out; // no baked light reaches the chunk
+    if (!bounce && !direct && !pulse && p.sun_keys.empty()) return out; // no baked light reaches the chunk
     out.empty = false;
     out.probes.assign(std::size_t(chunk_probes * chunk_probes), CircularHarmonics{});
     out.probe_valid.assign(out.probes.size(), 0);
@@ -441,6 +470,12 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& world
     // Seed 004's pulsing emission: the pulsing glow's light alone, scaled at run time (no
     // ambient fill: the steady part holds it once).
     if (pulse) solve(*p.pulse, 0.0f, out.pulse_ground, out.pulse_faces, out.pulse_probes, {}, true, false);
+    // Seed 004's moving sun: its bounce at each key, scaled and blended at run time.
+    out.sun_keys.resize(p.sun_keys.size());
+    for (std::size_t k = 0; k < p.sun_keys.size(); ++k) {
+        LightPart& part = out.sun_keys[k];
+        solve(p.sun_keys[k], 0.0f, part.ground, part.faces, part.probes, {}, true, false);
+    }
     // Direct light of the baked lights, exactly as the live direct passes compute it.
     if (direct) {
         gi::DirectTextures d = gi::reference_direct(p.direct);

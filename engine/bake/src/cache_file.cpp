@@ -5,13 +5,16 @@
 //            pulsing part (with 1 only)
 //   u64      key (chunk_key)
 //   i32 x 3  chunk x, chunk z, resolution (texels per tile)
-//   u32      reserved, 0
+//   u32      sun keys: how many parts of the moving sun's keys follow (0, or 2..32; with
+//            flag 1 only)
 //   u64      payload bytes (inflated)
 //   u64      hash of the payload (inflated)
 //   u64      stored bytes: the payload deflated (zlib), what follows the header
 //   payload  ground, then faces +X, -X, +Z, -Z: (32 x resolution)^2 texels x RGB, IEEE half;
 //            then 16 x 16 light probes: 5 x RGB float32 each, then one validity byte each;
-//            with flag 2, then the pulsing part's ground, faces and probes alike (no validity)
+//            with flag 2, then the pulsing part's ground, faces and probes alike (no validity);
+//            then each sun key's alike
+// (Format 3 files wrote the sun keys' field as a reserved 0: they read as files without keys.)
 // The payload's size follows from the resolution, so a file cannot make the reader inflate
 // more than the largest chunk (resolution 16).
 #include "lantern/bake/bake.hpp"
@@ -53,10 +56,12 @@ T get(const std::uint8_t* p) {
 constexpr std::size_t probe_count = std::size_t(chunk_probes) * std::size_t(chunk_probes);
 constexpr std::size_t probe_floats = 5 * 3;
 
-std::size_t payload_bytes(int resolution, bool pulse = false) {
+constexpr std::uint32_t max_sun_keys = 32; // bake::validate_settings' limit
+
+std::size_t payload_bytes(int resolution, bool pulse = false, std::uint32_t sun_keys = 0) {
     const std::size_t side = std::size_t(chunk_tiles) * std::size_t(resolution);
     const std::size_t part = side * side * 3 * sizeof(std::uint16_t) * texture_count + probe_count * probe_floats * sizeof(float);
-    return part + probe_count + (pulse ? part : 0);
+    return part + probe_count + (pulse ? part : 0) + std::size_t(sun_keys) * part;
 }
 
 } // namespace
@@ -68,7 +73,7 @@ std::string chunk_file_name(ChunkId c) {
 std::vector<std::byte> encode_chunk(const ChunkBake& b) {
     std::vector<std::byte> payload;
     if (!b.empty) {
-        payload.reserve(payload_bytes(b.resolution, b.pulses()));
+        payload.reserve(payload_bytes(b.resolution, b.pulses(), std::uint32_t(b.sun_keys.size())));
         auto halves = [&](const std::vector<float>& v) {
             // Above half's range (65504) a texel is clamped: light that bright is white anyway.
             for (float f : v) put(payload, std::uint16_t(glm::packHalf1x16(std::min(f, 65504.0f))));
@@ -86,6 +91,11 @@ std::vector<std::byte> encode_chunk(const ChunkBake& b) {
             halves(b.pulse_ground);
             for (const auto& f : b.pulse_faces) halves(f);
             floats(b.pulse_probes);
+        }
+        for (const LightPart& key : b.sun_keys) {
+            halves(key.ground);
+            for (const auto& f : key.faces) halves(f);
+            floats(key.probes);
         }
     }
     // Deflated: zero texels in rock and halves with low bits zero compress 5-17x.
@@ -107,7 +117,7 @@ std::vector<std::byte> encode_chunk(const ChunkBake& b) {
     put(out, std::int32_t(b.id.x));
     put(out, std::int32_t(b.id.z));
     put(out, std::int32_t(b.resolution));
-    put(out, std::uint32_t(0));
+    put(out, std::uint32_t(b.empty ? 0 : b.sun_keys.size()));
     put(out, std::uint64_t(payload.size()));
     put(out, Hasher().add_bytes(payload.data(), payload.size()).value());
     put(out, std::uint64_t(stored.size()));
@@ -131,11 +141,14 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
     const auto size = get<std::uint64_t>(p + 40);
     const auto hash = get<std::uint64_t>(p + 48);
     const auto stored = get<std::uint64_t>(p + 56);
-    if ((flags != 0 && flags != 1 && flags != 3) || get<std::uint32_t>(p + 36) != 0) return make_error("unknown flags");
+    const auto sun_keys = get<std::uint32_t>(p + 36);
+    if (flags != 0 && flags != 1 && flags != 3) return make_error("unknown flags");
+    if (sun_keys == 1 || sun_keys > max_sun_keys || (flags == 0 && sun_keys != 0))
+        return make_error("sun keys " + std::to_string(sun_keys) + " (0, or 2 to " + std::to_string(max_sun_keys) + " with textures)");
     if (b.resolution < 1 || b.resolution > 16) return make_error("resolution " + std::to_string(b.resolution));
     b.empty = flags == 0;
     const bool pulse = flags == 3;
-    const std::uint64_t expected = b.empty ? 0 : payload_bytes(b.resolution, pulse);
+    const std::uint64_t expected = b.empty ? 0 : payload_bytes(b.resolution, pulse, sun_keys);
     if (size != expected || bytes.size() - header_bytes != stored || (stored == 0) != (expected == 0))
         return make_error("sizes do not match (" + std::to_string(bytes.size()) + " bytes, " + std::to_string(stored) +
                           " stored after the header, payload " + std::to_string(size) + " for " +
@@ -183,9 +196,15 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
         b.probe_valid[i] = payload[part + i];
         if (b.probe_valid[i] > 1) return make_error("holds a probe flag other than 0 or 1");
     }
-    if (pulse)
-        if (auto bad = read_part(payload + part + probe_count, b.pulse_ground, b.pulse_faces, b.pulse_probes))
-            return make_error("pulsing part " + *bad);
+    const std::uint8_t* next = payload + part + probe_count;
+    if (pulse) {
+        if (auto bad = read_part(next, b.pulse_ground, b.pulse_faces, b.pulse_probes)) return make_error("pulsing part " + *bad);
+        next += part;
+    }
+    b.sun_keys.resize(sun_keys);
+    for (std::uint32_t k = 0; k < sun_keys; ++k, next += part)
+        if (auto bad = read_part(next, b.sun_keys[k].ground, b.sun_keys[k].faces, b.sun_keys[k].probes))
+            return make_error("sun key " + std::to_string(k) + " " + *bad);
     return b;
 }
 
@@ -198,7 +217,8 @@ std::optional<ChunkBake> load_chunk(const std::string& dir, ChunkId c, std::uint
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return fail("missing");
     // Deflate never grows data by more than 0.03 % plus a few bytes (compressBound).
-    auto bytes = read_binary_file(path, header_bytes + payload_bytes(16, true) + payload_bytes(16, true) / 1000 + 64);
+    const std::size_t most = payload_bytes(16, true, max_sun_keys);
+    auto bytes = read_binary_file(path, header_bytes + most + most / 1000 + 64);
     if (!bytes) return fail(bytes.error().message);
     auto b = decode_chunk(*bytes);
     if (!b) return fail(b.error().message);

@@ -47,6 +47,17 @@ void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& pr
              1000.0f);
     p.flag(prefix + "non-directional", "probes keep the light's amount, not its direction (seed 004's non-directional bake)",
            [&s] { s.directional = false; });
+    p.custom(prefix + "sun-keys", "K",
+             "bake the mixed sun's bounce at K times of the day's path (2-32; 0, the default: at its own direction), "
+             "blended at run time as the sun moves (seed 004's precomputed GI for the moving sun)",
+             [&s](std::string_view v) -> std::optional<std::string> {
+                 int k = -1;
+                 const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), k);
+                 if (ec != std::errc{} || ptr != v.data() + v.size() || k == 1 || k < 0 || k > 32)
+                     return "must be 0 or an integer in [2, 32], got '" + std::string(v.substr(0, 40)) + "'";
+                 s.sun_keys = k;
+                 return std::nullopt;
+             });
     p.number(prefix + "eps", "E", "at run time: the bricks' colour range (seed 002's eps; default " + text_of(d.eps) + ")", s.eps, 0.0f, 1000.0f);
     p.integer(prefix + "max-level", "L", "at run time: the coarsest brick level, 0-3 (seed 002's maxLevel; default " +
                   std::to_string(d.max_level) + ")",
@@ -82,8 +93,9 @@ void add_settings_options(cli::Parser& p, BakeSettings& s, const std::string& pr
 }
 
 namespace {
-constexpr const char* setting_options[] = {"resolution", "margin",          "rays", "face-rays", "solver",   "falloff",
-                                           "ambient",    "non-directional", "eps",  "max-level", "density"};
+constexpr const char* setting_options[] = {"resolution", "margin",          "rays",     "face-rays", "solver",
+                                           "falloff",    "ambient",         "sun-keys", "eps",       "max-level",
+                                           "non-directional", "density"};
 }
 
 GivenSettings given_settings(const cli::Parser& p, const BakeSettings& values, const std::string& prefix) {
@@ -107,6 +119,7 @@ BakeSettings GivenSettings::over(const BakeSettings& world) const {
     take("falloff", &BakeSettings::falloff);
     take("ambient", &BakeSettings::ambient);
     take("non-directional", &BakeSettings::directional);
+    take("sun-keys", &BakeSettings::sun_keys);
     take("eps", &BakeSettings::eps);
     take("max-level", &BakeSettings::max_level);
     take("density", &BakeSettings::density);
@@ -115,8 +128,19 @@ BakeSettings GivenSettings::over(const BakeSettings& world) const {
 
 namespace {
 
-// Which texels of layer `layer` hold light (open ground; the faces a wall tile shows; the
-// pulsing layers baked_layers + k as layer k).
+// A part of a chunk's light, as the run time's layers hold them: 0 the steady light, 1 the
+// pulsing glow's, 2 + k sun key k's.
+constexpr int steady_part = 0, pulsing_part = 1, first_sun_key_part = 2;
+
+bool has_part(const ChunkBake& c, int part) {
+    if (c.empty) return false;
+    if (part == steady_part) return true;
+    if (part == pulsing_part) return c.pulses();
+    return std::size_t(part - first_sun_key_part) < c.sun_keys.size();
+}
+
+// Which texels of layer `layer` (of any part) hold light (open ground; the faces a wall tile
+// shows).
 bool holds_light(const gi::WallView& walls, int layer, glm::ivec2 tile) {
     static constexpr glm::ivec2 across[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     layer %= gi::baked_layers;
@@ -126,14 +150,21 @@ bool holds_light(const gi::WallView& walls, int layer, glm::ivec2 tile) {
     return wall && !walls.is_wall(tile.x + a.x, tile.y + a.y);
 }
 
-// A chunk's texel (x, y) (of `side` a row) of layer `layer` (0: ground, 1 + f: face f;
-// baked_layers + k: the pulsing part's layer k, which the chunk must have).
-const float* texel_of(const ChunkBake& c, int layer, int x, int y) {
+// A chunk's texel (x, y) (of `side` a row) of part `part`'s layer `layer` (0: ground, 1 + f:
+// face f; the chunk must have the part).
+const float* texel_of(const ChunkBake& c, int part, int layer, int x, int y) {
     const std::size_t i = (std::size_t(y) * std::size_t(c.side()) + std::size_t(x)) * 3;
-    const bool pulse = layer >= gi::baked_layers;
-    const int k = layer % gi::baked_layers;
-    const std::vector<float>& v = k == 0 ? (pulse ? c.pulse_ground : c.ground)
-                                         : (pulse ? c.pulse_faces : c.faces)[std::size_t(k - 1)];
+    const std::vector<float>* ground = &c.ground;
+    const std::array<std::vector<float>, 4>* faces = &c.faces;
+    if (part == pulsing_part) {
+        ground = &c.pulse_ground;
+        faces = &c.pulse_faces;
+    } else if (part >= first_sun_key_part) {
+        const LightPart& key = c.sun_keys[std::size_t(part - first_sun_key_part)];
+        ground = &key.ground;
+        faces = &key.faces;
+    }
+    const std::vector<float>& v = layer == 0 ? *ground : (*faces)[std::size_t(layer - 1)];
     return v.data() + i;
 }
 
@@ -141,7 +172,7 @@ const float* texel_of(const ChunkBake& c, int layer, int x, int y) {
 // when c was baked at a coarser resolution: bilinear between c's four texels around that
 // point (clamped at c's border), over those that hold light in the layer; the nearest texel
 // when none of them does.
-glm::vec3 resample(const ChunkBake& c, const gi::WallView& walls, int layer, int res, int x, int y) {
+glm::vec3 resample(const ChunkBake& c, const gi::WallView& walls, int part, int layer, int res, int x, int y) {
     const int r = c.resolution, side = c.side();
     const glm::vec2 g = (glm::vec2(float(x), float(y)) + 0.5f) * (float(r) / float(res)) - 0.5f;
     const glm::ivec2 i0(int(std::floor(g.x)), int(std::floor(g.y)));
@@ -154,13 +185,13 @@ glm::vec3 resample(const ChunkBake& c, const gi::WallView& walls, int layer, int
         const glm::ivec2 tile(c.id.x * chunk_tiles + sx / r, c.id.z * chunk_tiles + sy / r);
         if (!holds_light(walls, layer, tile)) continue;
         const float w = (dx ? f.x : 1.0f - f.x) * (dy ? f.y : 1.0f - f.y);
-        const float* t = texel_of(c, layer, sx, sy);
+        const float* t = texel_of(c, part, layer, sx, sy);
         sum += w * glm::vec3(t[0], t[1], t[2]);
         weight += w;
     }
     if (weight > 0.0f) return sum / weight;
     const int nx = std::clamp(int(std::floor(g.x + 0.5f)), 0, side - 1), ny = std::clamp(int(std::floor(g.y + 0.5f)), 0, side - 1);
-    const float* t = texel_of(c, layer, nx, ny);
+    const float* t = texel_of(c, part, layer, nx, ny);
     return {t[0], t[1], t[2]};
 }
 
@@ -183,9 +214,16 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
     const int side = chunk_tiles * res;
     const glm::ivec2 chunks_wide = hi - lo + 1;
     const int width = chunks_wide.x * side, height = chunks_wide.y * side;
-    // With any chunk's pulsing part, five more layers hold the pulsing glow's light.
+    // With any chunk's pulsing part, five more layers hold the pulsing glow's light; then five
+    // for each sun key (the moving sun), as many as the chunks have.
     const bool pulsing = std::any_of(chunks.begin(), chunks.end(), [](const ChunkBake* c) { return !c->empty && c->pulses(); });
-    std::vector<gi::Field> layers(std::size_t(pulsing ? 2 * gi::baked_layers : gi::baked_layers));
+    std::size_t sun_keys = 0;
+    for (const ChunkBake* c : chunks)
+        if (!c->empty) sun_keys = std::max(sun_keys, c->sun_keys.size());
+    std::vector<int> parts = {steady_part};
+    if (pulsing) parts.push_back(pulsing_part);
+    for (std::size_t k = 0; k < sun_keys; ++k) parts.push_back(first_sun_key_part + int(k));
+    std::vector<gi::Field> layers(parts.size() * std::size_t(gi::baked_layers));
     for (gi::Field& f : layers) f = gi::Field(width, height);
     for (const ChunkBake* c : chunks) {
         const glm::ivec2 at = (glm::ivec2(c->id.x, c->id.z) - lo) * side;
@@ -194,17 +232,18 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
             for (int x = 0; x < side; ++x) {
                 const std::size_t dst = std::size_t(at.y + y) * std::size_t(width) + std::size_t(at.x + x);
                 const glm::ivec2 tile(c->id.x * chunk_tiles + x / res, c->id.z * chunk_tiles + y / res);
-                for (int layer = 0; layer < int(layers.size()); ++layer) {
-                    gi::Field& field = layers[std::size_t(layer)];
-                    // The pulsing layers hold light where their steady twins do.
-                    field.air[dst] = layer < gi::baked_layers ? (holds_light(walls, layer, tile) ? 1 : 0)
-                                                              : layers[std::size_t(layer - gi::baked_layers)].air[dst];
-                    if (c->empty || (layer >= gi::baked_layers && !c->pulses())) continue; // no such light reaches it: zero
+                for (int index = 0; index < int(layers.size()); ++index) {
+                    gi::Field& field = layers[std::size_t(index)];
+                    const int part = parts[std::size_t(index / gi::baked_layers)], layer = index % gi::baked_layers;
+                    // Every part's layers hold light where the steady part's do.
+                    field.air[dst] = index < gi::baked_layers ? (holds_light(walls, layer, tile) ? 1 : 0)
+                                                              : layers[std::size_t(layer)].air[dst];
+                    if (!has_part(*c, part)) continue; // no such light reaches it: zero
                     glm::vec3 v;
                     if (coarser) {
-                        v = resample(*c, walls, layer, res, x, y);
+                        v = resample(*c, walls, part, layer, res, x, y);
                     } else {
-                        const float* t = texel_of(*c, layer, x, y);
+                        const float* t = texel_of(*c, part, layer, x, y);
                         v = {t[0], t[1], t[2]};
                     }
                     for (int k = 0; k < 3; ++k) field.rgb[dst * 3 + std::size_t(k)] = v[k];
@@ -227,7 +266,8 @@ std::shared_ptr<const gi::BakedLight> runtime_light(std::span<const ChunkBake* c
     }
     auto light = std::make_shared<const gi::BakedLight>(gi::make_baked_light(lo * chunk_tiles, res, layers, eps, key.value(), max_level,
                                                                              coarser ? std::span<const std::uint8_t>(finest)
-                                                                                     : std::span<const std::uint8_t>()));
+                                                                                     : std::span<const std::uint8_t>(),
+                                                                             int(sun_keys)));
     if (light->bricks.too_many > 0) {
         if (why)
             *why = "the baked light of " + std::to_string(chunks.size()) + " chunks (" + std::to_string(width) + " x " +

@@ -123,6 +123,34 @@ void split_for_bake(FrameInputs& in, const scene::Scene& s) {
     };
     split(in.point_lights, in.point_light_ids, in.mixed_lights, s.point_lights);
     split(in.emissive_lights, in.emissive_ids, in.mixed_emissives, s.emissive_lights);
+    // The suns, in gather_frame_inputs' order (those that add light).
+    std::vector<GpuDirectionalLight> suns;
+    std::size_t k = 0;
+    for (const scene::DirectionalLight& d : s.directional_lights) {
+        if (!sun_adds_light(d.color, d.intensity)) continue;
+        if (k >= in.directional_lights.size()) break;
+        GpuDirectionalLight sun = in.directional_lights[k++];
+        if (d.mode == scene::LightMode::baked) continue;
+        if (d.mode == scene::LightMode::mixed) mark_mixed(sun);
+        suns.push_back(sun);
+    }
+    in.directional_lights = std::move(suns);
+}
+
+bool has_live_suns(const FrameInputs& in) {
+    return std::any_of(in.directional_lights.begin(), in.directional_lights.end(),
+                       [](const GpuDirectionalLight& s) { return !is_mixed_sun(s); });
+}
+
+bool has_mixed_suns(const FrameInputs& in) {
+    return std::any_of(in.directional_lights.begin(), in.directional_lights.end(),
+                       [](const GpuDirectionalLight& s) { return is_mixed_sun(s); });
+}
+
+FrameInputs with_suns(const FrameInputs& in, bool mixed) {
+    FrameInputs out = in;
+    std::erase_if(out.directional_lights, [mixed](const GpuDirectionalLight& s) { return is_mixed_sun(s) != mixed; });
+    return out;
 }
 
 GpuMaterial pack_material(const scene::Material& m) {

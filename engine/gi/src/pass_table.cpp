@@ -5,6 +5,7 @@
 #include "lantern/core/assert.hpp"
 #include "lantern/core/clock.hpp"
 #include "lantern/core/hash.hpp"
+#include "lantern/gi/baked_light.hpp"
 #include "lantern/gi/reference_indirect.hpp"
 #include "lantern/gi/gather.hpp"
 #include "lantern/gi/probes.hpp"
@@ -401,7 +402,13 @@ InputKeys input_keys_of(const FrameInputs& in) {
 
 std::uint64_t baked_input_key(const FrameInputs& in) {
     if (!in.baked) return 0;
-    return in.baked->pulsing ? Hasher().add(in.baked->key).add(in.baked_pulse).value() : in.baked->key;
+    const BakedSun sun = baked_sun_of(in);
+    if (!in.baked->pulsing && sun.key < 0) return in.baked->key;
+    Hasher h;
+    h.add(in.baked->key);
+    if (in.baked->pulsing) h.add(in.baked_pulse);
+    if (sun.key >= 0) h.add(sun.key).add(sun.blend).add(sun.color.r).add(sun.color.g).add(sun.color.b);
+    return h.value();
 }
 
 void Convergence::advance(PassSet ran) {

@@ -468,8 +468,8 @@ void read_bake_density(Reader& reader, const json::Value& list, std::vector<Bake
 // "bake": the world's bake settings, in bake::validate_settings' ranges.
 void read_bake_settings(Reader& reader, const json::Value& value, BakeSettings& b) {
     Fields fields(reader, value, "bake",
-                  {"resolution", "margin", "rays", "face_rays", "solver", "falloff", "ambient", "directional", "eps",
-                   "max_level", "density"});
+                  {"resolution", "margin", "rays", "face_rays", "solver", "falloff", "ambient", "directional", "sun_keys",
+                   "eps", "max_level", "density"});
     fields.optional("resolution", b.resolution, IntRange{1, 16})
         .optional("margin", b.margin, IntRange{0, 64})
         .optional("rays", b.rays, IntRange{1, 1024})
@@ -478,8 +478,10 @@ void read_bake_settings(Reader& reader, const json::Value& value, BakeSettings& 
         .optional("falloff", b.falloff, between(1.0 / 64.0, 4096.0))
         .optional("ambient", b.ambient, between(0.0, 1000.0))
         .optional("directional", b.directional)
+        .optional("sun_keys", b.sun_keys, IntRange{0, 32})
         .optional("eps", b.eps, between(0.0, 1000.0))
         .optional("max_level", b.max_level, IntRange{0, 3});
+    if (fields.ok() && b.sun_keys == 1) fields.fail("sun_keys", "must be 0 or an integer in [2, 32] (one key cannot blend), got 1");
     if (const json::Value* density = fields.find("density"); density && reader.ok())
         read_bake_density(reader, *density, b.density);
 }
@@ -575,11 +577,11 @@ void apply_temperature(Fields& fields, glm::vec3& color) {
 }
 
 // Seed 004's indirect multiplier scales what the bake holds of a light's bounce; a light whose
-// bounce is live (realtime; a mixed sun) cannot take one.
+// bounce is live (realtime) cannot take one.
 void check_indirect(Fields& fields, LightMode mode, float indirect) {
     if (fields.ok() && indirect != 1.0f && mode == LightMode::realtime)
         fields.fail("indirect", "only a light whose bounce is baked takes an indirect multiplier (\"mode\": \"mixed\" "
-                                "or \"baked\"; a sun: \"baked\"): the live methods' bounce is not per light");
+                                "or \"baked\"): the live methods' bounce is not per light");
 }
 
 } // namespace
@@ -625,7 +627,7 @@ void read_directional_light(Reader& reader, const json::Value& value, const std:
         .optional("mode", light.mode, light_modes)
         .optional("indirect", light.indirect, between(0.0, 1000.0));
     apply_temperature(fields, light.color);
-    check_indirect(fields, light.mode == LightMode::mixed ? LightMode::realtime : light.mode, light.indirect);
+    check_indirect(fields, light.mode, light.indirect);
     if (!fields.ok()) return;
     // In double: the squares of tiny float components would underflow to 0 in float.
     const glm::dvec3 direction(light.direction);

@@ -11,7 +11,7 @@ struct GpuPointLight {
 struct GpuDirectionalLight {
     vec4 direction_base;   // xyz: normalised travel direction; w: base shadow distance
     vec4 color_multiplier; // rgb: colour * intensity; w: 1 / max(|dir.y|, 0.02)
-    vec4 bounce;           // x: bounce intensity
+    vec4 bounce;           // x: bounce intensity; y: 1 for a mixed sun (frame_inputs.hpp is_mixed_sun)
 };
 
 struct GpuShadowProxy {

@@ -49,6 +49,9 @@ struct DirectionalLight {
     float intensity = 1.0f;
     float base_shadow_distance = 4.0f;
     float bounce_intensity = 0.5f;
+    // With a bake in use: `mixed` keeps the direct light live and takes the bounce from the
+    // bake (the `mixed` row lights it), `baked` leaves the live passes (docs/baked.md).
+    scene::LightMode mode = scene::LightMode::realtime;
 };
 
 // An analytic occluder (trees, lamp posts, props): see scene::ShadowProxy for the fields.

@@ -44,7 +44,7 @@ bool samples_bake(const FrameInputs& in) {
            w.view.min_z + w.view.height > z0;
 }
 
-bool has_mixed(const FrameInputs& in) { return !in.mixed_lights.empty() || !in.mixed_emissives.empty(); }
+bool has_mixed(const FrameInputs& in) { return !in.mixed_lights.empty() || !in.mixed_emissives.empty() || has_mixed_suns(in); }
 
 // The direct textures the mixed lights' light goes into, and the mixed row's textures it
 // comes from: direct, the faces (wall_direct_*), the upper faces (wall_upper_*).
@@ -113,7 +113,9 @@ const char* sample_not_needed(const FrameInputs& in, bool, bool) {
 
 struct SampleParams {
     std::int32_t origin_x = 0, origin_z = 0, resolution = 0, width = 0, height = 0;
-    std::int32_t pulsing = 0; // the atlas holds the pulsing part (layers 5..9)
+    // Bit 0: the atlas holds the pulsing part (layers 5..9); bits 1..: the moving sun's
+    // (baked_sun_of) atlas layer of the key below its time, plus 1 (0: no keyed sun).
+    std::int32_t parts = 0;
     float pulse = 1.0f;       // FrameInputs::baked_pulse
     float intensity = 1.0f;
 };
@@ -126,6 +128,7 @@ struct SampleParams {
 struct SampleState : vk::PassState {
     gpu::Image atlas, indirection;
     gpu::Sampler linear, nearest;
+    UploadedArray sun; // the keys' weights: colour x (1 - blend), colour x blend (BakedLight::light)
     std::uint64_t key = 0;
     bool uploaded = false;
 };
@@ -182,6 +185,10 @@ void record_sample(PassRecorder& r) {
         s.key = b.key;
         s.uploaded = true;
     }
+    const BakedSun sun = baked_sun_of(in);
+    const glm::vec4 weights[2] = {glm::vec4(sun.color * (1.0f - sun.blend), 0.0f), glm::vec4(sun.color * sun.blend, 0.0f)};
+    upload_array(r, s.sun, std::span<const glm::vec4>(weights), VK_FORMAT_R32G32B32A32_SFLOAT, "baked sun");
+    r.cmd.barrier_transfer_to_compute();
     const GiWindow& w = in.window;
     const std::uint32_t faces = baked_faces(in);
     gpu::DescriptorWrites writes;
@@ -194,11 +201,13 @@ void record_sample(PassRecorder& r) {
     for (int f = 0; f < 4; ++f)
         writes.storage_buffer(std::uint32_t(5 + f), r.buffer(computes_face(faces, f) ? baked_face_tex(f) : Tex::baked_ground));
     writes.storage_buffer(9, r.buffer(Tex::baked_view));
+    writes.uniform_texel_buffer(10, s.sun.view);
     r.cmd.bind(r.pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .faces = faces}));
     r.cmd.push_descriptors(writes);
     auto p = r.params<SampleParams>(w.width, w.height);
+    const int sun_first = sun.key >= 0 && sun.key + 1 < b.sun_keys ? b.sun_layer(sun.key, 0) + 1 : 0;
     p.pass = {.origin_x = b.origin.x, .origin_z = b.origin.y, .resolution = b.resolution, .width = b.width, .height = b.height,
-              .pulsing = b.pulsing ? 1 : 0, .pulse = in.baked_pulse, .intensity = in.settings.baked_intensity};
+              .parts = (b.pulsing ? 1 : 0) | (sun_first << 1), .pulse = in.baked_pulse, .intensity = in.settings.baked_intensity};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -215,18 +224,19 @@ void reference_sample_row(ReferenceContext& c) {
         if (computes_face(faces, f)) face[std::size_t(f)] = Texture(tex_name(baked_face_tex(f)), TexFormat::rgba16f, w.width, w.height);
     const glm::vec4 face_bits = face_bits_mask(faces);
     const float k = in.settings.baked_intensity;
+    const BakedSun sun = baked_sun_of(in);
     for_each_row(w.height, c.options, [&](int y) {
         for (int x = 0; x < w.width; ++x) {
             const glm::vec2 p = w.texel_center(x, y);
             const glm::ivec2 cell(int(std::floor(p.x)), int(std::floor(p.y)));
             const bool wall = in.walls.is_wall(cell.x, cell.y);
-            const glm::vec4 g(wall ? glm::vec3(0.0f) : b.light(0, p, in.baked_pulse) * k, 0.0f);
+            const glm::vec4 g(wall ? glm::vec3(0.0f) : b.light(0, p, in.baked_pulse, sun) * k, 0.0f);
             glm::vec4 shown(glm::vec3(g), wall ? 0.0f : float(b.level(0, p) + 1));
             ground.store(x, y, &g.x);
             const glm::vec4 mask = wall && faces != 0 ? wall_face_mask(in.walls, cell) * face_bits : glm::vec4(0.0f);
             for (int f = 0; f < 4; ++f) {
                 if (!computes_face(faces, f)) continue;
-                const glm::vec3 v = mask[f] > 0.0f ? b.light(1 + f, p, in.baked_pulse) * k : glm::vec3(0.0f);
+                const glm::vec3 v = mask[f] > 0.0f ? b.light(1 + f, p, in.baked_pulse, sun) * k : glm::vec3(0.0f);
                 const glm::vec4 texel(v, wall ? 1.0f : 0.0f); // as wall_indirect writes it
                 face[std::size_t(f)].store(x, y, &texel.x);
                 if (mask[f] > 0.0f) {

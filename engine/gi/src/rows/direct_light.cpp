@@ -38,11 +38,11 @@ constexpr Tex mixed_set[] = {Tex::direct_mixed,         Tex::shadow_mixed,      
 constexpr Tex upper_mixed_set[] = {Tex::wall_upper_mixed_px, Tex::wall_upper_mixed_nx, Tex::wall_upper_mixed_pz,
                                    Tex::wall_upper_mixed_nz};
 
-// The direct pass writes the point-light set when directional lights follow (the
-// directional pass then reads it and writes the contract textures), else the contract set:
-// the colour, the shadow map and the faces computed (computed_faces).
+// The direct pass writes the point-light set when realtime suns follow (the directional
+// pass then reads it and writes the contract textures), else the contract set: the colour,
+// the shadow map and the faces computed (computed_faces).
 std::span<const Tex> direct_outputs(const FrameInputs& in) {
-    return in.directional_lights.empty() ? std::span<const Tex>(direct_set) : std::span<const Tex>(point_set);
+    return has_live_suns(in) ? std::span<const Tex>(point_set) : std::span<const Tex>(direct_set);
 }
 
 // The upper-face textures that go with a set (unfolded proxy shadows).
@@ -121,6 +121,7 @@ constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
 constexpr std::uint32_t feature_linear_falloff = 8; // gi.light_softness 1: no pow (gi_direct.comp)
 constexpr std::uint32_t feature_list = 16; // gi_direct.comp: one workgroup per listed bin (dirty light bins)
 constexpr std::uint32_t feature_no_lights = 32; // gi_direct.comp: bins no light reaches (the light loops left out)
+constexpr std::uint32_t feature_mixed_suns = 64; // gi_directional.comp: the mixed suns, in place (else the realtime ones)
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
@@ -375,7 +376,9 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const std::uint64_t context = direct_context(r, out, base_features | (want_map ? feature_point_map : 0u), proxy_per_light);
     std::vector<std::uint64_t> hashes =
         bin_lights(lights, w, bins_x, bins_y, float(4 * r.group_x()), float(r.block_h() * r.group_y()));
-    const bool overwritten = !r.dirty_bins() || written_later(r, face_set(out, in));
+    // The mixed suns are added onto the mixed set in place (record_mixed): no bin is kept then.
+    const bool overwritten = !r.dirty_bins() || written_later(r, face_set(out, in)) ||
+                             (out.data() == mixed_set && has_mixed_suns(r.in));
     bool kept = s.context == context && s.bin_lights.size() == hashes.size() && !overwritten;
     std::vector<std::uint32_t> lit, dark;
     auto list_bins = [&] {
@@ -500,9 +503,10 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
         for (std::uint32_t variant : {0u, feature_list, feature_list | feature_no_lights})
             r.prefetch_pipeline<DirectParams>("gi_direct.comp",
                                               {.proxies = proxies, .walls = walls, .features = features | variant, .faces = faces});
-        r.prefetch_pipeline<DirectionalParams>(
-            "gi_directional.comp",
-            {.proxies = proxies, .walls = walls, .features = directional_features(in, sun_map), .faces = faces});
+        for (std::uint32_t variant : {0u, feature_mixed_suns})
+            r.prefetch_pipeline<DirectionalParams>(
+                "gi_directional.comp",
+                {.proxies = proxies, .walls = walls, .features = directional_features(in, sun_map) | variant, .faces = faces});
     }
 }
 
@@ -530,10 +534,18 @@ TexSet mixed_writes(const FrameInputs& in) { return face_set(mixed_set, in); }
 // are cleared once and kept): its textures stay allocated while mixed lights come and go.
 const char* mixed_not_needed(const FrameInputs& in, bool, bool) { return in.baked ? nullptr : "no baked light in use"; }
 
-void record_mixed(PassRecorder& r) { record_direct_lights(r, mixed_inputs(r.in), mixed_set); }
+void record_suns(PassRecorder& r, bool mixed);
+
+// The mixed point and emissive lights, then the mixed suns added in place.
+void record_mixed(PassRecorder& r) {
+    record_direct_lights(r, mixed_inputs(r.in), mixed_set);
+    if (has_mixed_suns(r.in)) record_suns(r, true);
+}
 
 void reference_mixed_row(ReferenceContext& c) {
-    put_direct(c.store, mixed_set, reference_direct(mixed_inputs(c.in), c.options));
+    DirectTextures d = reference_direct(mixed_inputs(c.in), c.options);
+    if (has_mixed_suns(c.in)) reference_directional(with_suns(c.in, true), d, c.options);
+    put_direct(c.store, mixed_set, std::move(d));
 }
 
 // ---- directional lights
@@ -616,7 +628,12 @@ bool upload_sun_maps(PassRecorder& r, bool wanted) {
     return wanted;
 }
 
-void record_directional(PassRecorder& r) {
+// The suns' pass: the realtime suns read the point-light set and write the contract
+// textures (never in place); the mixed suns (`mixed`, the mixed row) add to the mixed set in
+// place (each texel reads and writes only its own texels). The shader lights the suns of its
+// kind (is_mixed_sun) from the frame's sun list, so their shadow maps and proxy bins keep
+// their indices.
+void record_suns(PassRecorder& r, bool mixed) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
     const bool sun_map = upload_sun_maps(r, in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map);
@@ -625,27 +642,31 @@ void record_directional(PassRecorder& r) {
     upload_array(r, maps.proxy_bins, std::span<const std::uint32_t>(sun_proxy_bins(r)), VK_FORMAT_UNDEFINED,
                  "sun proxy bins");
     r.cmd.barrier_transfer_to_compute();
-    if (!r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
+    const std::span<const Tex> reads = mixed ? std::span<const Tex>(mixed_set) : std::span<const Tex>(point_set);
+    const std::span<const Tex> upper_reads = upper_outputs(reads);
+    const std::span<const Tex> outs = mixed ? std::span<const Tex>(mixed_set) : std::span<const Tex>(direct_set);
+    const std::span<const Tex> upper_outs = upper_outputs(outs);
+    if (!mixed && !r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
         for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz,
                       Tex::wall_upper_px, Tex::wall_upper_nx, Tex::wall_upper_pz, Tex::wall_upper_nz})
             if (r.has(t)) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
     }
-    r.cmd.bind(r.pipeline<DirectionalParams>("gi_directional.comp", {.proxies = !in.proxies.empty(),
-                                                                      .walls = r.plan.has_walls_in_window,
-                                                                      .features = directional_features(in, sun_map),
-                                                                      .faces = faces}));
+    r.cmd.bind(r.pipeline<DirectionalParams>("gi_directional.comp",
+                                             {.proxies = !in.proxies.empty(),
+                                              .walls = r.plan.has_walls_in_window,
+                                              .features = directional_features(in, sun_map) | (mixed ? feature_mixed_suns : 0u),
+                                              .faces = faces}));
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
-    // Reads the point-light results, writes the contract textures (never in place).
     // Faces not computed: bound to the colour's buffers, neither read nor written.
-    for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(r.has(point_set[i]) ? point_set[i] : point_set[0]));
-    for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(r.has(direct_set[i]) ? direct_set[i] : direct_set[0]));
+    for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(r.has(reads[i]) ? reads[i] : reads[0]));
+    for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(r.has(outs[i]) ? outs[i] : outs[0]));
     writes.uniform_texel_buffer(15, maps.headers.view).uniform_texel_buffer(16, maps.first.view).uniform_texel_buffer(17, maps.entries.view);
     for (std::uint32_t f = 0; f < 4; ++f) {
-        const Tex in_upper = upper_point_set[f], out_upper = upper_set[f];
-        writes.uniform_texel_buffer(18 + f, r.view(r.has(in_upper) ? in_upper : point_set[0]));
-        writes.storage_buffer(22 + f, r.buffer(r.has(out_upper) ? out_upper : direct_set[0]));
+        const Tex in_upper = upper_reads[f], out_upper = upper_outs[f];
+        writes.uniform_texel_buffer(18 + f, r.view(r.has(in_upper) ? in_upper : reads[0]));
+        writes.storage_buffer(22 + f, r.buffer(r.has(out_upper) ? out_upper : outs[0]));
     }
     writes.storage_buffer(26, maps.proxy_bins.buffer);
     r.cmd.push_descriptors(writes);
@@ -659,13 +680,15 @@ void record_directional(PassRecorder& r) {
     r.cmd.barrier_compute_to_compute();
 }
 
+void record_directional(PassRecorder& r) { record_suns(r, false); }
+
 void reference_directional_row(ReferenceContext& c) {
     DirectTextures d{c.store.at(Tex::direct_point), c.store.at(Tex::shadow_point), {}, {}};
     for (std::size_t f = 0; f < 4; ++f) {
         if (const Texture* face = c.store.find(point_set[2 + f])) d.wall_direct[f] = *face;
         if (const Texture* upper = c.store.find(upper_point_set[f])) d.wall_upper[f] = *upper;
     }
-    reference_directional(c.in, d, c.options); // adds the suns to a copy: never in place
+    reference_directional(with_suns(c.in, false), d, c.options); // adds the suns to a copy: never in place
     put_direct(c.store, direct_set, std::move(d));
 }
 
@@ -676,7 +699,8 @@ constexpr Tex directional_reads[] = {Tex::direct_point,         Tex::shadow_poin
 
 const char* ao_not_needed(const FrameInputs& in, bool, bool) { return in.settings.ao.enabled ? nullptr : "AO disabled"; }
 const char* directional_not_needed(const FrameInputs& in, bool, bool) {
-    return in.directional_lights.empty() ? "no directional lights" : nullptr;
+    if (in.directional_lights.empty()) return "no directional lights";
+    return has_live_suns(in) ? nullptr : "every sun is mixed (the mixed row lights them)";
 }
 
 constexpr Tex conduction_writes[] = {Tex::conduction};
@@ -692,6 +716,11 @@ constexpr std::string_view direct_settings[] = {"light_softness", "wall_face_exp
 constexpr std::string_view directional_settings[] = {"directional_angle_scale", "wall_face_exponent", "wall_lighting",
                                                      "wall_faces.px",           "wall_faces.nx",      "wall_faces.pz",
                                                      "wall_faces.nz",           "sun_shadow_method",  "proxy_wall_shadows"};
+// The mixed row lights mixed point lights and mixed suns: both passes' settings.
+constexpr std::string_view mixed_settings[] = {"light_softness",     "wall_face_exponent", "wall_lighting",
+                                               "wall_faces.px",      "wall_faces.nx",      "wall_faces.pz",
+                                               "wall_faces.nz",      "proxy_wall_shadows", "shadow_method",
+                                               "directional_angle_scale", "sun_shadow_method"};
 
 } // namespace
 
@@ -729,8 +758,8 @@ constinit const PassRow mixed{
     .pass = Pass::mixed,
     .name = "mixed",
     .writes_for = mixed_writes,
-    .settings = direct_settings,
-    .inputs = input_walls | input_mixed_lights | input_proxies | input_wall_height | input_walls_in_window,
+    .settings = mixed_settings,
+    .inputs = input_walls | input_mixed_lights | input_suns | input_proxies | input_wall_height | input_walls_in_window,
     .not_needed = mixed_not_needed,
     .record = record_mixed,
     .reference = reference_mixed_row,

@@ -41,7 +41,8 @@ std::optional<glm::ivec2> pick_ground(const Ray& ray);
 // Torch flicker: a smooth deterministic factor in [0.8, 1.05].
 float flicker(double time, float phase);
 
-// The sun by time of day (0 midnight, 0.5 noon): travel direction, colour * intensity.
+// The sun by time of day (0 midnight, 0.5 noon): travel direction, colour * intensity
+// (scene::day_sun_direction and day_sun_light: the path a bake's sun keys follow).
 glm::vec3 sun_direction(float time_of_day);
 glm::vec3 sun_light(float time_of_day);
 

@@ -16,6 +16,9 @@
 //                bounce light by rays); none in walls.
 //   pulse_*      the same three for the glow of pulsing materials alone (seed 004's pulsing
 //                emission, scaled at run time), when any reaches the chunk.
+//   sun_keys     with BakeSettings::sun_keys, the same three for each key: the mixed sun's
+//                bounce at unit colour at that time of the day's path (seed 004's
+//                precomputed GI for the moving sun; the steady part then leaves it out).
 // Light from outside the chunk is included: lights in reach of it, and walls within
 // BakeSettings::margin tiles that reflect light into it (the gather's margin).
 //
@@ -78,7 +81,7 @@ using BakeSettings = scene::BakeSettings;
 Result<void> validate_settings(const BakeSettings& settings);
 // The settings as command-line options `<prefix>resolution`, `<prefix>margin`,
 // `<prefix>rays`, `<prefix>face-rays`, `<prefix>solver`, `<prefix>falloff`,
-// `<prefix>ambient`, `<prefix>non-directional`, `<prefix>eps`, `<prefix>max-level`
+// `<prefix>ambient`, `<prefix>non-directional`, `<prefix>sun-keys`, `<prefix>eps`, `<prefix>max-level`
 // (lantern-bake: "--", lantern-render and the game: "--bake-"), parsed into `settings`; the
 // help names `defaults`' values as the defaults.
 void add_settings_options(cli::Parser& parser, BakeSettings& settings, const std::string& prefix,
@@ -105,6 +108,15 @@ std::vector<ChunkId> scene_chunks(const scene::Scene& scene);
 // starting at index shard, so the shards partition the list whatever its order of baking.
 std::vector<ChunkId> shard_of(const std::vector<ChunkId>& chunks, int shard, int shards);
 
+// A part of a chunk's light apart from the steady one: ground, faces and probes, laid out as
+// ChunkBake's.
+struct LightPart {
+    std::vector<float> ground;
+    std::array<std::vector<float>, 4> faces;
+    std::vector<CircularHarmonics> probes;
+    friend bool operator==(const LightPart&, const LightPart&) = default;
+};
+
 struct ChunkBake {
     ChunkId id;
     std::uint64_t key = 0;
@@ -124,6 +136,9 @@ struct ChunkBake {
     std::vector<float> pulse_ground;
     std::array<std::vector<float>, 4> pulse_faces;
     std::vector<CircularHarmonics> pulse_probes;
+    // The moving sun's keys (BakeSettings::sun_keys; empty without): key k holds the mixed
+    // sun's bounce at scene::sun_key_time(k, keys), colour 1, intensity 1 (x its `indirect`).
+    std::vector<LightPart> sun_keys;
 
     int side() const { return chunk_tiles * resolution; }
     bool pulses() const { return !pulse_ground.empty(); }

@@ -27,9 +27,17 @@ static_assert(sizeof(GpuPointLight) == 32);
 struct alignas(16) GpuDirectionalLight {
     glm::vec4 direction_base;  // xyz: normalised travel direction; w: base shadow distance
     glm::vec4 color_multiplier; // rgb: colour * intensity; w: 1 / max(|direction.y|, 0.02)
-    glm::vec4 bounce;           // x: bounce intensity; yzw: unused
+    glm::vec4 bounce;           // x: bounce intensity; y: 1 for a mixed sun (mark_mixed); zw: unused
 };
 static_assert(sizeof(GpuDirectionalLight) == 48);
+
+// A mixed sun while a bake is used (seed 004's mixed mode): its direct light is live, but
+// added by the `mixed` row after the indirect rows, so the live bounce leaves it out (the
+// bake holds its bounce), and it has no bounce fill. It stays in
+// FrameInputs::directional_lights, so the raster, the probes and the texel lighting still see
+// the sun; the `directional` row skips it.
+inline bool is_mixed_sun(const GpuDirectionalLight& sun) { return sun.bounce.y != 0.0f; }
+inline void mark_mixed(GpuDirectionalLight& sun) { sun.bounce = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f); }
 
 struct alignas(16) GpuShadowProxy {
     glm::vec4 position_size; // xy: world x, z; zw: half extents (box) or radius in z (circle)
@@ -95,6 +103,7 @@ struct FrameInputs {
     // `mixed` row after the indirect rows so that the live bounce leaves them out (the bake
     // holds their bounce). Culled as the others; without a bake mixed lights are realtime.
     std::vector<GpuPointLight> mixed_lights, mixed_emissives;
+    // Every sun that shines; the mixed ones marked (is_mixed_sun), lit by the `mixed` row.
     std::vector<GpuDirectionalLight> directional_lights;
     std::vector<GpuShadowProxy> proxies; // culled by reach, closest max_shadow_proxies kept
     // Scene indices of what was kept, in the order above (tests and the HUD use them).
@@ -113,6 +122,12 @@ struct FrameInputs {
     // (a colour-only update, not a re-bake).
     float baked_pulse = 1.0f;
 };
+
+// Whether the frame has suns the `directional` row lights (realtime ones), and mixed ones.
+bool has_live_suns(const FrameInputs& in);
+bool has_mixed_suns(const FrameInputs& in);
+// The frame with only its realtime suns (mixed = false) or only its mixed ones.
+FrameInputs with_suns(const FrameInputs& in, bool mixed);
 
 // The material of a wall cell value (0, air: all zero).
 GpuMaterial material_of(const FrameInputs& in, std::uint8_t cell);
@@ -170,8 +185,9 @@ GpuDirectionalLight pack_directional(const scene::DirectionalLight& light,
 bool sun_adds_light(glm::vec3 color, float intensity);
 
 // The frame as it is lit with a bake of `scene` (FrameInputs::baked): the mixed lights move
-// to mixed_lights / mixed_emissives, the baked lights leave (by the scene indices in
-// point_light_ids / emissive_ids, so call it on gather_frame_inputs' result).
+// to mixed_lights / mixed_emissives, mixed suns are marked (mark_mixed), the baked lights
+// leave (by the scene indices in point_light_ids / emissive_ids and the suns' order, so call
+// it on gather_frame_inputs' result for the same scene).
 void split_for_bake(FrameInputs& in, const scene::Scene& scene);
 
 // A scene's lights and proxies for a window, chosen as the game's gathering systems choose

@@ -178,7 +178,7 @@ struct DirectionalLight {
     float base_shadow_distance = 4.0f; // world units, scaled by 1 / max(|direction.y|, 0.02)
     float bounce_intensity = 0.5f;
     LightMode mode = LightMode::realtime;
-    float indirect = 1.0f; // as PointLight::indirect (a baked sun's; mixed suns stay live)
+    float indirect = 1.0f; // as PointLight::indirect
 
     friend bool operator==(const DirectionalLight&, const DirectionalLight&) = default;
 };
@@ -329,6 +329,11 @@ struct BakeSettings {
     // Seed 004's directional bake: probes keep the light's direction (circular harmonics of
     // order 2); non-directional keeps the fluence alone (a0), lighting every side alike.
     bool directional = true;
+    // Seed 004's precomputed GI for the moving sun (docs/baked.md, "The moving sun"): 0 bakes
+    // a mixed sun's bounce at its own direction; 2..32 bakes it at that many times of the
+    // day's path (scene::sun_key_time, day.hpp), at unit colour, and the run time blends the
+    // two keys around the sun's direction and scales them by its colour. Takes one mixed sun.
+    int sun_keys = 0;
     // At run time (not in the cache key): seed 002's brick coarsening tolerance (colour range
     // per channel, light units, [0, 1000]) and the largest brick level (0..3: a brick spans
     // up to 2^max_level x 4 probes a side).

@@ -13,11 +13,13 @@
 #include "lantern/gi/vulkan/pass_params.hpp"
 
 #include <memory>
+#include <typeindex>
+#include <typeinfo>
 
 namespace lantern::gi::vk {
 
 // Persistent GPU state a row keeps between frames (a weight table, light bins): one object
-// per row and renderer, created on first use by PassRecorder::state<T>().
+// per row, type and renderer, created on first use by PassRecorder::state<T>().
 struct PassState {
     virtual ~PassState() = default;
 };
@@ -110,7 +112,7 @@ class PassRecorder {
 
     template <typename T>
     T& state() {
-        std::unique_ptr<PassState>& slot = r_.states_[&row_];
+        std::unique_ptr<PassState>& slot = r_.states_[{&row_, std::type_index(typeid(T))}];
         if (!slot) slot = std::make_unique<T>();
         return static_cast<T&>(*slot);
     }

@@ -20,6 +20,8 @@
 
 #include <array>
 #include <map>
+#include <typeindex>
+#include <utility>
 #include <memory>
 #include <cstdint>
 #include <optional>
@@ -181,7 +183,9 @@ class Renderer {
     std::array<PartialWork, pass_count> partial_work_{};
     bool dirty_bins_ = true;
     gpu::Buffer lights_, proxies_, suns_; // uniform buffers, written with update_buffer
-    std::map<const PassRow*, std::unique_ptr<PassState>> states_; // each row's own GPU state
+    // Each row's own GPU state, one object per row and state type (a row may keep several:
+    // the mixed row keeps the direct pass's and the suns' pass's).
+    std::map<std::pair<const PassRow*, std::type_index>, std::unique_ptr<PassState>> states_;
     std::vector<QuerySet> queries_;
     std::vector<FrameTimings> resolved_; // read from a set before its reuse, not yet returned
     int frame_slot_ = -1;
