@@ -7,6 +7,7 @@
 #include "lantern/core/log.hpp"
 #include "lantern/game/game_components.hpp"
 #include "lantern/profile/profiler.hpp"
+#include "lantern/scene/day.hpp"
 #include "lantern/scene/loader.hpp"
 #include "lantern/systems/gi_frame.hpp"
 #include "lantern/systems/streaming.hpp"
@@ -43,10 +44,17 @@ bake::CircularHarmonics BakedChunks::probes_at(glm::vec2 p) const {
         const std::size_t k = std::size_t(j * bake::chunk_probes + i);
         const bake::ChunkBake& b = *it->second;
         if (!b.probe_valid[k]) return nullptr;
-        if (!b.pulses()) return &b.probes[k];
+        const bool keyed = sun.key >= 0 && std::size_t(sun.key) + 1 < b.sun_keys.size();
+        if (!b.pulses() && !keyed) return &b.probes[k];
         bake::CircularHarmonics& h = summed[std::size_t(used++)];
         h = b.probes[k];
-        h += b.pulse_probes[k] * pulse;
+        if (b.pulses()) h += b.pulse_probes[k] * pulse;
+        if (keyed) { // per channel: the sun's colour x the two keys blended (gi::BakedLight::light)
+            const bake::CircularHarmonics& below = b.sun_keys[std::size_t(sun.key)].probes[k];
+            const bake::CircularHarmonics& above = b.sun_keys[std::size_t(sun.key) + 1].probes[k];
+            for (std::size_t n = 0; n < h.c.size(); ++n)
+                h.c[n] += (sun.color * (1.0f - sun.blend)) * below.c[n] + (sun.color * sun.blend) * above.c[n];
+        }
         return &h;
     };
     return bake::interpolate_probes(probe, p);
@@ -193,12 +201,29 @@ bool WorldBaker::scan(ecs::World& world) {
         if (l.mode != scene::LightMode::realtime) statics.emissive_lights.push_back({l.position, l.color, l.intensity, l.radius, l.mode});
     });
     world.view<ShadowProxy>().each([&](const ShadowProxy& p) { statics.shadow_proxies.push_back(p.shape); });
+    // Mixed suns: with sun keys the bake follows the day's path, so where the sun stands now
+    // is not an input (the day cycle moves it every frame); without, it is baked where it is.
+    const bool keyed = options_.settings.sun_keys >= 2;
+    world.view<DirectionalLight>().each([&](const DirectionalLight& l) {
+        if (l.mode == scene::LightMode::realtime) return;
+        scene::DirectionalLight d;
+        d.direction = keyed && l.mode == scene::LightMode::mixed ? glm::vec3(0.0f, -1.0f, 0.0f) : l.direction;
+        d.color = keyed && l.mode == scene::LightMode::mixed ? glm::vec3(1.0f) : l.color;
+        d.intensity = keyed && l.mode == scene::LightMode::mixed ? 1.0f : l.intensity;
+        d.base_shadow_distance = l.base_shadow_distance;
+        d.bounce_intensity = l.bounce_intensity;
+        d.mode = l.mode;
+        statics.directional_lights.push_back(d);
+    });
     Hasher lights_hash;
     for (const auto& l : statics.point_lights)
         lights_hash.add(l.position.x).add(l.position.y).add(l.height).add(l.color.r).add(l.color.g).add(l.color.b).add(l.intensity).add(l.radius).add(int(l.mode));
     for (const auto& l : statics.emissive_lights)
         lights_hash.add(l.position.x).add(l.position.y).add(l.color.r).add(l.color.g).add(l.color.b).add(l.intensity).add(l.radius).add(int(l.mode));
     for (const auto& p : statics.shadow_proxies) lights_hash.add(p.position.x).add(p.position.y).add(p.size.x).add(p.size.y).add(int(p.shape));
+    for (const auto& l : statics.directional_lights)
+        lights_hash.add(l.direction.x).add(l.direction.y).add(l.direction.z).add(l.color.r).add(l.color.g).add(l.color.b)
+            .add(l.intensity).add(l.base_shadow_distance).add(int(l.mode));
     std::vector<bake::ChunkId> resident;
     world.view<WallChunk>().each([&](const WallChunk& c) {
         if (c.state == ChunkState::resident) resident.push_back({c.coord.x, c.coord.y});
@@ -250,6 +275,7 @@ bool WorldBaker::scan(ecs::World& world) {
             if (inside(l.position)) s.emissive_lights.push_back(l);
         for (const auto& p : statics.shadow_proxies)
             if (inside(p.position)) s.shadow_proxies.push_back(p);
+        s.directional_lights = statics.directional_lights; // suns reach every chunk
         Hasher h;
         h.add_bytes(s.walls.cells.data(), s.walls.cells.size()).add(s.wall_height);
         for (const auto& m : s.materials)
@@ -259,6 +285,9 @@ bool WorldBaker::scan(ecs::World& world) {
         for (const auto& l : s.point_lights) h.add(l.position.x).add(l.position.y).add(l.intensity).add(l.radius).add(int(l.mode)).add(l.color.r).add(l.color.g).add(l.color.b);
         for (const auto& l : s.emissive_lights) h.add(l.position.x).add(l.position.y).add(l.intensity).add(l.radius).add(int(l.mode)).add(l.color.r).add(l.color.g).add(l.color.b);
         for (const auto& p : s.shadow_proxies) h.add(p.position.x).add(p.position.y).add(p.size.x).add(p.size.y).add(int(p.shape));
+        for (const auto& l : s.directional_lights)
+            h.add(l.direction.x).add(l.direction.y).add(l.direction.z).add(l.color.r).add(l.color.g).add(l.color.b)
+                .add(l.intensity).add(l.base_shadow_distance).add(int(l.mode));
         job.inputs = h.value();
         const std::uint64_t k = chunk_id_key(c);
         auto req = requested_.find(k);
@@ -285,6 +314,14 @@ void WorldBaker::update(ecs::World& world) {
                             : 1.0f;
     world.resource<systems::BakedGi>().pulse = pulse;
     baked.pulse = pulse;
+    // The moving sun's keys for the probes (the frame's GI finds them itself: gi::baked_sun_of).
+    baked.sun = {};
+    if (options_.settings.sun_keys >= 2)
+        world.view<DirectionalLight>().each([&](const DirectionalLight& l) {
+            if (l.mode != scene::LightMode::mixed || baked.sun.key >= 0 || !gi::sun_adds_light(l.color, l.intensity)) return;
+            const scene::SunKeyBlend b = scene::sun_key_blend(l.direction, options_.settings.sun_keys);
+            baked.sun = {b.key, b.blend, l.color * l.intensity};
+        });
     status.cache_dir = options_.cache_dir;
     std::vector<std::unique_ptr<Result>> done;
     int pending = 0;

@@ -665,16 +665,21 @@ struct BakedCaves {
     std::unique_ptr<WorldBaker> baker;
     std::unique_ptr<systems::GiFrame> frame;
 
-    explicit BakedCaves(const std::string& cache_dir) {
+    // sun_keys: the sun mixed, its bounce baked at the day's keys (the game's --bake-sun-keys).
+    explicit BakedCaves(const std::string& cache_dir, int sun_keys = 0) {
         WorldOptions wo;
         wo.gi = default_game_gi();
         auto created = create_world(WorldSpec{}, world, wo);
         EXPECT_TRUE(created.ok());
         world.set_resource<BakedChunks>();
         world.set_resource<BakeStatus>();
+        if (sun_keys > 0)
+            world.view<Sun, DirectionalLight>().each(
+                [&](ecs::Entity e, const Sun&, const DirectionalLight&) { world.patch<DirectionalLight>(e).mode = scene::LightMode::mixed; });
         BakerOptions bo;
         bo.cache_dir = cache_dir;
         bo.settings = {.resolution = 1, .margin = 2, .rays = 8, .face_rays = 8};
+        bo.settings.sun_keys = sun_keys;
         bo.reach = 8;
         baker = std::make_unique<WorldBaker>(bo);
         systems::GiFrameOptions fo;
@@ -773,4 +778,53 @@ TEST(Baking, ChunksBakeReuseTheirCacheAndAnEditRebakesOnlyWhatItReaches) {
     BakedCaves again(dir.path().string());
     EXPECT_EQ(again.status().reused + again.status().baked, chunks);
     EXPECT_GE(again.status().reused, chunks - 4) << "the chunks the edit reached are stale (the walls are new again)";
+}
+
+// Seed 004's moving sun in the game (--bake-sun-keys): the mixed sun's bounce is baked at the
+// day's keys in every chunk; the day cycle moving it bakes nothing again; the probes and the
+// frame's baked light follow it.
+TEST(Baking, TheMovingSunIsBakedAtTheDaysKeysAndMovesWithoutABake) {
+    test::TempDir dir;
+    BakedCaves game(dir.path().string(), 3);
+    const BakeStatus& s = game.status();
+    ASSERT_GT(s.chunks, 3);
+    int keyed = 0;
+    for (const auto& [k, b] : game.world.resource<BakedChunks>().chunks) {
+        ASSERT_FALSE(b->empty) << "the sun reaches every chunk";
+        EXPECT_EQ(b->sun_keys.size(), 3u);
+        keyed += b->sun_keys.size() == 3u;
+    }
+    EXPECT_EQ(keyed, s.chunks);
+    const auto& light = game.world.resource<systems::BakedGi>().light;
+    ASSERT_TRUE(light);
+    EXPECT_EQ(light->sun_keys, 3);
+    const std::uint64_t baked = s.baked, published = s.published;
+    // Noon, then late afternoon: nothing is baked again, and the probes change with the sun.
+    auto sun_at = [&](float t) {
+        game.world.view<Sun, DirectionalLight>().each([&](ecs::Entity e, const Sun&, const DirectionalLight&) {
+            DirectionalLight& d = game.world.patch<DirectionalLight>(e);
+            d.direction = sun_direction(t);
+            d.color = sun_light(t);
+            d.intensity = 1.0f;
+        });
+        game.baker->finish(game.world);
+        return game.world.resource<BakedChunks>().sun;
+    };
+    const gi::BakedSun noon = sun_at(0.5f);
+    EXPECT_NEAR(float(noon.key) + noon.blend, 1.0f, 1e-4f) << "noon is the middle key of three";
+    glm::vec2 open(0.0f);
+    const systems::Streaming& streaming = game.frame->streaming();
+    for (int r = 0; r < 32 && open == glm::vec2(0.0f); ++r)
+        for (int x = -r; x <= r; ++x)
+            if (!streaming.is_wall({16 + x, 16 + r})) {
+                open = glm::vec2(16 + x, 16 + r) + 0.5f;
+                break;
+            }
+    const glm::vec3 at_noon = game.world.resource<BakedChunks>().probes_at(open).fluence();
+    const gi::BakedSun later = sun_at(0.65f);
+    EXPECT_EQ(later.key, 1);
+    const glm::vec3 at_later = game.world.resource<BakedChunks>().probes_at(open).fluence();
+    EXPECT_EQ(s.baked, baked) << "a moving sun bakes nothing again";
+    EXPECT_EQ(s.published, published);
+    EXPECT_NE(at_noon, at_later) << "the probes follow the sun (" << open.x << ", " << open.y << ")";
 }

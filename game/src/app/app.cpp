@@ -158,11 +158,19 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
                                                                                                       : bo.settings);
         const std::string density =
             bo.settings.density.empty() ? "" : " (" + std::to_string(bo.settings.density.size()) + " density regions)";
-        LANTERN_LOG_INFO("baked light: resolution %d%s, margin %d, %d rays (%d on faces), %s%s, eps %g, max level %d (%s)",
+        const std::string keys = bo.settings.sun_keys >= 2 ? ", the sun at " + std::to_string(bo.settings.sun_keys) + " keys" : "";
+        LANTERN_LOG_INFO("baked light: resolution %d%s, margin %d, %d rays (%d on faces), %s%s%s, eps %g, max level %d (%s)",
                          bo.settings.resolution, density.c_str(), bo.settings.margin, bo.settings.rays, bo.settings.face_rays,
-                         bake::solver_name(bo.settings.solver), bo.settings.directional ? "" : ", non-directional",
+                         bake::solver_name(bo.settings.solver), bo.settings.directional ? "" : ", non-directional", keys.c_str(),
                          double(bo.settings.eps), bo.settings.max_level,
                          options_.bake_given.empty() ? (s->info.bake ? "the scene's" : "the game's") : "--bake-* given");
+        // The game's sun is mixed while the bake holds its bounce at the day's keys
+        // (--bake-sun-keys: seed 004's precomputed GI for the moving sun), realtime otherwise
+        // (a mixed sun without keys would be baked again at every step of the day cycle).
+        const scene::LightMode sun_mode = bo.settings.sun_keys >= 2 ? scene::LightMode::mixed : scene::LightMode::realtime;
+        w.view<Sun, DirectionalLight>().each([&](ecs::Entity e, const Sun&, const DirectionalLight& d) {
+            if (d.mode != sun_mode) w.patch<DirectionalLight>(e).mode = sun_mode;
+        });
         s->baker = std::make_unique<WorldBaker>(std::move(bo));
     }
 

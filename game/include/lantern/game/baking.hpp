@@ -43,9 +43,12 @@ struct BakedChunks {
     std::unordered_map<std::uint64_t, std::shared_ptr<const bake::ChunkBake>> chunks; // by chunk_id_key
     // The pulsing glow's factor this frame (seed 004's pulsing emission; scene::pulse_factor).
     float pulse = 1.0f;
+    // The moving sun's keys this frame (baked with --bake-sun-keys: seed 004's precomputed GI
+    // for the day cycle): the two around the sun's time and its colour; key -1: none.
+    gi::BakedSun sun;
     // The baked light arriving at p (circular harmonics), interpolated between the probes
-    // around it (bake::interpolate_probes), the pulsing part's scaled by `pulse`; zero where
-    // no baked chunk has one.
+    // around it (bake::interpolate_probes), the pulsing part's scaled by `pulse`, the sun
+    // keys' blended and scaled by the sun's colour; zero where no baked chunk has one.
     bake::CircularHarmonics probes_at(glm::vec2 p) const;
 };
 std::uint64_t chunk_id_key(bake::ChunkId c);
