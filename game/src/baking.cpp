@@ -415,7 +415,7 @@ void WorldBaker::finish(ecs::World& world) {
 void add_bake_system(ecs::Schedule& schedule, WorldBaker& baker) {
     schedule.add("bake", [&baker](ecs::SystemContext& ctx) { baker.update(ctx.world); })
         .main_thread()
-        .reads<PointLight, EmissiveLight, ShadowProxy, Torch, WallChunk>()
+        .reads<PointLight, EmissiveLight, DirectionalLight, ShadowProxy, Torch, WallChunk>()
         .reads_resource<systems::Streaming, systems::GiConfig, GameClock>()
         .writes_resource<systems::BakedGi, BakedChunks, BakeStatus>();
 }
