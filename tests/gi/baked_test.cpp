@@ -267,65 +267,80 @@ TEST_F(Baked, AWindowWithoutWallsMatchesTheReference) {
     compare("open window", in, true);
 }
 
+namespace {
+
+// The rooms with a shadow proxy whose shadows are unfolded on the faces, lit by `method`.
+Scene rooms_with_unfolded_proxy(lantern::scene::GiMethod method) {
+    Scene s = gi_test::comparison_scene("rooms").scene;
+    s.gi.method = method;
+    s.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::unfold;
+    lantern::scene::ShadowProxy proxy;
+    proxy.position = {6.5f, 6.5f};
+    proxy.size = {0.4f, 0.4f};
+    s.shadow_proxies.push_back(proxy);
+    return s;
+}
+
+// An empty bake (it holds the mixed lights' bounce, here nothing): the frame's own passes alone.
+std::shared_ptr<const BakedLight> empty_bake() {
+    std::array<Field, baked_layers> empty;
+    for (Field& f : empty) f = Field(8, 8);
+    return std::make_shared<const BakedLight>(make_baked_light(glm::ivec2(-100), 1, empty, 0.01f, 7));
+}
+
+// The frame with a mixed light (`mixed`, split for a bake) against the same scene all
+// realtime and against the scene without that light: the same direct light (ground, every
+// face, the upper faces: the same light summed in another order, within a few half ulps), and
+// the live bounce of the frame without it, bit for bit.
+void expect_lit_directly_and_left_out_of_the_bounce(const Scene& all_realtime, const FrameInputs& mixed,
+                                                     const Scene& without, const std::string& what) {
+    const ReferenceStore a = reference_frame(inputs_of(all_realtime)), b = reference_frame(mixed),
+                         c = reference_frame(inputs_of(without));
+    ASSERT_TRUE(b.find(Tex::direct));
+    std::vector<Tex> direct = {Tex::direct};
+    for (int f = 0; f < 4; ++f) {
+        direct.push_back(Tex(int(Tex::wall_direct_px) + f));
+        direct.push_back(Tex(int(Tex::wall_upper_px) + f));
+    }
+    for (Tex t : direct) {
+        ASSERT_TRUE(a.find(t) && b.find(t)) << tex_name(t);
+        auto diff = gi_test::compare_textures(b.at(t), a.at(t), 4.0f);
+        EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " " + what + " against realtime", diff);
+    }
+    for (Tex t : {Tex::indirect, Tex::wall_indirect_px, Tex::wall_indirect_nz}) {
+        auto diff = gi_test::compare_textures(b.at(t), c.at(t), 0.0f);
+        EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " live bounce without the " + what, diff);
+    }
+}
+
+} // namespace
+
 // Seed 004's light modes at run time: a mixed light gives the same direct light as the same
 // light realtime (ground, every face, the unfolded proxy shadows' upper faces) and no live
 // bounce light (the bake holds it): the live indirect passes see only the realtime lights.
 TEST(BakedReference, AMixedLightIsLitDirectlyAndLeftOutOfTheLiveBounce) {
     for (auto method : {lantern::scene::GiMethod::heat, lantern::scene::GiMethod::gather}) {
-        Scene s = gi_test::comparison_scene("rooms").scene;
-        s.gi.method = method;
-        s.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::unfold;
-        lantern::scene::ShadowProxy proxy;
-        proxy.position = {6.5f, 6.5f};
-        proxy.size = {0.4f, 0.4f};
-        s.shadow_proxies.push_back(proxy);
+        Scene s = rooms_with_unfolded_proxy(method);
         ASSERT_GE(s.point_lights.size(), 2u);
         const Scene all_realtime = s;
         s.point_lights[1].mode = lantern::scene::LightMode::mixed;
         Scene realtime_only = s;
         realtime_only.point_lights.erase(realtime_only.point_lights.begin() + 1);
         FrameInputs mixed = inputs_of(s);
-        // An empty bake (it holds the mixed light's bounce, here nothing): the frame's own
-        // passes alone.
-        std::array<Field, baked_layers> empty;
-        for (Field& f : empty) f = Field(8, 8);
-        mixed.baked = std::make_shared<const BakedLight>(make_baked_light(glm::ivec2(-100), 1, empty, 0.01f, 7));
+        mixed.baked = empty_bake();
         split_for_bake(mixed, s);
         ASSERT_EQ(mixed.point_lights.size() + 1, inputs_of(all_realtime).point_lights.size());
         ASSERT_EQ(mixed.mixed_lights.size(), 1u);
-        const ReferenceStore a = reference_frame(inputs_of(all_realtime)), b = reference_frame(mixed),
-                             c = reference_frame(inputs_of(realtime_only));
-        ASSERT_TRUE(b.find(Tex::direct));
-        std::vector<Tex> direct = {Tex::direct};
-        for (int f = 0; f < 4; ++f) {
-            direct.push_back(Tex(int(Tex::wall_direct_px) + f));
-            direct.push_back(Tex(int(Tex::wall_upper_px) + f));
-        }
-        for (Tex t : direct) {
-            ASSERT_TRUE(a.find(t) && b.find(t)) << tex_name(t);
-            // The same light summed in another order: within a few half ulps.
-            auto diff = gi_test::compare_textures(b.at(t), a.at(t), 4.0f);
-            EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " mixed against realtime", diff);
-        }
-        for (Tex t : {Tex::indirect, Tex::wall_indirect_px, Tex::wall_indirect_nz}) {
-            auto diff = gi_test::compare_textures(b.at(t), c.at(t), 0.0f);
-            EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " live bounce without the mixed light", diff);
-        }
+        expect_lit_directly_and_left_out_of_the_bounce(all_realtime, mixed, realtime_only, "mixed light");
     }
 }
 
 // A mixed sun likewise (seed 004's mixed mode for suns): its direct light equals the same sun
-// realtime (ground, faces, upper faces), and the live bounce is that of the frame without it.
-// A second sun stays realtime, so both suns' passes run.
+// realtime, and the live bounce is that of the frame without it. A second sun stays realtime,
+// so both suns' passes run.
 TEST(BakedReference, AMixedSunIsLitDirectlyAndLeftOutOfTheLiveBounce) {
     for (auto method : {lantern::scene::GiMethod::heat, lantern::scene::GiMethod::gather}) {
-        Scene s = gi_test::comparison_scene("rooms").scene;
-        s.gi.method = method;
-        s.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::unfold;
-        lantern::scene::ShadowProxy proxy;
-        proxy.position = {6.5f, 6.5f};
-        proxy.size = {0.4f, 0.4f};
-        s.shadow_proxies.push_back(proxy);
+        Scene s = rooms_with_unfolded_proxy(method);
         lantern::scene::DirectionalLight sun, moon;
         sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.3f));
         sun.intensity = 0.4f;
@@ -337,30 +352,13 @@ TEST(BakedReference, AMixedSunIsLitDirectlyAndLeftOutOfTheLiveBounce) {
         Scene realtime_only = s;
         realtime_only.directional_lights.erase(realtime_only.directional_lights.begin());
         FrameInputs mixed = inputs_of(s);
-        std::array<Field, baked_layers> empty;
-        for (Field& f : empty) f = Field(8, 8);
-        mixed.baked = std::make_shared<const BakedLight>(make_baked_light(glm::ivec2(-100), 1, empty, 0.01f, 7));
+        mixed.baked = empty_bake();
         split_for_bake(mixed, s);
         ASSERT_EQ(mixed.directional_lights.size(), 2u) << "a mixed sun stays in the frame's sun list";
         EXPECT_TRUE(is_mixed_sun(mixed.directional_lights[0]));
         EXPECT_FALSE(is_mixed_sun(mixed.directional_lights[1]));
         EXPECT_EQ(mixed.directional_lights[0].bounce.x, 0.0f) << "no bounce fill: the bake holds its bounce";
-        const ReferenceStore a = reference_frame(inputs_of(all_realtime)), b = reference_frame(mixed),
-                             c = reference_frame(inputs_of(realtime_only));
-        std::vector<Tex> direct = {Tex::direct};
-        for (int f = 0; f < 4; ++f) {
-            direct.push_back(Tex(int(Tex::wall_direct_px) + f));
-            direct.push_back(Tex(int(Tex::wall_upper_px) + f));
-        }
-        for (Tex t : direct) {
-            ASSERT_TRUE(a.find(t) && b.find(t)) << tex_name(t);
-            auto diff = gi_test::compare_textures(b.at(t), a.at(t), 4.0f);
-            EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " mixed sun against realtime", diff);
-        }
-        for (Tex t : {Tex::indirect, Tex::wall_indirect_px, Tex::wall_indirect_nz}) {
-            auto diff = gi_test::compare_textures(b.at(t), c.at(t), 0.0f);
-            EXPECT_EQ(diff.mismatches, 0u) << gi_test::describe(std::string(tex_name(t)) + " live bounce without the mixed sun", diff);
-        }
+        expect_lit_directly_and_left_out_of_the_bounce(all_realtime, mixed, realtime_only, "mixed sun");
     }
 }
 
