@@ -374,7 +374,7 @@ namespace {
 // --baked: the bake against the reference (docs/baked.md, "Accuracy against the reference").
 // Every point and emissive light is mixed, so the frame is Lantern's live direct light plus
 // the baked bounce as the run time reads it (cache file, bricks at the settings' eps, RGBM,
-// bilinear); suns stay live (a mixed sun is realtime). The live gather at the scene's own
+// bilinear); suns stay realtime (their bounce live). The live gather at the scene's own
 // settings, all lights realtime, is the row beside it.
 int baked_accuracy(const AccuracyOptions& o, std::vector<AccuracyScene>& scenes, LanternRunner& lantern,
                    jobs::JobSystem& jobs, const std::string& machine) {
