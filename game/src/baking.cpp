@@ -206,10 +206,11 @@ bool WorldBaker::scan(ecs::World& world) {
     const bool keyed = options_.settings.sun_keys >= 2;
     world.view<DirectionalLight>().each([&](const DirectionalLight& l) {
         if (l.mode == scene::LightMode::realtime) return;
+        const bool at_keys = keyed && l.mode == scene::LightMode::mixed; // baked along the day's path
         scene::DirectionalLight d;
-        d.direction = keyed && l.mode == scene::LightMode::mixed ? glm::vec3(0.0f, -1.0f, 0.0f) : l.direction;
-        d.color = keyed && l.mode == scene::LightMode::mixed ? glm::vec3(1.0f) : l.color;
-        d.intensity = keyed && l.mode == scene::LightMode::mixed ? 1.0f : l.intensity;
+        d.direction = at_keys ? glm::vec3(0.0f, -1.0f, 0.0f) : l.direction;
+        d.color = at_keys ? glm::vec3(1.0f) : l.color;
+        d.intensity = at_keys ? 1.0f : l.intensity;
         d.base_shadow_distance = l.base_shadow_distance;
         d.bounce_intensity = l.bounce_intensity;
         d.mode = l.mode;

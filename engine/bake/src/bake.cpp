@@ -137,11 +137,11 @@ ChunkProblem make_problem(const scene::Scene& s, ChunkId c, const BakeSettings& 
     p.bounce = inputs_for(s, b, Lights::bounce, p.window);
     p.direct = inputs_for(s, b, Lights::direct, p.window);
     if (scene::pulse_frequency(s.materials) > 0.0f) p.pulse = inputs_for(s, b, Lights::bounce, p.window, Glow::pulsing);
-    if (const scene::DirectionalLight* sun = keyed_sun(s, b))
+    if (const scene::DirectionalLight* sun = keyed_sun(s, b)) {
+        scene::Scene lit = lights_of(s, b, Lights::bounce, Glow::none); // no light, no glow
         for (int k = 0; k < b.sun_keys; ++k) {
             // The sun alone at the key's place on the day's path, white at intensity 1: the run
             // time scales it by the sun's colour.
-            scene::Scene lit = lights_of(s, b, Lights::bounce, Glow::none);
             scene::DirectionalLight key = *sun;
             key.direction = scene::day_sun_direction(scene::sun_key_time(k, b.sun_keys));
             key.color = glm::vec3(1.0f);
@@ -151,6 +151,7 @@ ChunkProblem make_problem(const scene::Scene& s, ChunkId c, const BakeSettings& 
             in.walls = gi::WallView::of(s.walls);
             p.sun_keys.push_back(std::move(in));
         }
+    }
     return p;
 }
 

@@ -83,20 +83,17 @@ std::vector<std::byte> encode_chunk(const ChunkBake& b) {
                 for (const glm::vec3& v : h.c)
                     for (int k = 0; k < 3; ++k) put(payload, v[k]);
         };
-        halves(b.ground);
-        for (const auto& f : b.faces) halves(f);
-        floats(b.probes);
+        // One part: its textures, then its probes.
+        auto part = [&](const std::vector<float>& ground, const std::array<std::vector<float>, 4>& faces,
+                        const std::vector<CircularHarmonics>& probes) {
+            halves(ground);
+            for (const auto& f : faces) halves(f);
+            floats(probes);
+        };
+        part(b.ground, b.faces, b.probes);
         for (std::uint8_t valid : b.probe_valid) put(payload, valid);
-        if (b.pulses()) {
-            halves(b.pulse_ground);
-            for (const auto& f : b.pulse_faces) halves(f);
-            floats(b.pulse_probes);
-        }
-        for (const LightPart& key : b.sun_keys) {
-            halves(key.ground);
-            for (const auto& f : key.faces) halves(f);
-            floats(key.probes);
-        }
+        if (b.pulses()) part(b.pulse_ground, b.pulse_faces, b.pulse_probes);
+        for (const LightPart& key : b.sun_keys) part(key.ground, key.faces, key.probes);
     }
     // Deflated: zero texels in rock and halves with low bits zero compress 5-17x.
     std::vector<std::byte> stored;
