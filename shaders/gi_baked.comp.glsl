@@ -91,25 +91,36 @@ void main() {
             vec2 p = texel_center(x, y);
             ivec2 cell = ivec2(floor(p));
             bool wall = is_wall(cell);
-            float level = 0.0;
-            vec3 ground = wall ? vec3(0.0) : baked_light(0, p, level);
+            // The layers this texel takes, bit 0 the ground's and bit 1 + f face f's: one loop
+            // over them rather than a branch per layer, since lavapipe runs a branch for every
+            // lane when one lane takes it, and neighbouring lanes mix ground and walls.
+            uint layers = 1u;
+            if (wall) {
+                vec4 mask = FACES != 0u ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
+                layers = (mask.x > 0.0 ? 2u : 0u) | (mask.y > 0.0 ? 4u : 0u) | (mask.z > 0.0 ? 8u : 0u) |
+                         (mask.w > 0.0 ? 16u : 0u);
+            }
+            vec3 ground = vec3(0.0), v0 = vec3(0.0), v1 = vec3(0.0), v2 = vec3(0.0), v3 = vec3(0.0);
+            vec4 shown = vec4(0.0); // the HUD's: the light, and the first layer's level + 1
+            for (uint m = layers; m != 0u; m &= m - 1u) {
+                int layer = findLSB(m);
+                float level;
+                vec3 c = baked_light(layer, p, level);
+                if (layer == 0) ground = c;
+                else if (layer == 1) v0 = c;
+                else if (layer == 2) v1 = c;
+                else if (layer == 3) v2 = c;
+                else v3 = c;
+                shown.rgb += c;
+                if (shown.a == 0.0) shown.a = level;
+            }
             o_ground.texels[index] = pack_rgba16f(vec4(ground, 0.0));
-            vec4 shown = vec4(ground, level);
-            vec4 mask = wall && FACES != 0u ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
-            vec3 v[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
-            for (int f = 0; f < 4; ++f)
-                if (mask[f] > 0.0) {
-                    float face_level;
-                    v[f] = baked_light(1 + f, p, face_level);
-                    shown.rgb += v[f];
-                    if (shown.a == 0.0) shown.a = face_level;
-                }
             o_view.texels[index] = pack_rgba16f(shown);
             float alpha = wall ? 1.0 : 0.0; // as wall_indirect writes it
-            if (computes_face(FACES, 0)) o_face_px.texels[index] = pack_rgba16f(vec4(v[0], alpha));
-            if (computes_face(FACES, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(v[1], alpha));
-            if (computes_face(FACES, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(v[2], alpha));
-            if (computes_face(FACES, 3)) o_face_nz.texels[index] = pack_rgba16f(vec4(v[3], alpha));
+            if (computes_face(FACES, 0)) o_face_px.texels[index] = pack_rgba16f(vec4(v0, alpha));
+            if (computes_face(FACES, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(v1, alpha));
+            if (computes_face(FACES, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(v2, alpha));
+            if (computes_face(FACES, 3)) o_face_nz.texels[index] = pack_rgba16f(vec4(v3, alpha));
         }
     }
 }

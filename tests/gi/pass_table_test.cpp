@@ -186,7 +186,7 @@ std::set<Pass> expected_changes(const FrameRun& r, const std::string& setting) {
         const PassRow& row = *m.rows[i];
         if (!r.plan.run.has(row.pass)) continue;
         for (std::size_t j = i + 1; j < m.rows.size(); ++j)
-            if (changed.count(m.rows[j]->pass) && (m.rows[j]->outputs(r.in).bits & row.outputs(r.in).bits))
+            if (changed.count(m.rows[j]->pass) && m.rows[j]->outputs(r.in).intersects(row.outputs(r.in)))
                 changed.insert(row.pass);
     }
     std::array<bool, tex_count> dirty{};

@@ -198,7 +198,8 @@ bool is_file_stem(std::string_view name) {
 std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan& plan, const InputKeys& inputs,
                       std::span<const double> settings) {
     Hasher h(inputs.window);
-    h.add_string(row.name).add(row.outputs(in).bits);
+    h.add_string(row.name);
+    for (std::uint64_t w : row.outputs(in).words) h.add(w);
     if (row.inputs & input_walls) h.add(inputs.walls);
     if (row.inputs & input_lights) h.add(inputs.lights);
     if (row.inputs & input_proxies) h.add(inputs.proxies);
@@ -350,7 +351,7 @@ PassPlan plan_passes(const FrameInputs& in, bool lit_image, Pass through) {
 TexSet textures_written(const FrameInputs& in, const PassPlan& plan) {
     TexSet set;
     for (const PassRow* row : method(in.settings.method).rows)
-        if (plan.run.has(row->pass)) set.bits |= row->outputs(in).bits;
+        if (plan.run.has(row->pass)) set |= row->outputs(in);
     return set;
 }
 
@@ -459,7 +460,7 @@ std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameIn
         // Later rows that overwrite an output in place change what this row leaves behind.
         for (std::size_t j = i + 1; j < rows.size(); ++j) {
             const Pass later = rows[j]->pass;
-            if (plan.run.has(later) && (outputs[int(later)].bits & out.bits)) {
+            if (plan.run.has(later) && outputs[int(later)].intersects(out)) {
                 h.add(own[int(later)]);
                 reset.add(own[int(later)]);
             }
@@ -487,8 +488,7 @@ std::array<std::uint64_t, pass_count> derive_keys(const Method& m, const FrameIn
             const int last = std::max(1, row.converge_frames(in)) - 1;
             keys[p] = Hasher(keys[p]).add(std::min(frames, last)).add(convergence ? convergence->epoch : 0u).value();
         }
-        for (std::uint64_t bits = out.bits; bits; bits &= bits - 1)
-            producer[std::size_t(std::countr_zero(bits))] = keys[int(row.pass)];
+        out.for_each([&](Tex t) { producer[std::size_t(t)] = keys[int(row.pass)]; });
     }
     return keys;
 }

@@ -299,7 +299,7 @@ std::vector<std::uint64_t> bin_lights(const FrameInputs& lights, const GiWindow&
 bool written_later(PassRecorder& r, TexSet outputs) {
     bool after = false;
     for (const PassRow* row : method(r.in.settings.method).rows) {
-        if (after && r.plan.run.has(row->pass) && (row->outputs(r.in).bits & outputs.bits) != 0) return true;
+        if (after && r.plan.run.has(row->pass) && row->outputs(r.in).intersects(outputs)) return true;
         after = after || row->pass == r.row().pass;
     }
     return false;

@@ -30,6 +30,7 @@
 #include "lantern/gi/texture.hpp"
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -121,7 +122,7 @@ enum class Tex : std::uint8_t {
 };
 // Texture ids: the built-ins above, then textures added at run time (add_texture) up to
 // this capacity. Arrays indexed by Tex have tex_count entries.
-inline constexpr int tex_count = 64;
+inline constexpr int tex_count = 128;
 inline constexpr int builtin_tex_count = int(Tex::builtin_count);
 
 // The resolution a texture is allocated at.
@@ -161,16 +162,40 @@ std::vector<Tex> contract_textures(Held&& held) {
 // The size of `t` for this frame (its row's scale).
 glm::ivec2 texture_size(Tex t, const FrameInputs& in);
 
+// A set of texture ids, one bit each.
 struct TexSet {
-    std::uint64_t bits = 0;
-    bool has(Tex t) const { return (bits >> int(t)) & 1u; }
+    static constexpr int word_bits = 64;
+    std::array<std::uint64_t, tex_count / word_bits> words{};
+
+    bool has(Tex t) const { return (words[std::size_t(int(t) / word_bits)] >> (int(t) % word_bits)) & 1u; }
     TexSet& add(Tex t) {
-        bits |= std::uint64_t(1) << int(t);
+        words[std::size_t(int(t) / word_bits)] |= std::uint64_t(1) << (int(t) % word_bits);
         return *this;
     }
-    friend bool operator==(TexSet, TexSet) = default;
+    TexSet& operator|=(const TexSet& o) {
+        for (std::size_t i = 0; i < words.size(); ++i) words[i] |= o.words[i];
+        return *this;
+    }
+    bool intersects(const TexSet& o) const {
+        for (std::size_t i = 0; i < words.size(); ++i)
+            if (words[i] & o.words[i]) return true;
+        return false;
+    }
+    bool empty() const {
+        for (std::uint64_t w : words)
+            if (w) return false;
+        return true;
+    }
+    // Calls f(Tex) for each member, in id order.
+    template <typename F>
+    void for_each(F&& f) const {
+        for (std::size_t i = 0; i < words.size(); ++i)
+            for (std::uint64_t w = words[i]; w; w &= w - 1)
+                f(Tex(int(i) * word_bits + std::countr_zero(w)));
+    }
+    friend bool operator==(const TexSet&, const TexSet&) = default;
 };
-static_assert(tex_count <= 64, "TexSet holds 64 textures");
+static_assert(tex_count % TexSet::word_bits == 0, "TexSet holds whole words");
 
 // ---- rows ------------------------------------------------------------------------------
 
