@@ -2,9 +2,17 @@
 // alpha kept, or (a pair's write bit) the source copied over the target. The baked pass's
 // adds (docs/baked.md, "At run time"): the baked light into the indirect textures, the
 // mixed lights' direct light into the direct ones. FEATURES bit k: pair k is used; bit
-// 16 + k: pair k copies. C++ reference: engine/gi/src/rows/baked.cpp.
+// 16 + k: pair k copies; bit 15: pairs 0..4 add `scale` x their scaled texture to their
+// source first (the bake's pulsing part, by this frame's pulse). C++ reference:
+// engine/gi/src/rows/baked.cpp.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+
+struct AddParams {
+    float scale; // the scaled textures' factor (FrameInputs::baked_pulse)
+    int unused0, unused1, unused2, unused3, unused4, unused5, unused6;
+};
+#define GI_PASS_PARAMS AddParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform samplerBuffer u_source0;
@@ -25,9 +33,22 @@ layout(std430, binding = 14) buffer Target5 { uvec2 texels[]; } io_target5;
 layout(std430, binding = 15) buffer Target6 { uvec2 texels[]; } io_target6;
 layout(std430, binding = 16) buffer Target7 { uvec2 texels[]; } io_target7;
 layout(std430, binding = 17) buffer Target8 { uvec2 texels[]; } io_target8;
+layout(binding = 18) uniform samplerBuffer u_scaled0;
+layout(binding = 19) uniform samplerBuffer u_scaled1;
+layout(binding = 20) uniform samplerBuffer u_scaled2;
+layout(binding = 21) uniform samplerBuffer u_scaled3;
+layout(binding = 22) uniform samplerBuffer u_scaled4;
 
 bool used(int k) { return ((FEATURES >> uint(k)) & 1u) != 0u; }
 bool copies(int k) { return ((FEATURES >> uint(16 + k)) & 1u) != 0u; }
+const bool SCALED = (FEATURES & (1u << 15)) != 0u;
+
+// Source k, with its scaled texture's part when the pairs have one.
+vec4 source(int k, samplerBuffer src, samplerBuffer scaled, int i) {
+    vec4 v = texelFetch(src, i);
+    if (SCALED) v.rgb += pc.pass.scale * texelFetch(scaled, i).rgb;
+    return v;
+}
 
 uvec2 combine(int k, uvec2 old, vec4 add) {
     if (copies(k)) return pack_rgba16f(add);
@@ -45,11 +66,11 @@ void main() {
             int x = o.x + k;
             if (x >= pc.size.x) continue;
             int i = texel_index(x, y);
-            if (used(0)) io_target0.texels[i] = combine(0, io_target0.texels[i], texelFetch(u_source0, i));
-            if (used(1)) io_target1.texels[i] = combine(1, io_target1.texels[i], texelFetch(u_source1, i));
-            if (used(2)) io_target2.texels[i] = combine(2, io_target2.texels[i], texelFetch(u_source2, i));
-            if (used(3)) io_target3.texels[i] = combine(3, io_target3.texels[i], texelFetch(u_source3, i));
-            if (used(4)) io_target4.texels[i] = combine(4, io_target4.texels[i], texelFetch(u_source4, i));
+            if (used(0)) io_target0.texels[i] = combine(0, io_target0.texels[i], source(0, u_source0, u_scaled0, i));
+            if (used(1)) io_target1.texels[i] = combine(1, io_target1.texels[i], source(1, u_source1, u_scaled1, i));
+            if (used(2)) io_target2.texels[i] = combine(2, io_target2.texels[i], source(2, u_source2, u_scaled2, i));
+            if (used(3)) io_target3.texels[i] = combine(3, io_target3.texels[i], source(3, u_source3, u_scaled3, i));
+            if (used(4)) io_target4.texels[i] = combine(4, io_target4.texels[i], source(4, u_source4, u_scaled4, i));
             if (used(5)) io_target5.texels[i] = combine(5, io_target5.texels[i], texelFetch(u_source5, i));
             if (used(6)) io_target6.texels[i] = combine(6, io_target6.texels[i], texelFetch(u_source6, i));
             if (used(7)) io_target7.texels[i] = combine(7, io_target7.texels[i], texelFetch(u_source7, i));

@@ -3,9 +3,10 @@
 // bilinear read of the RGBM atlas inside the brick): open ground into baked_ground (layer 0),
 // the texels of a wall tile whose face f is exposed into baked_face_f (layer 1 + f, alpha 1
 // at wall texels, as wall_indirect writes), and the HUD's view. The baked pass adds them to
-// the frame's textures (gi_add.comp). With a pulsing part (layers 5..9) its light is added
-// scaled by this frame's pulse; with a keyed moving sun, its colour x the two sun keys around
-// its time of day, blended (baked_light.hpp BakedSun). C++ reference:
+// the frame's textures (gi_add.comp). A pulsing part (layers 5..9) goes into textures of its
+// own (baked_pulse_*, at pulse 1), which the baked pass adds scaled by each frame's pulse, so
+// a new pulse reads no atlas. A keyed moving sun adds its colour x the two sun keys around its
+// time of day, blended (baked_light.hpp BakedSun). C++ reference:
 // engine/gi/src/rows/baked.cpp.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -15,9 +16,10 @@ struct BakedParams {
     int resolution;         // baked grid texels per tile
     int width, height;      // baked grid texels
     int parts;              // bit 0: layers 5..9 hold the pulsing glow's light (seed 004's pulsing
-                            // emission); bits 1..: the moving sun's first key layer + 1 (0: none)
-    float pulse;            // FrameInputs::baked_pulse, its factor this frame
+                            // emission), written apart; bits 1..: the moving sun's first key
+                            // layer + 1 (0: none)
     float intensity;        // gi.baked_intensity
+    int unused;
 };
 #define GI_PASS_PARAMS BakedParams
 #include "lantern/gi_common.glsl"
@@ -33,6 +35,12 @@ layout(std430, binding = 7) writeonly buffer FacePZ { uvec2 texels[]; } o_face_p
 layout(std430, binding = 8) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
 layout(std430, binding = 9) writeonly buffer View { uvec2 texels[]; } o_view; // the HUD's: rgb baked, a level + 1
 layout(binding = 10) uniform samplerBuffer u_sun; // the sun keys' weights: colour x (1 - blend), colour x blend
+// The pulsing part at pulse 1 (parts bit 0): the ground's, then each face's.
+layout(std430, binding = 11) writeonly buffer PulseGround { uvec2 texels[]; } o_pulse_ground;
+layout(std430, binding = 12) writeonly buffer PulsePX { uvec2 texels[]; } o_pulse_px;
+layout(std430, binding = 13) writeonly buffer PulseNX { uvec2 texels[]; } o_pulse_nx;
+layout(std430, binding = 14) writeonly buffer PulsePZ { uvec2 texels[]; } o_pulse_pz;
+layout(std430, binding = 15) writeonly buffer PulseNZ { uvec2 texels[]; } o_pulse_nz;
 
 #include "lantern/gi_shadow.glsl"
 
@@ -59,15 +67,10 @@ vec3 baked_sample(int layer, vec2 p, out float level) {
     return v.rgb * v.a * RGBM_RANGE;
 }
 
-// The light the frame takes from `layer` (BakedLight::light): the steady light, plus the
-// pulsing glow's scaled by this frame's pulse, times gi.baked_intensity; `level` the steady
-// layer's brick level + 1.
+// The steady light the frame takes from `layer` (BakedLight::light at pulse 0), times
+// gi.baked_intensity; `level` the layer's brick level + 1.
 vec3 baked_light(int layer, vec2 p, out float level) {
     vec3 v = baked_sample(layer, p, level);
-    if ((pc.pass.parts & 1) != 0) {
-        float pulse_level;
-        v += pc.pass.pulse * baked_sample(LAYERS + layer, p, pulse_level);
-    }
     int sun_layer = (pc.pass.parts >> 1) - 1;
     if (sun_layer >= 0) {
         float key_level;
@@ -101,17 +104,23 @@ void main() {
                          (mask.w > 0.0 ? 16u : 0u);
             }
             vec3 ground = vec3(0.0), v0 = vec3(0.0), v1 = vec3(0.0), v2 = vec3(0.0), v3 = vec3(0.0);
-            vec4 shown = vec4(0.0); // the HUD's: the light, and the first layer's level + 1
+            vec3 pg = vec3(0.0), p0 = vec3(0.0), p1 = vec3(0.0), p2 = vec3(0.0), p3 = vec3(0.0); // pulsing part
+            vec4 shown = vec4(0.0); // the HUD's: the light at pulse 1, and the first layer's level + 1
             for (uint m = layers; m != 0u; m &= m - 1u) {
                 int layer = findLSB(m);
                 float level;
                 vec3 c = baked_light(layer, p, level);
-                if (layer == 0) ground = c;
-                else if (layer == 1) v0 = c;
-                else if (layer == 2) v1 = c;
-                else if (layer == 3) v2 = c;
-                else v3 = c;
-                shown.rgb += c;
+                vec3 q = vec3(0.0);
+                if ((pc.pass.parts & 1) != 0) {
+                    float pulse_level;
+                    q = baked_sample(LAYERS + layer, p, pulse_level) * pc.pass.intensity;
+                }
+                if (layer == 0) { ground = c; pg = q; }
+                else if (layer == 1) { v0 = c; p0 = q; }
+                else if (layer == 2) { v1 = c; p1 = q; }
+                else if (layer == 3) { v2 = c; p2 = q; }
+                else { v3 = c; p3 = q; }
+                shown.rgb += c + q;
                 if (shown.a == 0.0) shown.a = level;
             }
             o_ground.texels[index] = pack_rgba16f(vec4(ground, 0.0));
@@ -121,6 +130,13 @@ void main() {
             if (computes_face(FACES, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(v1, alpha));
             if (computes_face(FACES, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(v2, alpha));
             if (computes_face(FACES, 3)) o_face_nz.texels[index] = pack_rgba16f(vec4(v3, alpha));
+            if ((pc.pass.parts & 1) != 0) {
+                o_pulse_ground.texels[index] = pack_rgba16f(vec4(pg, 0.0));
+                if (computes_face(FACES, 0)) o_pulse_px.texels[index] = pack_rgba16f(vec4(p0, alpha));
+                if (computes_face(FACES, 1)) o_pulse_nx.texels[index] = pack_rgba16f(vec4(p1, alpha));
+                if (computes_face(FACES, 2)) o_pulse_pz.texels[index] = pack_rgba16f(vec4(p2, alpha));
+                if (computes_face(FACES, 3)) o_pulse_nz.texels[index] = pack_rgba16f(vec4(p3, alpha));
+            }
         }
     }
 }

@@ -164,7 +164,8 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, g
     const gi::InputKeys inputs{gi::hash_window(in.window), walls,
                                lights_hash, proxies_hash,
                                suns_hash,   gi::baked_input_key(in),
-                               Hasher().add_span(std::span(in.mixed_lights)).add_span(std::span(in.mixed_emissives)).value()};
+                               Hasher().add_span(std::span(in.mixed_lights)).add_span(std::span(in.mixed_emissives)).value(),
+                               gi::baked_pulse_key(in)};
     return gi::derive_keys(in, plan, inputs, convergence);
 }
 

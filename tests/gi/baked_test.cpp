@@ -207,8 +207,9 @@ TEST_F(Baked, VulkanEqualsTheReference) {
 }
 
 // Seed 004's pulsing emission at run time: a bake with a pulsing part adds it scaled by the
-// frame's pulse (FrameInputs::baked_pulse), on Vulkan as in the reference; the pulse is in
-// the baked rows' key, so a new pulse reruns them; at pulse 0 the frame is the steady part's.
+// frame's pulse (FrameInputs::baked_pulse), on Vulkan as in the reference. The sampling row
+// keeps the pulsing part in textures of its own, so a new pulse reruns the baked pass's adds
+// and reads no atlas; at pulse 0 the frame is the steady part's.
 TEST_F(Baked, APulsingPartIsAddedScaledByTheFramesPulse) {
     Scene s = gi_test::comparison_scene("rooms").scene;
     s.gi.method = lantern::scene::GiMethod::gather;
@@ -218,43 +219,61 @@ TEST_F(Baked, APulsingPartIsAddedScaledByTheFramesPulse) {
     in.baked = synthetic_bake(in.walls, origin, tiles, 4, 0.01f, 900, true);
     ASSERT_TRUE(in.baked->pulsing);
     std::uint64_t last_key = 0;
+    const std::uint64_t sample_key = lantern::gi::input_keys_of(in).baked;
     for (float pulse : {0.0f, 0.37f, 1.0f}) {
         in.baked_pulse = pulse;
-        const std::uint64_t key = lantern::gi::input_keys_of(in).baked;
-        EXPECT_NE(key, last_key) << "a new pulse reruns the baked rows";
-        last_key = key;
+        const lantern::gi::InputKeys keys = lantern::gi::input_keys_of(in);
+        EXPECT_NE(keys.baked_pulse, last_key) << "a new pulse reruns the baked pass";
+        EXPECT_EQ(keys.baked, sample_key) << "a new pulse reads no atlas";
+        last_key = keys.baked_pulse;
         compare("pulsing part at " + std::to_string(pulse), in, true);
     }
-    // The reference at pulse 0 is the steady layers' light alone, and at 0.37 adds 0.37 of the
-    // pulsing layers' (sampled from the same bricks).
-    auto baked_ground = [&](const FrameInputs& f) {
+    {
+        in.baked_pulse = 0.5f;
+        PassPlan plan = plan_passes(in, false);
+        const auto a = lantern::gi::derive_keys(in, plan, lantern::gi::input_keys_of(in));
+        in.baked_pulse = 0.6f;
+        const auto b = lantern::gi::derive_keys(in, plan, lantern::gi::input_keys_of(in));
+        EXPECT_EQ(a[int(Pass::baked_sample)], b[int(Pass::baked_sample)]);
+        EXPECT_NE(a[int(Pass::baked)], b[int(Pass::baked)]);
+    }
+    // The reference: the sampling row's steady texture is the steady layers' light alone and
+    // its pulsing texture the pulsing layers' (sampled from the same bricks) at any pulse; the
+    // ground's indirect light at 0.37 is that at 0 plus 0.37 of the pulsing texture.
+    auto reference = [&](const FrameInputs& f) {
         lantern::gi::PassPlan plan = lantern::gi::plan_passes(f, false);
         lantern::gi::ReferenceStore store;
         lantern::gi::execute_reference(f, plan, plan.run, {}, store);
-        return store.at(lantern::gi::Tex::baked_ground);
+        return store;
     };
     in.baked_pulse = 0.0f;
-    const lantern::gi::Texture at0 = baked_ground(in);
+    const ReferenceStore at0 = reference(in);
     in.baked_pulse = 0.37f;
-    const lantern::gi::Texture at37 = baked_ground(in);
+    const ReferenceStore at37 = reference(in);
+    const lantern::gi::Texture& steady = at37.at(lantern::gi::Tex::baked_ground);
+    const lantern::gi::Texture& pulsing = at37.at(lantern::gi::Tex::baked_pulse_ground);
     int checked = 0;
     for (int y = 0; y < in.window.height; y += 7)
         for (int x = 0; x < in.window.width; x += 7) {
             const glm::vec2 p = in.window.texel_center(x, y);
             if (in.walls.is_wall(int(std::floor(p.x)), int(std::floor(p.y)))) continue;
             for (int c = 0; c < 3; ++c) {
-                EXPECT_NEAR(at0.at(x, y)[c], in.baked->sample(0, p)[c], 2e-3f);
-                EXPECT_NEAR(at37.at(x, y)[c], in.baked->sample(0, p)[c] + 0.37f * in.baked->sample(lantern::gi::baked_layers, p)[c], 2e-3f);
+                EXPECT_NEAR(steady.at(x, y)[c], in.baked->sample(0, p)[c], 2e-3f);
+                EXPECT_NEAR(pulsing.at(x, y)[c], in.baked->sample(lantern::gi::baked_layers, p)[c], 2e-3f);
+                const float before = at0.at(lantern::gi::Tex::indirect).at(x, y)[c];
+                const float after = at37.at(lantern::gi::Tex::indirect).at(x, y)[c];
+                EXPECT_NEAR(after - before, 0.37f * pulsing.at(x, y)[c], 2e-3f * std::max(1.0f, after));
             }
             ++checked;
         }
     EXPECT_GT(checked, 20);
-    // A steady bake's key does not follow the pulse.
+    // A steady bake's keys do not follow the pulse.
     in.baked = synthetic_bake(in.walls, origin, tiles, 4, 0.01f, 901);
     in.baked_pulse = 0.2f;
-    const std::uint64_t steady = lantern::gi::input_keys_of(in).baked;
+    const lantern::gi::InputKeys steady_keys = lantern::gi::input_keys_of(in);
     in.baked_pulse = 0.9f;
-    EXPECT_EQ(lantern::gi::input_keys_of(in).baked, steady);
+    EXPECT_EQ(lantern::gi::input_keys_of(in).baked, steady_keys.baked);
+    EXPECT_EQ(lantern::gi::input_keys_of(in).baked_pulse, steady_keys.baked_pulse);
 }
 
 // An open window (no wall in it): the faces' producer is left out, so the baked row writes

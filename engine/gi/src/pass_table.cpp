@@ -93,6 +93,11 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {baked_face_nx, "baked_face_nx", TexFormat::rgba16f, TexScale::window, false, true},
     {baked_face_pz, "baked_face_pz", TexFormat::rgba16f, TexScale::window, false, true},
     {baked_face_nz, "baked_face_nz", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_pulse_ground, "baked_pulse_ground", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_pulse_face_px, "baked_pulse_face_px", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_pulse_face_nx, "baked_pulse_face_nx", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_pulse_face_pz, "baked_pulse_face_pz", TexFormat::rgba16f, TexScale::window, false, true},
+    {baked_pulse_face_nz, "baked_pulse_face_nz", TexFormat::rgba16f, TexScale::window, false, true},
     {probes, "probes", TexFormat::rgba16f, TexScale::custom, false, false, probe_texture_size},
 };
 
@@ -207,6 +212,7 @@ std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan&
     if (row.inputs & input_wall_height) h.add(in.wall_height);
     if (row.inputs & input_walls_in_window) h.add(plan.has_walls_in_window);
     if (row.inputs & input_baked) h.add(inputs.baked);
+    if (row.inputs & input_baked_pulse) h.add(inputs.baked_pulse);
     if (row.inputs & input_mixed_lights) h.add(inputs.mixed);
     for (int i : setting_indices(row)) h.add(i).add(settings[std::size_t(i)]);
     return h.value();
@@ -398,18 +404,19 @@ InputKeys input_keys_of(const FrameInputs& in) {
     k.proxies = Hasher().add_span(std::span(in.proxies)).value();
     k.suns = Hasher().add_span(std::span(in.directional_lights)).value();
     k.baked = baked_input_key(in);
+    k.baked_pulse = baked_pulse_key(in);
     return k;
 }
 
 std::uint64_t baked_input_key(const FrameInputs& in) {
     if (!in.baked) return 0;
     const BakedSun sun = baked_sun_of(in);
-    if (!in.baked->pulsing && sun.key < 0) return in.baked->key;
-    Hasher h;
-    h.add(in.baked->key);
-    if (in.baked->pulsing) h.add(in.baked_pulse);
-    if (sun.key >= 0) h.add(sun.key).add(sun.blend).add(sun.color.r).add(sun.color.g).add(sun.color.b);
-    return h.value();
+    if (sun.key < 0) return in.baked->key;
+    return Hasher().add(in.baked->key).add(sun.key).add(sun.blend).add(sun.color.r).add(sun.color.g).add(sun.color.b).value();
+}
+
+std::uint64_t baked_pulse_key(const FrameInputs& in) {
+    return in.baked && in.baked->pulsing ? Hasher().add(in.baked_pulse).value() : 0;
 }
 
 void Convergence::advance(PassSet ran) {

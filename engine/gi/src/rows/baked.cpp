@@ -2,9 +2,11 @@
 //
 //   baked_sample  reads the bake's light, stored as seed 002's brick atlas
 //                 (FrameInputs::baked), into the window's textures: the ground's light
-//                 (baked_ground), each exposed face's (baked_face_*) and the HUD's view.
-//                 Cached: it reruns only when the bake, the window or the walls change.
-//   baked         adds them to the frame's indirect textures, and the mixed lights' direct
+//                 (baked_ground), each exposed face's (baked_face_*) and the HUD's view;
+//                 with a pulsing part, that part apart (baked_pulse_*). Cached: it reruns
+//                 only when the bake, the window, the walls or a keyed sun change.
+//   baked         adds them to the frame's indirect textures (the pulsing part scaled by
+//                 this frame's pulse), and the mixed lights' direct
 //                 light (the mixed row's textures) to the direct ones: a plain add each frame
 //                 the method rewrites those. In place: it reads what the earlier rows wrote
 //                 and adds to it, so they rerun when it changes (derive_keys: later rows that
@@ -17,6 +19,7 @@
 #include "reference_util.hpp"
 
 #include <array>
+#include <optional>
 #include <cstring>
 #include <utility>
 #include <vector>
@@ -29,6 +32,8 @@ using ref_util::for_each_row;
 
 constexpr Tex face_tex(int f) { return Tex(int(Tex::wall_indirect_px) + f); }
 constexpr Tex baked_face_tex(int f) { return Tex(int(Tex::baked_face_px) + f); }
+// The pulsing part's texture of layer 0 (the ground) or 1 + f (face f).
+constexpr Tex pulse_tex(int layer) { return Tex(int(Tex::baked_pulse_ground) + layer); }
 
 // The faces the bake adds to: those the frame computes, when walls are lit.
 std::uint32_t baked_faces(const FrameInputs& in) { return in.settings.wall_lighting ? computed_faces(in.settings) : 0u; }
@@ -72,11 +77,16 @@ bool written_earlier(const FrameInputs& in, const PassPlan& plan, Tex t) {
     return false;
 }
 
-// One texture added to another (rgb; the target's alpha kept), or copied over it (`write`).
+// One texture added to another (rgb; the target's alpha kept), or copied over it (`write`);
+// with `scaled`, that texture's rgb times the frame's pulse added to the source's first.
 struct AddPair {
     Tex source, target;
     bool write = false;
+    std::optional<Tex> scaled{};
 };
+
+// Whether the frame samples a bake with a pulsing part (its textures are kept apart).
+bool pulses(const FrameInputs& in) { return in.baked && in.baked->pulsing; }
 
 // What the baked row does this frame, in two groups (one dispatch each): the baked light,
 // and the mixed lights' direct light (with `all`, both as if present: the variants a later
@@ -84,10 +94,13 @@ struct AddPair {
 std::array<std::vector<AddPair>, 2> add_pairs(const FrameInputs& in, const PassPlan& plan, bool all = false) {
     std::array<std::vector<AddPair>, 2> out;
     if (all || samples_bake(in)) {
-        out[0].push_back({Tex::baked_ground, Tex::indirect, !written_earlier(in, plan, Tex::indirect)});
+        const bool pulsing = all || pulses(in);
+        const auto scaled = [&](int layer) { return pulsing ? std::optional(pulse_tex(layer)) : std::nullopt; };
+        out[0].push_back({Tex::baked_ground, Tex::indirect, !written_earlier(in, plan, Tex::indirect), scaled(0)});
         const std::uint32_t faces = baked_faces(in);
         for (int f = 0; f < 4; ++f)
-            if (computes_face(faces, f)) out[0].push_back({baked_face_tex(f), face_tex(f), !written_earlier(in, plan, face_tex(f))});
+            if (computes_face(faces, f))
+                out[0].push_back({baked_face_tex(f), face_tex(f), !written_earlier(in, plan, face_tex(f)), scaled(1 + f)});
     }
     if (all || (has_mixed(in) && plan.run.has(Pass::mixed)))
         for (int k = 0; k < 9; ++k)
@@ -103,6 +116,11 @@ TexSet sample_writes(const FrameInputs& in) {
     const std::uint32_t faces = baked_faces(in);
     for (int f = 0; f < 4; ++f)
         if (computes_face(faces, f)) set.add(baked_face_tex(f));
+    if (pulses(in)) {
+        set.add(pulse_tex(0));
+        for (int f = 0; f < 4; ++f)
+            if (computes_face(faces, f)) set.add(pulse_tex(1 + f));
+    }
     return set;
 }
 
@@ -113,11 +131,11 @@ const char* sample_not_needed(const FrameInputs& in, bool, bool) {
 
 struct SampleParams {
     std::int32_t origin_x = 0, origin_z = 0, resolution = 0, width = 0, height = 0;
-    // Bit 0: the atlas holds the pulsing part (layers 5..9); bits 1..: the moving sun's
-    // (baked_sun_of) atlas layer of the key below its time, plus 1 (0: no keyed sun).
+    // Bit 0: the atlas holds the pulsing part (layers 5..9), written apart; bits 1..: the
+    // moving sun's (baked_sun_of) atlas layer of the key below its time, plus 1 (0: no keyed sun).
     std::int32_t parts = 0;
-    float pulse = 1.0f;       // FrameInputs::baked_pulse
     float intensity = 1.0f;
+    std::int32_t unused = 0;
 };
 
 // The atlas and indirection as images, rewritten when the baked light changes. Each keeps a
@@ -202,12 +220,17 @@ void record_sample(PassRecorder& r) {
         writes.storage_buffer(std::uint32_t(5 + f), r.buffer(computes_face(faces, f) ? baked_face_tex(f) : Tex::baked_ground));
     writes.storage_buffer(9, r.buffer(Tex::baked_view));
     writes.uniform_texel_buffer(10, s.sun.view);
+    // The pulsing part's, bound to the steady ground's (never written) without one.
+    for (int layer = 0; layer < baked_layers; ++layer) {
+        const bool written = b.pulsing && (layer == 0 || computes_face(faces, layer - 1));
+        writes.storage_buffer(std::uint32_t(11 + layer), r.buffer(written ? pulse_tex(layer) : Tex::baked_ground));
+    }
     r.cmd.bind(r.pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .faces = faces}));
     r.cmd.push_descriptors(writes);
     auto p = r.params<SampleParams>(w.width, w.height);
     const int sun_first = sun.key >= 0 && sun.key + 1 < b.sun_keys ? b.sun_layer(sun.key, 0) + 1 : 0;
     p.pass = {.origin_x = b.origin.x, .origin_z = b.origin.y, .resolution = b.resolution, .width = b.width, .height = b.height,
-              .parts = (b.pulsing ? 1 : 0) | (sun_first << 1), .pulse = in.baked_pulse, .intensity = in.settings.baked_intensity};
+              .parts = (b.pulsing ? 1 : 0) | (sun_first << 1), .intensity = in.settings.baked_intensity};
     r.cmd.push_constants(p);
     r.dispatch(w.width, w.height);
     r.cmd.barrier_compute_to_compute();
@@ -218,10 +241,17 @@ void reference_sample_row(ReferenceContext& c) {
     const BakedLight& b = *in.baked;
     const GiWindow& w = in.window;
     const std::uint32_t faces = baked_faces(in);
-    Texture ground("baked_ground", TexFormat::rgba16f, w.width, w.height), view("baked_view", TexFormat::rgba16f, w.width, w.height);
-    std::array<Texture, 4> face;
-    for (int f = 0; f < 4; ++f)
-        if (computes_face(faces, f)) face[std::size_t(f)] = Texture(tex_name(baked_face_tex(f)), TexFormat::rgba16f, w.width, w.height);
+    const bool pulsing = b.pulsing;
+    // Layer 0 the ground's, 1 + f face f's; the steady part (with a keyed sun's) and the
+    // pulsing part at pulse 1.
+    std::array<Texture, baked_layers> steady, pulse;
+    for (int layer = 0; layer < baked_layers; ++layer) {
+        if (layer > 0 && !computes_face(faces, layer - 1)) continue;
+        const std::size_t l = std::size_t(layer);
+        steady[l] = Texture(tex_name(layer == 0 ? Tex::baked_ground : baked_face_tex(layer - 1)), TexFormat::rgba16f, w.width, w.height);
+        if (pulsing) pulse[l] = Texture(tex_name(pulse_tex(layer)), TexFormat::rgba16f, w.width, w.height);
+    }
+    Texture view("baked_view", TexFormat::rgba16f, w.width, w.height);
     const glm::vec4 face_bits = face_bits_mask(faces);
     const float k = in.settings.baked_intensity;
     const BakedSun sun = baked_sun_of(in);
@@ -230,27 +260,36 @@ void reference_sample_row(ReferenceContext& c) {
             const glm::vec2 p = w.texel_center(x, y);
             const glm::ivec2 cell(int(std::floor(p.x)), int(std::floor(p.y)));
             const bool wall = in.walls.is_wall(cell.x, cell.y);
-            const glm::vec4 g(wall ? glm::vec3(0.0f) : b.light(0, p, in.baked_pulse, sun) * k, 0.0f);
-            glm::vec4 shown(glm::vec3(g), wall ? 0.0f : float(b.level(0, p) + 1));
-            ground.store(x, y, &g.x);
             const glm::vec4 mask = wall && faces != 0 ? wall_face_mask(in.walls, cell) * face_bits : glm::vec4(0.0f);
-            for (int f = 0; f < 4; ++f) {
-                if (!computes_face(faces, f)) continue;
-                const glm::vec3 v = mask[f] > 0.0f ? b.light(1 + f, p, in.baked_pulse, sun) * k : glm::vec3(0.0f);
-                const glm::vec4 texel(v, wall ? 1.0f : 0.0f); // as wall_indirect writes it
-                face[std::size_t(f)].store(x, y, &texel.x);
-                if (mask[f] > 0.0f) {
-                    shown += glm::vec4(v, 0.0f);
-                    if (shown.a == 0.0f) shown.a = float(b.level(1 + f, p) + 1);
+            glm::vec4 shown(0.0f); // the HUD's: the light at pulse 1, the first layer's level + 1
+            for (int layer = 0; layer < baked_layers; ++layer) {
+                if (layer > 0 && !computes_face(faces, layer - 1)) continue;
+                const bool taken = layer == 0 ? !wall : mask[layer - 1] > 0.0f;
+                const float alpha = layer > 0 && wall ? 1.0f : 0.0f; // as wall_indirect writes faces
+                const glm::vec3 v = taken ? b.light(layer, p, 0.0f, sun) * k : glm::vec3(0.0f);
+                const glm::vec4 texel(v, alpha);
+                steady[std::size_t(layer)].store(x, y, &texel.x);
+                glm::vec3 shown_v = v;
+                if (pulsing) {
+                    const glm::vec3 pv = taken ? b.sample(baked_layers + layer, p) * k : glm::vec3(0.0f);
+                    const glm::vec4 ptexel(pv, alpha);
+                    pulse[std::size_t(layer)].store(x, y, &ptexel.x);
+                    shown_v += pv;
+                }
+                if (taken) {
+                    shown += glm::vec4(shown_v, 0.0f);
+                    if (shown.a == 0.0f) shown.a = float(b.level(layer, p) + 1);
                 }
             }
             view.store(x, y, &shown.x);
         }
     });
-    c.store.put(Tex::baked_ground, std::move(ground));
     c.store.put(Tex::baked_view, std::move(view));
-    for (int f = 0; f < 4; ++f)
-        if (computes_face(faces, f)) c.store.put(baked_face_tex(f), std::move(face[std::size_t(f)]));
+    for (int layer = 0; layer < baked_layers; ++layer) {
+        if (layer > 0 && !computes_face(faces, layer - 1)) continue;
+        c.store.put(layer == 0 ? Tex::baked_ground : baked_face_tex(layer - 1), std::move(steady[std::size_t(layer)]));
+        if (pulsing) c.store.put(pulse_tex(layer), std::move(pulse[std::size_t(layer)]));
+    }
 }
 
 // ---- baked: the adds
@@ -275,11 +314,25 @@ const char* baked_not_needed(const FrameInputs& in, bool, bool) {
 }
 
 constexpr int pairs_per_dispatch = 9; // gi_add.comp's
+constexpr int scaled_pairs = 5;       // the first pairs that may add a scaled texture
 
-// gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies.
+// gi_add.comp's parameters: the scaled textures' factor.
+struct AddParams {
+    float scale = 1.0f;
+    std::int32_t unused0 = 0, unused1 = 0, unused2 = 0, unused3 = 0, unused4 = 0, unused5 = 0, unused6 = 0;
+};
+
+// gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies, bit 15
+// pairs 0..scaled_pairs - 1 add their scaled texture.
 std::uint32_t add_features(const std::vector<AddPair>& pairs) {
     std::uint32_t features = 0;
-    for (std::size_t k = 0; k < pairs.size(); ++k) features |= (1u << k) | (pairs[k].write ? 1u << (16 + k) : 0u);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        features |= (1u << k) | (pairs[k].write ? 1u << (16 + k) : 0u);
+        if (pairs[k].scaled) {
+            LANTERN_ASSERT(k < std::size_t(scaled_pairs), "gi_add.comp scales its first pairs only");
+            features |= 1u << 15;
+        }
+    }
     return features;
 }
 
@@ -293,33 +346,48 @@ void record_baked(PassRecorder& r) {
             writes.uniform_texel_buffer(std::uint32_t(k), r.view(p.source));
             writes.storage_buffer(std::uint32_t(pairs_per_dispatch + k), r.buffer(p.target));
         }
-        r.cmd.bind(r.pipeline("gi_add.comp", {.proxies = false, .features = add_features(pairs)}));
+        for (int k = 0; k < scaled_pairs; ++k) {
+            const AddPair& p = std::size_t(k) < pairs.size() && pairs[std::size_t(k)].scaled ? pairs[std::size_t(k)] : pairs[0];
+            writes.uniform_texel_buffer(std::uint32_t(2 * pairs_per_dispatch + k), r.view(p.scaled.value_or(p.source)));
+        }
+        r.cmd.bind(r.pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(pairs)}));
         r.cmd.push_descriptors(writes);
-        r.cmd.push_constants(r.params(r.in.window.width, r.in.window.height));
+        auto params = r.params<AddParams>(r.in.window.width, r.in.window.height);
+        params.pass.scale = r.in.baked_pulse;
+        r.cmd.push_constants(params);
         r.dispatch(r.in.window.width, r.in.window.height);
         r.cmd.barrier_compute_to_compute();
     }
     // The other group's variant, before a frame needs it (creating it then stalls that
     // frame: a mixed light coming into view, or the bake covering the window).
     for (const std::vector<AddPair>& pairs : add_pairs(r.in, r.plan, true))
-        if (!pairs.empty()) r.prefetch_pipeline("gi_add.comp", {.proxies = false, .features = add_features(pairs)});
+        if (!pairs.empty()) r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(pairs)});
 }
 
 void reference_baked_row(ReferenceContext& c) {
     for (const std::vector<AddPair>& group : add_pairs(c.in, c.plan))
     for (const AddPair& p : group) {
-        const Texture* add = c.store.find(p.source);
-        if (!add) continue;
+        const Texture* found = c.store.find(p.source);
+        if (!found) continue;
+        Texture add = *found; // with the scaled texture's part (gi_add.comp: source + scale x scaled)
+        if (const Texture* scaled = p.scaled ? c.store.find(*p.scaled) : nullptr)
+            for (int y = 0; y < add.height; ++y)
+                for (int x = 0; x < add.width; ++x) {
+                    const float* a = add.at(x, y);
+                    const float* b = scaled->at(x, y);
+                    const float pulse = c.in.baked_pulse;
+                    const float v[4] = {a[0] + pulse * b[0], a[1] + pulse * b[1], a[2] + pulse * b[2], a[3]};
+                    add.store(x, y, v);
+                }
         if (p.write || !c.store.find(p.target)) {
-            Texture copy = *add;
-            c.store.put(p.target, std::move(copy));
+            c.store.put(p.target, std::move(add));
             continue;
         }
         Texture sum = c.store.at(p.target);
         for (int y = 0; y < sum.height; ++y)
             for (int x = 0; x < sum.width; ++x) {
                 const float* a = sum.at(x, y);
-                const float* b = add->at(x, y);
+                const float* b = add.at(x, y);
                 const float v[4] = {a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3]};
                 sum.store(x, y, v);
             }
@@ -338,7 +406,8 @@ constexpr Tex baked_reads[] = {Tex::indirect,          Tex::wall_indirect_px,   
                                Tex::wall_direct_mixed_nz, Tex::wall_upper_mixed_px,  Tex::wall_upper_mixed_nx,
                                Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz,  Tex::baked_ground,
                                Tex::baked_face_px,        Tex::baked_face_nx,        Tex::baked_face_pz,
-                               Tex::baked_face_nz};
+                               Tex::baked_face_nz,        Tex::baked_pulse_ground,   Tex::baked_pulse_face_px,
+                               Tex::baked_pulse_face_nx,  Tex::baked_pulse_face_pz,  Tex::baked_pulse_face_nz};
 // With the probe row's settings too: the probes read the wall textures this row adds to in
 // place, so a change that reruns them must rerun the rows they read (this row's own key
 // changes, and so do the keys of the rows it adds to), or they would read last frame's sums.
@@ -369,7 +438,7 @@ constinit const PassRow baked{
     // settings are listed here too, or are the direct row's), and listing them makes this
     // row's own key change with them, so the rows it adds to in place rerun first
     // (derive_keys hashes a later in-place writer's own key, not its reads).
-    .inputs = input_walls | input_baked | input_walls_in_window | input_mixed_lights,
+    .inputs = input_walls | input_baked | input_baked_pulse | input_walls_in_window | input_mixed_lights,
     .not_needed = baked_not_needed,
     .record = record_baked,
     .reference = reference_baked_row,

@@ -116,6 +116,13 @@ enum class Tex : std::uint8_t {
     baked_face_nx,
     baked_face_pz,
     baked_face_nz,
+    // The pulsing glow's part of it at pulse 1 (BakedLight::pulsing), kept alike: the baked pass
+    // adds it scaled by this frame's pulse, so a new pulse reads no atlas (internal).
+    baked_pulse_ground,
+    baked_pulse_face_px,
+    baked_pulse_face_nx,
+    baked_pulse_face_pz,
+    baked_pulse_face_nz,
     // Live light probes (probes.hpp): five texels a probe, every other tile of the window.
     probes,
     builtin_count
@@ -209,6 +216,7 @@ enum InputBits : std::uint32_t {
     input_walls_in_window = 1u << 5, // whether any wall lies in the window (plan.has_walls_in_window)
     input_baked = 1u << 6,           // the baked light (FrameInputs::baked, its key)
     input_mixed_lights = 1u << 7,    // the mixed lights (FrameInputs::mixed_lights, mixed_emissives)
+    input_baked_pulse = 1u << 8,     // the pulsing glow's factor (FrameInputs::baked_pulse) when the bake pulses
 };
 
 // The hashes of the frame inputs (the frame systems keep them as versions; input_keys_of
@@ -221,11 +229,15 @@ struct InputKeys {
     std::uint64_t suns = 0;
     std::uint64_t baked = 0; // FrameInputs::baked->key, 0 without
     std::uint64_t mixed = 0; // the mixed lights
+    std::uint64_t baked_pulse = 0; // the pulsing glow's factor, 0 without a pulsing bake
 };
 InputKeys input_keys_of(const FrameInputs& in);
-// InputKeys::baked of a frame: the baked light's key, with the pulsing glow's factor when
-// the bake has a pulsing part (so a new pulse reruns the baked rows); 0 without a bake.
+// InputKeys::baked of a frame: the baked light's key, with the keyed sun's keys, blend and
+// colour when the bake has sun keys (so a moving sun reruns the baked rows); 0 without a bake.
 std::uint64_t baked_input_key(const FrameInputs& in);
+// InputKeys::baked_pulse: the pulsing glow's factor when the bake has a pulsing part (a new
+// pulse reruns the baked pass's adds, not the atlas reads); 0 otherwise.
+std::uint64_t baked_pulse_key(const FrameInputs& in);
 
 namespace vk {
 class PassRecorder; // lantern/gi/vulkan/pass_recorder.hpp
