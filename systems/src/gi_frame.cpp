@@ -3,6 +3,7 @@
 #include "lantern/gi/pass_table.hpp"
 
 #include "lantern/core/hash.hpp"
+#include "lantern/core/log.hpp"
 #include "lantern/profile/profiler.hpp"
 
 #include <glm/geometric.hpp>
@@ -171,7 +172,7 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, g
 
 GiFrame::GiFrame(ecs::World& world, jobs::JobSystem& jobs, std::shared_ptr<const WorldSource> source,
                  std::unique_ptr<gi::Backend> backend, GiConfig config, GiFrameOptions options)
-    : world_(world), jobs_(jobs), backend_(std::move(backend)), schedule_(jobs) {
+    : world_(world), jobs_(jobs), backend_(std::move(backend)), schedule_(jobs), warm_up_shaders_(options.warm_up_shaders) {
     // The one owner of the wall bytes (the mirror) and of the chunk bookkeeping: a world
     // resource, so systems reach it through the world like any other, and declare it.
     world_.set_resource<Streaming>(std::move(source), options.streaming);
@@ -319,6 +320,17 @@ void GiFrame::add_systems() {
         if (view.window) {
             Streaming& streaming = w.resource<Streaming>();
             const gi::WallUpdate walls{streaming.resized(), streaming.dirty()};
+            if (warm_up_shaders_) {
+                // A frame not shown (GiFrameOptions::warm_up_shaders). It holds a proxy where
+                // this frame may hold none, or other proxies, so the direct row's kept light
+                // bins do not outlive it (their context hashes the proxies); this frame runs
+                // every pass it plans (its cache is empty).
+                warm_up_shaders_ = false;
+                const gi::FrameInputs warm = gi::warm_up_inputs(f.inputs, true);
+                const gi::PassPlan plan = gi::plan_passes(warm, w.resource<GiConfig>().lit_image);
+                if (auto warmed = backend_->execute(frame_, warm, plan, plan.run, walls); !warmed)
+                    LANTERN_LOG_WARN("GI shader warm-up: %s", warmed.error().message.c_str());
+            }
             auto ok = backend_->execute(frame_, f.inputs, f.plan, f.run, walls);
             const ecs::Entity cam = camera();
             GICache* cache = cam.is_null() ? nullptr : w.try_get<GICache>(cam);

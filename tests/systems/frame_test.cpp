@@ -57,7 +57,8 @@ struct Harness {
     std::unique_ptr<gi::vk::Renderer> renderer;
     std::unique_ptr<systems::GiFrame> frame;
 
-    Harness(const scene::Scene& s, int worker_count, gpu::Device* device) : jobs(workers(worker_count)) {
+    Harness(const scene::Scene& s, int worker_count, gpu::Device* device, systems::GiFrameOptions options = {})
+        : jobs(workers(worker_count)) {
         sw = systems::populate_world(s, world);
         std::unique_ptr<gi::Backend> backend;
         if (device) {
@@ -66,7 +67,7 @@ struct Harness {
         } else {
             backend = gi::make_reference_backend(nullptr);
         }
-        frame = std::make_unique<systems::GiFrame>(world, jobs, sw.source, std::move(backend), sw.config);
+        frame = std::make_unique<systems::GiFrame>(world, jobs, sw.source, std::move(backend), sw.config, std::move(options));
         frame->warm_up();
     }
     ~Harness() {
@@ -278,17 +279,24 @@ INSTANTIATE_TEST_SUITE_P(Backends, FrameCaching, ::testing::Values(false, true),
 namespace {
 
 // Runs scripted frames and returns every texture of the last one.
-std::map<std::string, std::vector<float>> run_scripted(int worker_count, gpu::Device* device) {
-    Harness h(full_scene(), worker_count, device);
+// With `warm_up_shaders`, the shader warm-up's frames run before the first
+// (systems::GiFrameOptions); `direct_workgroups` gets the direct pass's recorded workgroups.
+std::map<std::string, std::vector<float>> run_scripted(int worker_count, gpu::Device* device, bool warm_up_shaders = false,
+                                                       std::uint64_t* direct_workgroups = nullptr,
+                                                       const scene::Scene& scene = full_scene()) {
+    systems::GiFrameOptions options;
+    options.warm_up_shaders = warm_up_shaders;
+    Harness h(scene, worker_count, device, std::move(options));
     ecs::World& w = h.world;
     for (int k = 0; k < 6; ++k) {
         if (k == 1) w.patch<PointLight>(h.sw.point_lights[0]).position += glm::vec2(0.7f, -0.3f);
         if (k == 2) h.frame->streaming().set_wall(w, {5, 5}, true);
-        if (k == 4) w.patch<DirectionalLight>(h.sw.directional_lights[0]).direction.z -= 0.2f;
+        if (k == 4 && !h.sw.directional_lights.empty()) w.patch<DirectionalLight>(h.sw.directional_lights[0]).direction.z -= 0.2f;
         h.step();
     }
     std::map<std::string, std::vector<float>> out;
     for (const std::string& name : h.frame->backend().texture_names()) out[name] = h.frame->backend().read(name)->texels;
+    if (direct_workgroups && h.renderer) *direct_workgroups = h.renderer->partial_work(Pass::direct).recorded;
     return out;
 }
 
@@ -303,6 +311,26 @@ TEST(FrameDeterminism, SameTexturesForZeroOneAndTwoWorkers) {
     auto vk0 = run_scripted(0, d);
     EXPECT_EQ(run_scripted(1, d), vk0);
     EXPECT_EQ(run_scripted(2, d), vk0);
+}
+
+// The shader warm-up (GiFrameOptions::warm_up_shaders: a frame with what the scene lacks of
+// a sun, a light and a proxy added, recorded before the first) leaves no trace: the scripted
+// frames (a light moved, a wall set, the sun turned) end with the same textures, bit for bit,
+// where the scene has all three (the first frame may keep the warm-up's light bins) and where
+// it has no sun and no proxy (the warm-up's frame differs from the first).
+TEST(FrameDeterminism, TheShaderWarmUpLeavesNoTrace) {
+    scene::Scene bare = full_scene();
+    bare.directional_lights.clear();
+    bare.shadow_proxies.clear();
+    for (const scene::Scene& s : {full_scene(), bare})
+        EXPECT_EQ(run_scripted(1, nullptr, true, nullptr, s), run_scripted(1, nullptr, false, nullptr, s));
+    gpu::Device* d = test::shared_gpu_device();
+    if (!d) LANTERN_SKIP_NO_GPU("no Vulkan device: reference backend checked only");
+    EXPECT_EQ(run_scripted(1, d, true, nullptr, full_scene()), run_scripted(1, d, false, nullptr, full_scene()));
+    std::uint64_t plain = 0, warmed = 0;
+    const auto without = run_scripted(1, d, false, &plain, bare);
+    EXPECT_EQ(run_scripted(1, d, true, &warmed, bare), without);
+    EXPECT_GT(warmed, plain) << "the warm-up recorded no frame";
 }
 
 TEST(FrameProfiling, SystemsOnWorkerLanesAndPassesOnTheGpuLane) {

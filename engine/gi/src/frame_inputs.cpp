@@ -153,6 +153,35 @@ FrameInputs with_suns(const FrameInputs& in, bool mixed) {
     return out;
 }
 
+FrameInputs warm_up_inputs(const FrameInputs& in, bool proxies) {
+    FrameInputs out = in;
+    const glm::vec2 c = in.window.center();
+    const GpuPointLight light = pack_light(c, glm::vec3(1.0f, 0.8f, 0.6f), 1.0f, 4.0f);
+    if (out.point_lights.empty()) {
+        out.point_lights.push_back(light);
+        out.point_light_ids.push_back(0);
+    }
+    if (in.baked && out.mixed_lights.empty()) out.mixed_lights.push_back(light);
+    if (!proxies) {
+        out.proxies.clear();
+        out.proxy_ids.clear();
+    } else if (out.proxies.empty()) {
+        scene::ShadowProxy p;
+        p.position = c + glm::vec2(0.5f, 0.0f);
+        out.proxies.push_back(pack_proxy(p));
+        out.proxy_ids.push_back(0);
+    }
+    scene::DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, 0.3f));
+    if (!has_live_suns(in)) out.directional_lights.push_back(pack_directional(sun, in.settings.method));
+    if (in.baked && in.baked->sun_keys > 0 && !has_mixed_suns(in)) {
+        GpuDirectionalLight mixed = pack_directional(sun, in.settings.method);
+        mark_mixed(mixed);
+        out.directional_lights.push_back(mixed);
+    }
+    return out;
+}
+
 GpuMaterial pack_material(const scene::Material& m) {
     // Seed 004's meta pass: opacity scales what the tile reflects and emits; emission GI
     // `none` keeps the glow out of the GI.

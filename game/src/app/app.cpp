@@ -175,6 +175,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     }
 
     systems::GiFrameOptions fo;
+    fo.warm_up_shaders = true; // the sun, the lamp posts and the proxies' shaders before play
     Session* session = s.get();
     fo.add_game_systems = [this, session](ecs::Schedule& schedule) {
         schedule.add("input", [this, session](ecs::SystemContext&) { input_system(*session); })

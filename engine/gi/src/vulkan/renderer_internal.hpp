@@ -3,26 +3,24 @@
 // renderer_read_back.cpp (read back and the copy baseline).
 #pragma once
 
-#include "lantern/profile/profiler.hpp"
-
-#include <condition_variable>
-#include <deque>
-#include <future>
-#include <mutex>
-#include <thread>
-#include <map>
-#include <string>
-#include <tuple>
 #include "lantern/gi/vulkan/pass_params.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 #include "lantern/gpu/reflect.hpp"
+#include "lantern/profile/profiler.hpp"
 #include "lantern_gi_shaders.hpp"
 
+#include <algorithm>
+#include <condition_variable>
 #include <cstddef>
+#include <deque>
+#include <future>
 #include <map>
+#include <mutex>
 #include <span>
 #include <string>
+#include <thread>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace lantern::gi::vk {
@@ -44,8 +42,10 @@ void check_params_layout(const char* shader, std::span<const std::uint32_t> spir
 // pipeline in 50-100 ms, so a variant first needed mid-game (the first shadow proxy, the
 // first sunrise) was a frame hitch: rows prefetch on background threads the variants a later
 // frame may need (the direct row: its own with proxies and walls flipped, and the suns'). A
-// frame that needs a pipeline still in flight waits for it. Each lavapipe pipeline holds
-// about 5 MB of JIT code, so only those are prefetched.
+// frame that needs a pipeline the thread is creating waits for it; one still queued it
+// creates itself (a frame must not wait for the whole queue ahead of it: the shader warm-up's
+// frames, systems::GiFrameOptions::warm_up_shaders, need several at once). Each lavapipe
+// pipeline holds about 5 MB of JIT code, so only those are prefetched.
 using PipelineKey = std::tuple<ShaderLookup, std::string, bool, bool, bool, bool, std::uint32_t, std::uint32_t>;
 
 // A PipelineSpec with the renderer's block and workgroup sizes filled in.
@@ -70,7 +70,7 @@ struct Renderer::Pipelines {
     // left a malloc arena per thread holding the compiler's scratch (about 18 MB each).
     std::mutex mutex;
     std::condition_variable wake;
-    std::deque<std::packaged_task<gpu::ComputePipeline()>> queue;
+    std::deque<std::pair<Key, std::packaged_task<gpu::ComputePipeline()>>> queue;
     bool stopping = false;
     std::thread worker;
 
@@ -90,7 +90,7 @@ struct Renderer::Pipelines {
                 std::unique_lock lock(mutex);
                 wake.wait(lock, [&] { return stopping || !queue.empty(); });
                 if (queue.empty()) return;
-                task = std::move(queue.front());
+                task = std::move(queue.front().second);
                 queue.pop_front();
             }
             task();
@@ -128,7 +128,7 @@ struct Renderer::Pipelines {
         pending.emplace(key, task.get_future());
         {
             std::lock_guard lock(mutex);
-            queue.push_back(std::move(task));
+            queue.emplace_back(key, std::move(task));
         }
         if (!worker.joinable()) worker = std::thread([this] { work(); });
         wake.notify_one();
@@ -139,8 +139,23 @@ struct Renderer::Pipelines {
         if (!shaders) shaders = lantern_gi_shaders_spirv;
         const Key key = s.key(shaders, shader);
         if (auto it = cache.find(key); it != cache.end()) return it->second;
-        if (auto it = pending.find(key); it != pending.end()) { // started earlier: wait for it
-            LANTERN_PROFILE_SCOPE("gi.pipeline_wait");
+        if (auto it = pending.find(key); it != pending.end()) { // prefetched
+            std::packaged_task<gpu::ComputePipeline()> queued;
+            {
+                std::lock_guard lock(mutex);
+                const auto q = std::find_if(queue.begin(), queue.end(), [&](const auto& e) { return e.first == key; });
+                if (q != queue.end()) {
+                    queued = std::move(q->second);
+                    queue.erase(q);
+                }
+            }
+            if (queued.valid()) { // still queued: create it here
+                LANTERN_PROFILE_SCOPE("gi.create_pipeline");
+                queued();
+            } else { // under way (or done) on the thread: wait for it
+                LANTERN_PROFILE_SCOPE("gi.pipeline_wait");
+                it->second.wait();
+            }
             gpu::ComputePipeline p = it->second.get();
             pending.erase(it);
             return cache.emplace(key, std::move(p)).first->second;

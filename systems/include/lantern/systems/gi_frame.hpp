@@ -123,6 +123,13 @@ struct GiFrameOptions {
     // seen by this frame's GI.
     // They reach the walls through the world resource Streaming (declared as any resource).
     std::function<void(ecs::Schedule&)> add_game_systems;
+    // Before the first frame's passes, records a frame not shown (gi::warm_up_inputs with a
+    // shadow proxy) so that the shader variants a sunrise, a mixed light or a proxy will need
+    // have their code before play: llvmpipe generates it at a pipeline's
+    // first dispatch, and on a machine whose shader cache has not seen it that took 400-900 ms
+    // in the middle of a frame (docs/performance.md, "Hitches on a fresh machine"). The first
+    // frame then computes everything afresh, as it would have.
+    bool warm_up_shaders = false;
 };
 
 class GiFrame {
@@ -162,6 +169,7 @@ class GiFrame {
     gi::Convergence convergence_; // the camera's converging rows (cache_keys, gpu_submit)
     std::uint64_t steps_seen_ = 0, restarts_seen_ = 0; // GiConfig::converge acted on
     gi::PassSet held_; // ran while held: advanced by the next step or the release
+    bool warm_up_shaders_ = false; // GiFrameOptions::warm_up_shaders, until the first frame ran
 };
 
 // Per-pass cache keys of a frame (exposed for tests and the HUD): gi::derive_keys over the

@@ -119,7 +119,7 @@ struct FrameInputs {
     // Seed 004's pulsing emission: the factor the bake's pulsing part is added with
     // (scene::pulse_factor of the scene's pulse frequency at the frame's time; 1 = the glow
     // at full emission). Read only when `baked` is pulsing; a change reruns the baked rows
-    // (a colour-only update, not a re-bake).
+    // (a colour-only update, not a re-bake): a change reruns the baked pass's adds.
     float baked_pulse = 1.0f;
 };
 
@@ -128,6 +128,15 @@ bool has_live_suns(const FrameInputs& in);
 bool has_mixed_suns(const FrameInputs& in);
 // The frame with only its realtime suns (mixed = false) or only its mixed ones.
 FrameInputs with_suns(const FrameInputs& in, bool mixed);
+
+// A frame that needs shader variants a later frame of `in`'s session may need and `in` may
+// not: `in` with, at the window's centre, a point light when it has none, a mixed one when a
+// bake is used and it has none, a realtime sun when it has none, a mixed sun when the bake
+// has sun keys and it has none, and a shadow proxy (with
+// `proxies`; without, no proxies at all). docs/performance.md, "Hitches on a fresh machine":
+// llvmpipe generates a shader's code at its first dispatch, so the game records such frames
+// once at start-up, before play (systems::GiFrameOptions::warm_up).
+FrameInputs warm_up_inputs(const FrameInputs& in, bool proxies);
 
 // The material of a wall cell value (0, air: all zero).
 GpuMaterial material_of(const FrameInputs& in, std::uint8_t cell);
