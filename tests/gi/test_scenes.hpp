@@ -28,6 +28,9 @@ inline lantern::gi::FrameInputs inputs_of(const Scene& s) {
     EXPECT_TRUE(w) << why;
     return w ? lantern::gi::gather_frame_inputs(s, *w) : lantern::gi::FrameInputs{};
 }
+// The inputs point at the scene's walls (FrameInputs::walls): a temporary scene would leave
+// them dangling.
+lantern::gi::FrameInputs inputs_of(Scene&&) = delete;
 
 inline lantern::scene::PointLight point(glm::vec2 p, glm::vec3 c, float intensity, float radius) {
     return {p, 1.0f, c, intensity, radius};
