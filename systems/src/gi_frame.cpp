@@ -326,7 +326,7 @@ void GiFrame::add_systems() {
                 // bins do not outlive it (their context hashes the proxies); this frame runs
                 // every pass it plans (its cache is empty).
                 warm_up_shaders_ = false;
-                const gi::FrameInputs warm = gi::warm_up_inputs(f.inputs, true);
+                const gi::FrameInputs warm = gi::warm_up_inputs(f.inputs);
                 const gi::PassPlan plan = gi::plan_passes(warm, w.resource<GiConfig>().lit_image);
                 if (auto warmed = backend_->execute(frame_, warm, plan, plan.run, walls); !warmed)
                     LANTERN_LOG_WARN("GI shader warm-up: %s", warmed.error().message.c_str());

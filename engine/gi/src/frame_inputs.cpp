@@ -153,7 +153,7 @@ FrameInputs with_suns(const FrameInputs& in, bool mixed) {
     return out;
 }
 
-FrameInputs warm_up_inputs(const FrameInputs& in, bool proxies) {
+FrameInputs warm_up_inputs(const FrameInputs& in) {
     FrameInputs out = in;
     const glm::vec2 c = in.window.center();
     const GpuPointLight light = pack_light(c, glm::vec3(1.0f, 0.8f, 0.6f), 1.0f, 4.0f);
@@ -162,10 +162,7 @@ FrameInputs warm_up_inputs(const FrameInputs& in, bool proxies) {
         out.point_light_ids.push_back(0);
     }
     if (in.baked && out.mixed_lights.empty()) out.mixed_lights.push_back(light);
-    if (!proxies) {
-        out.proxies.clear();
-        out.proxy_ids.clear();
-    } else if (out.proxies.empty()) {
+    if (out.proxies.empty()) {
         scene::ShadowProxy p;
         p.position = c + glm::vec2(0.5f, 0.0f);
         out.proxies.push_back(pack_proxy(p));

@@ -266,7 +266,7 @@ void reference_sample_row(ReferenceContext& c) {
                 if (layer > 0 && !computes_face(faces, layer - 1)) continue;
                 const bool taken = layer == 0 ? !wall : mask[layer - 1] > 0.0f;
                 const float alpha = layer > 0 && wall ? 1.0f : 0.0f; // as wall_indirect writes faces
-                const glm::vec3 v = taken ? b.light(layer, p, 0.0f, sun) * k : glm::vec3(0.0f); // at pulse 0
+                const glm::vec3 v = taken ? (b.sample(layer, p) + b.sun_light(layer, p, sun)) * k : glm::vec3(0.0f);
                 const glm::vec4 texel(v, alpha);
                 steady[std::size_t(layer)].store(x, y, &texel.x);
                 glm::vec3 shown_v = v;

@@ -67,10 +67,15 @@ struct BakedLight {
     // With a keyed sun, plus its colour x the two keys around its time blended.
     glm::vec3 light(int layer, glm::vec2 p, float pulse, const BakedSun& sun = {}) const {
         glm::vec3 v = pulsing ? sample(layer, p) + pulse * sample(baked_layers + layer, p) : sample(layer, p);
-        if (sun.key >= 0 && sun.key + 1 < sun_keys)
-            v += (sun.color * (1.0f - sun.blend)) * sample(sun_layer(sun.key, layer), p) +
-                 (sun.color * sun.blend) * sample(sun_layer(sun.key + 1, layer), p);
+        if (sun.key >= 0 && sun.key + 1 < sun_keys) v += sun_light(layer, p, sun);
         return v;
+    }
+    // What the keyed sun adds to `layer` at p: its colour x the two keys around its time,
+    // blended (zero without a keyed sun). The steady light is sample(layer, p) + sun_light.
+    glm::vec3 sun_light(int layer, glm::vec2 p, const BakedSun& sun) const {
+        if (sun.key < 0 || sun.key + 1 >= sun_keys) return glm::vec3(0.0f);
+        return (sun.color * (1.0f - sun.blend)) * sample(sun_layer(sun.key, layer), p) +
+               (sun.color * sun.blend) * sample(sun_layer(sun.key + 1, layer), p);
     }
     // The atlas layer of sun key `k`'s layer `layer`.
     int sun_layer(int k, int layer) const { return (pulsing ? 2 : 1) * baked_layers + k * baked_layers + layer; }

@@ -132,11 +132,11 @@ FrameInputs with_suns(const FrameInputs& in, bool mixed);
 // A frame that needs shader variants a later frame of `in`'s session may need and `in` may
 // not: `in` with, at the window's centre, a point light when it has none, a mixed one when a
 // bake is used and it has none, a realtime sun when it has none, a mixed sun when the bake
-// has sun keys and it has none, and a shadow proxy (with
-// `proxies`; without, no proxies at all). docs/performance.md, "Hitches on a fresh machine":
-// llvmpipe generates a shader's code at its first dispatch, so the game records such frames
-// once at start-up, before play (systems::GiFrameOptions::warm_up).
-FrameInputs warm_up_inputs(const FrameInputs& in, bool proxies);
+// has sun keys and it has none, and a shadow proxy when it has none. docs/performance.md,
+// "Hitches on a fresh machine": llvmpipe generates a shader's code at its first dispatch, so
+// the game records such a frame once at start-up, before play
+// (systems::GiFrameOptions::warm_up_shaders).
+FrameInputs warm_up_inputs(const FrameInputs& in);
 
 // The material of a wall cell value (0, air: all zero).
 GpuMaterial material_of(const FrameInputs& in, std::uint8_t cell);
