@@ -164,6 +164,28 @@ TEST(LiveProbesReference, NotNeededWithoutRays) {
     EXPECT_EQ(plan.reason[int(Pass::probes)], "gi.probe_rays is 0");
 }
 
+// The GPU comparison's rule for probes (gi_compare.hpp, probe_magnitude): a harmonic
+// coefficient's difference is measured against its probe's a0 in that channel, a0 itself and
+// every other texture's texels against their own size. The values are the NVIDIA H200's b2
+// that failed the old rule.
+TEST(LiveProbesReference, TheGpuComparisonMeasuresHarmonicsAgainstTheProbesLight) {
+    auto probes = [](const char* name, float a0, float b2) {
+        Texture t(name, TexFormat::rgba16f, live_probe_coefficients, 1);
+        t.at(0, 0)[1] = a0;
+        t.at(4, 0)[1] = b2;
+        return t;
+    };
+    const Texture ref = probes("probes", 0.384277f, -0.000798225f);
+    EXPECT_EQ(gi_test::compare_textures(probes("probes", 0.384277f, -0.000791073f), ref, 2.0f).mismatches, 0u);
+    // A wrong coefficient still fails: 1 % of a0 off, or a sign flipped.
+    EXPECT_EQ(gi_test::compare_textures(probes("probes", 0.384277f, -0.000798225f + 0.0039f), ref, 2.0f).mismatches, 1u);
+    EXPECT_EQ(gi_test::compare_textures(probes("probes", 0.384277f, 0.000798225f), ref, 2.0f).mismatches, 1u);
+    // a0 against its own size; and the same texels in another texture against theirs.
+    EXPECT_EQ(gi_test::compare_textures(probes("probes", 0.3853f, -0.000798225f), ref, 2.0f).mismatches, 1u);
+    const Texture other = probes("indirect", 0.384277f, -0.000798225f);
+    EXPECT_EQ(gi_test::compare_textures(probes("indirect", 0.384277f, -0.000791073f), other, 2.0f).mismatches, 1u);
+}
+
 TEST_F(LiveProbes, VulkanEqualsTheReference) {
     expect_gpu_equals_reference(glowing_room(32), "glowing room");
     expect_gpu_equals_reference(lit_wall(64), "lit wall");
