@@ -9,7 +9,9 @@
 //      floats);
 //   3. the frame on the device, all passes planned, medians of `repeats` frames: the lights
 //      realtime (and the veins' glow live, with the gather method), then mixed (direct light
-//      live, bounce baked), then baked, for each method.
+//      live, bounce baked), then baked, for each method;
+//   4. where the atlas is sampled: once per GI texel (the game) against once per pixel (seed
+//      002's per fragment), the baked_sample pass's cost and the ground light's difference.
 #include "bench.hpp"
 
 #include "lantern/bake/bake.hpp"
@@ -285,6 +287,92 @@ int baked(const BakedOptions& o) {
             std::printf("| %s | %zu %s | %.2f | %.2f | %.2f | %.2f | %.2f |\n", method == scene::GiMethod::heat ? "heat" : "gather",
                         s.point_lights.size(), mode_name, n->total, at(gi::Pass::direct), at(gi::Pass::mixed),
                         at(gi::Pass::baked), own);
+        }
+    }
+
+    // 4. Where the atlas is sampled: seed 002 samples its probe volume per vertex or per
+    // fragment. Lantern samples it once per GI texel (the `baked_sample` pass), and the raster
+    // shows each GI texel flat over its pixels, as it shows the rest of the GI. Per fragment
+    // would sample once per pixel: at the game's 480x270 over 30 tiles, 16 a tile. The pass
+    // at gi.resolution 16 samples exactly there, so it measures that density's cost; its
+    // ground light is what per-fragment sampling would show, and the coarser rows' differ
+    // from it by what flat texels leave out.
+    constexpr int pixel_density = 16;
+    std::printf("\n## Where the atlas is sampled: per GI texel or per pixel (seed 002's per vertex or per fragment)\n\n");
+    std::printf("The game samples the baked light once per GI texel (gi.resolution 4) and the raster shows each texel flat over\n"
+                "its 4 x 4 pixels; per fragment would be gi.resolution %d (480x270 over 30 tiles). Ground light of open tiles,\n"
+                "relative RMS against the per-pixel field, each texel's value taken over the pixels it covers.\n\n",
+                pixel_density);
+    std::printf("| samples a tile | texels sampled a frame | baked_sample ms | x the game's | error against per pixel |\n|---|---|---|---|---|\n");
+    struct Field {
+        gi::GiWindow window;
+        gi::Texture ground;
+    };
+    auto sample_at = [&](int resolution, FrameNumbers* numbers) -> Result<Field> {
+        scene::Scene s = caves_world(o.chunks, o.lights, scene::LightMode::baked);
+        s.gi.resolution = resolution;
+        std::string why;
+        auto window = gi::compute_window(s.view, s.gi, &why);
+        if (!window) return make_error("gi.resolution " + std::to_string(resolution) + ": " + why);
+        gi::FrameInputs in = gi::gather_frame_inputs(bake::live_scene(s), *window);
+        in.baked = light;
+        gi::split_for_bake(in, bake::live_scene(s));
+        auto n = time_frames(**renderer, in, o.repeats);
+        if (!n) return n.error();
+        *numbers = *n;
+        return Field{*window, (*renderer)->read_back(gi::Tex::baked_ground)};
+    };
+    FrameNumbers fine_numbers;
+    auto fine = sample_at(pixel_density, &fine_numbers);
+    if (!fine) {
+        std::fprintf(stderr, "lantern-bench baked: %s\n", fine.error().message.c_str());
+        if (!keep) fs::remove_all(dir);
+        return 1;
+    }
+    const scene::WallGrid cave_walls = caves_world(o.chunks, 0, scene::LightMode::baked).walls;
+    double game_ms = 0.0;
+    for (int resolution : {4, 8, pixel_density}) {
+        FrameNumbers numbers = fine_numbers;
+        Field coarse = *fine;
+        if (resolution != pixel_density) {
+            auto f = sample_at(resolution, &numbers);
+            if (!f) {
+                std::fprintf(stderr, "lantern-bench baked: %s\n", f.error().message.c_str());
+                if (!keep) fs::remove_all(dir);
+                return 1;
+            }
+            coarse = std::move(*f);
+        }
+        const double ms = numbers.passes.count(gi::Pass::baked_sample) ? numbers.passes.at(gi::Pass::baked_sample) : 0.0;
+        if (resolution == 4) game_ms = ms;
+        // Each per-pixel texel against the coarse texel over it, open ground only.
+        double err = 0.0, norm = 0.0;
+        const gi::GiWindow& fw = fine->window;
+        const gi::GiWindow& cw = coarse.window;
+        for (int j = 0; j < fw.height; ++j)
+            for (int i = 0; i < fw.width; ++i) {
+                const glm::vec2 p = fw.texel_center(i, j);
+                if (cave_walls.is_wall_tile(int(std::floor(p.x)), int(std::floor(p.y)))) continue;
+                const int ci = int(std::floor((p.x - cw.view.min_x) * float(cw.resolution)));
+                const int cj = int(std::floor((p.y - cw.view.min_z) * float(cw.resolution)));
+                if (ci < 0 || cj < 0 || ci >= cw.width || cj >= cw.height) continue;
+                for (int c = 0; c < 3; ++c) {
+                    const double a = coarse.ground.at(ci, cj)[c], b = fine->ground.at(i, j)[c];
+                    err += (a - b) * (a - b);
+                    norm += b * b;
+                }
+            }
+        std::printf("| %d x %d | %d | %.2f | %.1f | %.2f %% |\n", resolution, resolution, coarse.window.width * coarse.window.height,
+                    ms, game_ms > 0.0 ? ms / game_ms : 0.0, norm > 0.0 ? 100.0 * std::sqrt(err / norm) : 0.0);
+        if (resolution == pixel_density) {
+            // The window is padded beyond the screen (gi.padding, window.hpp); a fragment
+            // shader samples only what is on screen.
+            constexpr int screen = 480 * 270;
+            const int window_texels = coarse.window.width * coarse.window.height;
+            std::printf("\nThe window is padded: at %d a tile it holds %d texels for %d pixels on screen, so sampling per\n"
+                        "fragment would cost about %.2f ms (the pass's time x pixels / texels), %.1f x the game's per-texel pass.\n",
+                        pixel_density, window_texels, screen, ms * screen / window_texels,
+                        game_ms > 0.0 ? ms * screen / window_texels / game_ms : 0.0);
         }
     }
     if (!keep) fs::remove_all(dir);
