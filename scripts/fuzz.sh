@@ -3,7 +3,7 @@
 # each ran. The targets come from the clang ASan+UBSan build (test.sh builds it as
 # build-clang-asan/; docs/testing.md, "Fuzzing"):
 #
-#   scripts/fuzz.sh [BUILD_DIR] [SECONDS] [TARGET...]    (defaults: build-clang-asan 60, all seven)
+#   scripts/fuzz.sh [BUILD_DIR] [SECONDS] [TARGET...]    (defaults: build-clang-asan 60, all eight)
 #
 # Each target starts from its seed corpus (tests/fuzz/corpus/<target>/, plus tests/golden for
 # scenes) and keeps what it learns in BUILD_DIR/fuzz-corpus/<target>/ (outside the tree).
@@ -16,7 +16,7 @@ build="${1:-build-clang-asan}"
 seconds="${2:-60}"
 shift $(( $# > 2 ? 2 : $# ))
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(scene map save set settings tables bake)
+[ ${#targets[@]} -eq 0 ] && targets=(scene map save set settings tables bake spirv)
 
 findings="$build/fuzz-findings"
 mkdir -p "$findings"

@@ -48,7 +48,7 @@ if [ "${LANTERN_TEST_SANITIZERS:-1}" != "0" ]; then
         lantern_transport_tests lantern_bake_tests lantern_audio_tests lantern_game_logic_tests"
     export VK_DRIVER_FILES=/nonexistent/lantern-sanitizer-run.json
     echo "== build + test: ASan+UBSan with clang (build-clang-asan/, labels $labels)"
-    LANTERN_BUILD_TARGETS="$LANTERN_BUILD_TARGETS lantern-fuzz-scene lantern-fuzz-map lantern-fuzz-save lantern-fuzz-set lantern-fuzz-settings lantern-fuzz-tables lantern-fuzz-bake" \
+    LANTERN_BUILD_TARGETS="$LANTERN_BUILD_TARGETS lantern-fuzz-scene lantern-fuzz-map lantern-fuzz-save lantern-fuzz-set lantern-fuzz-settings lantern-fuzz-tables lantern-fuzz-bake lantern-fuzz-spirv" \
         CC=clang CXX=clang++ bash scripts/build.sh build-clang-asan -DLANTERN_SANITIZE=address -DLANTERN_BUILD_BENCHMARKS=OFF
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         run_ctest "ASan+UBSan, clang (GPU hidden)" build-clang-asan -L "$labels"

@@ -97,6 +97,26 @@ TEST(Reflect, ASecondDescriptorSetIsAnError) {
     EXPECT_NE(layout.error().message.find("descriptor set 1"), std::string::npos) << layout.error().message;
 }
 
+TEST(Reflect, APushBlockOffsetThatWouldWrapIsAnError) {
+    // Every member Offset (OpMemberDecorate ... Offset) moved near 2^32: in 32 bits the
+    // block's end would wrap around to a few bytes, with members far outside it.
+    auto w = words_of(lantern_gi_shaders_spirv("gi_emission.comp"));
+    int moved = 0;
+    for (std::size_t i = 5; i < w.size();) {
+        const std::uint32_t count = w[i] >> 16, opcode = w[i] & 0xffffu;
+        if (count == 0) break;
+        if (opcode == 72 && count >= 5 && w[i + 3] == 35) { // OpMemberDecorate, Offset
+            w[i + 4] += 0xFFFFFF00u;
+            ++moved;
+        }
+        i += count;
+    }
+    ASSERT_GT(moved, 0);
+    auto layout = reflect_spirv(w);
+    ASSERT_FALSE(layout);
+    EXPECT_NE(layout.error().message.find("over 65536 bytes"), std::string::npos) << layout.error().message;
+}
+
 TEST(Reflect, AGapInTheBindingsIsAnError) {
     auto w = words_of(lantern_gi_shaders_spirv("gi_conduction.comp"));
     // Move binding 0 to binding 5: bindings 1, 2 and 5 remain, 0 is missing.

@@ -104,10 +104,21 @@ Result<Module> parse(std::span<const std::uint32_t> words) {
     return m;
 }
 
+// A push-constant block is at most a few hundred bytes on any device; the reader refuses
+// one over 64 KiB, so no size or offset it computes can wrap around.
+constexpr std::uint64_t max_block_bytes = 65536;
+
+Result<std::uint32_t> checked_size(std::uint64_t bytes) {
+    if (bytes > max_block_bytes)
+        return bad("a push-constant block over " + std::to_string(max_block_bytes) + " bytes");
+    return std::uint32_t(bytes);
+}
+
 // Bytes a value of `type_id` occupies in an explicitly laid-out block (std140/std430 as
 // decorated): scalars, vectors, matrices (columns x MatrixStride), arrays (length x
 // ArrayStride) and structs (last member's offset + size). `matrix_stride` comes from the
-// member decoration of the enclosing struct.
+// member decoration of the enclosing struct. Computed in 64 bits and refused over
+// max_block_bytes, so every member's offset + size fits the block's size.
 Result<std::uint32_t> size_of(const Module& m, std::uint32_t type_id, std::uint32_t matrix_stride, int depth = 0) {
     if (depth > 16) return bad("types nested too deeply");
     const Type* t = m.type(type_id);
@@ -117,12 +128,12 @@ Result<std::uint32_t> size_of(const Module& m, std::uint32_t type_id, std::uint3
     case op_type_int:
     case op_type_float:
         if (t->operands.empty()) return bad("scalar type without a width");
-        return t->operands[0] / 8;
+        return checked_size(t->operands[0] / 8);
     case op_type_vector: {
         if (t->operands.size() < 2) return bad("vector type without a count");
         auto component = size_of(m, t->operands[0], 0, depth + 1);
         if (!component) return component.error();
-        return *component * t->operands[1];
+        return checked_size(std::uint64_t(*component) * t->operands[1]);
     }
     case op_type_matrix: {
         if (t->operands.size() < 2) return bad("matrix type without a column count");
@@ -131,7 +142,7 @@ Result<std::uint32_t> size_of(const Module& m, std::uint32_t type_id, std::uint3
             if (!column) return column.error();
             matrix_stride = *column;
         }
-        return matrix_stride * t->operands[1];
+        return checked_size(std::uint64_t(matrix_stride) * t->operands[1]);
     }
     case op_type_array: {
         if (t->operands.size() < 2) return bad("array type without a length");
@@ -139,10 +150,10 @@ Result<std::uint32_t> size_of(const Module& m, std::uint32_t type_id, std::uint3
         if (length == m.constants.end()) return bad("array length is not a constant");
         const auto stride = m.decoration(type_id, dec_array_stride);
         if (!stride) return bad("array without an ArrayStride in a push-constant block");
-        return *stride * length->second;
+        return checked_size(std::uint64_t(*stride) * length->second);
     }
     case op_type_struct: {
-        std::uint32_t end = 0;
+        std::uint64_t end = 0;
         auto offsets = m.member_offsets.find(type_id);
         for (std::uint32_t k = 0; k < t->operands.size(); ++k) {
             if (offsets == m.member_offsets.end() || !offsets->second.count(k))
@@ -152,9 +163,9 @@ Result<std::uint32_t> size_of(const Module& m, std::uint32_t type_id, std::uint3
                 stride = s->second.at(k);
             auto member = size_of(m, t->operands[k], stride, depth + 1);
             if (!member) return member.error();
-            end = std::max(end, offsets->second.at(k) + *member);
+            end = std::max(end, std::uint64_t(offsets->second.at(k)) + *member);
         }
-        return end;
+        return checked_size(end);
     }
     default: return bad("a type of opcode " + std::to_string(t->opcode) + " in a push-constant block");
     }
@@ -181,6 +192,7 @@ Result<void> flatten(const Module& m, std::uint32_t type_id, std::uint32_t base,
             stride = s->second.at(k);
         auto size = size_of(m, t->operands[k], stride, depth + 1);
         if (!size) return size.error();
+        if (*size == 0) return bad("push-constant member " + std::to_string(k) + " has no size");
         ScalarKind kind = ScalarKind::other;
         if (member->opcode == op_type_float && *size == 4) kind = ScalarKind::f32;
         if (member->opcode == op_type_int && *size == 4 && member->operands.size() >= 2)
