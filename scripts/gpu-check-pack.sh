@@ -31,5 +31,6 @@ for b in "$dest"/bin/*; do ldd "$b"; done | awk '/=> \// {print $3}' | sort -u |
     while read -r lib; do cp -L "$lib" "$dest/lib/"; done
 (cd "$dest/deb" && apt-get download libvulkan1 vulkan-validationlayers >/dev/null)
 echo "$build" > "$dest/build-dir" # LANTERN_BINARY_DIR, compiled into the tests
+grep -m1 '^CMAKE_HOME_DIRECTORY' "$build/CMakeCache.txt" | cut -d= -f2 > "$dest/source-dir" # LANTERN_SOURCE_DIR
 grep -qx "/$dest/" .git/info/exclude 2>/dev/null || { mkdir -p .git/info; echo "/$dest/" >> .git/info/exclude; }
 du -sh "$dest"

@@ -31,7 +31,7 @@ icd=${ICD:-/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json}
 export VK_DRIVER_FILES=$icd VK_ICD_FILENAMES=$icd
 export LD_LIBRARY_PATH=$pkg/lib:/usr/local/nvidia/lib64:/usr/local/nvidia/lib
 # The tests look for their data under the source and build folders compiled into them.
-src=$(strings "$pkg/bin/lantern_gi_gpu_tests" | grep -m1 -E '^/.*/tests/gi/.*_test\.cpp$' | sed 's|/tests/gi/.*||')
+src=$(cat "$pkg/source-dir")
 if [ -n "$src" ] && [ ! -e "$src" ]; then
     mkdir -p "$(dirname "$src")"
     ln -sfn "$root" "$src"
