@@ -36,7 +36,8 @@ constexpr const char* commands =
     "  dirty-bins  the direct pass with dirty light bins against the same pass recording every\n"
     "              workgroup, while one, some or all of the lights change frame after frame\n"
     "  baked       the bake (seconds per chunk on 1 and 2 threads), its memory (dense against seed 002's\n"
-    "              bricks, with their error) and the frame with the lights realtime, mixed and baked\n"
+    "              bricks, with their error), the frame with the lights realtime, mixed and baked, and\n"
+    "              the baked light sampled per GI texel against per pixel\n"
     "'lantern-bench COMMAND --help' lists a command's options.\n";
 
 int seed_table_main(int argc, char** argv) {
@@ -143,7 +144,8 @@ int baked_main(int argc, char** argv) {
     Parser p("lantern-bench baked", "[options]",
              "What the bake costs and saves (docs/baked.md): the caves with their lava and crystal veins and\n"
              "point lights, baked on 1 and 2 threads; the baked light's memory dense and in bricks; the frame\n"
-             "with the lights realtime, mixed and baked (GPU timestamps, median).");
+             "with the lights realtime, mixed and baked (GPU timestamps, median); the baked light sampled once\n"
+             "per GI texel (the game) against once per pixel (seed 002's per fragment): cost and difference.");
     p.integer("--chunks", "N", "the world is N x N chunks of 32 x 32 tiles (default 3; 128 is the 4096 x 4096 world)", o.chunks, 1, 128);
     p.integer("--lights", "N", "point lights (default 32)", o.lights, 0, 4096);
     p.integer("--repeats", "N", "timed frames per configuration (default 5)", o.repeats, 1, 1000);
