@@ -330,22 +330,12 @@ int baked(const BakedOptions& o) {
         return 1;
     }
     const scene::WallGrid cave_walls = caves_world(o.chunks, 0, scene::LightMode::baked).walls;
-    double game_ms = 0.0;
-    for (int resolution : {4, 8, pixel_density}) {
-        FrameNumbers numbers = fine_numbers;
-        Field coarse = *fine;
-        if (resolution != pixel_density) {
-            auto f = sample_at(resolution, &numbers);
-            if (!f) {
-                std::fprintf(stderr, "lantern-bench baked: %s\n", f.error().message.c_str());
-                if (!keep) fs::remove_all(dir);
-                return 1;
-            }
-            coarse = std::move(*f);
-        }
+    double game_ms = 0.0; // the first row's: gi.resolution 4
+    // One row: `coarse` against the per-pixel field, each per-pixel texel against the coarse
+    // texel over it, open ground only.
+    auto row = [&](int resolution, const FrameNumbers& numbers, const Field& coarse) {
         const double ms = numbers.passes.count(gi::Pass::baked_sample) ? numbers.passes.at(gi::Pass::baked_sample) : 0.0;
-        if (resolution == 4) game_ms = ms;
-        // Each per-pixel texel against the coarse texel over it, open ground only.
+        if (game_ms == 0.0) game_ms = ms;
         double err = 0.0, norm = 0.0;
         const gi::GiWindow& fw = fine->window;
         const gi::GiWindow& cw = coarse.window;
@@ -362,19 +352,29 @@ int baked(const BakedOptions& o) {
                     norm += b * b;
                 }
             }
-        std::printf("| %d x %d | %d | %.2f | %.1f | %.2f %% |\n", resolution, resolution, coarse.window.width * coarse.window.height,
-                    ms, game_ms > 0.0 ? ms / game_ms : 0.0, norm > 0.0 ? 100.0 * std::sqrt(err / norm) : 0.0);
-        if (resolution == pixel_density) {
-            // The window is padded beyond the screen (gi.padding, window.hpp); a fragment
-            // shader samples only what is on screen.
-            constexpr int screen = 480 * 270;
-            const int window_texels = coarse.window.width * coarse.window.height;
-            std::printf("\nThe window is padded: at %d a tile it holds %d texels for %d pixels on screen, so sampling per\n"
-                        "fragment would cost about %.2f ms (the pass's time x pixels / texels), %.1f x the game's per-texel pass.\n",
-                        pixel_density, window_texels, screen, ms * screen / window_texels,
-                        game_ms > 0.0 ? ms * screen / window_texels / game_ms : 0.0);
+        std::printf("| %d x %d | %d | %.2f | %.1f | %.2f %% |\n", resolution, resolution, cw.width * cw.height, ms,
+                    game_ms > 0.0 ? ms / game_ms : 0.0, norm > 0.0 ? 100.0 * std::sqrt(err / norm) : 0.0);
+        return ms;
+    };
+    for (int resolution : {4, 8}) {
+        FrameNumbers numbers;
+        auto coarse = sample_at(resolution, &numbers);
+        if (!coarse) {
+            std::fprintf(stderr, "lantern-bench baked: %s\n", coarse.error().message.c_str());
+            if (!keep) fs::remove_all(dir);
+            return 1;
         }
+        row(resolution, numbers, *coarse);
     }
+    const double fine_ms = row(pixel_density, fine_numbers, *fine);
+    // The window is padded beyond the screen (gi.padding, window.hpp); a fragment shader
+    // samples only what is on screen.
+    constexpr int screen = 480 * 270;
+    const int window_texels = fine->window.width * fine->window.height;
+    std::printf("\nThe window is padded: at %d a tile it holds %d texels for %d pixels on screen, so sampling per\n"
+                "fragment would cost about %.2f ms (the pass's time x pixels / texels), %.1f x the game's per-texel pass.\n",
+                pixel_density, window_texels, screen, fine_ms * screen / window_texels,
+                game_ms > 0.0 ? fine_ms * screen / window_texels / game_ms : 0.0);
     if (!keep) fs::remove_all(dir);
     return 0;
 }
