@@ -2,7 +2,9 @@
 // shadows, no cap): ground colour (rgba16f), shadow map R (rg8), and per-face wall light
 // (4 x rgba16f) on wall texels. Each workgroup visits only the lights gi_light_bins listed
 // for its footprint. Grid shadows by the lights' shadow maps (gi_point_map.glsl) or the
-// DDA. Parameters: DirectParams.
+// DDA. With SUNS, the realtime suns' own textures (gi_directional.comp's) are added as
+// each texel is written (C++ reference: reference_passes.cpp reference_direct's `suns`).
+// Parameters: DirectParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 struct DirectParams {
@@ -28,6 +30,8 @@ const bool LIST = (FEATURES & 16u) != 0u;
 // Bins no light reaches: what every texel holds without light, with the light loops compiled
 // out (lavapipe runs a loop's body at least once, masked, so an empty bin costs a light).
 const bool NO_LIGHTS = (FEATURES & 32u) != 0u;
+// The realtime suns' textures (bindings 17-26) added to what this pass writes.
+const bool SUNS = (FEATURES & 128u) != 0u;
 
 layout(constant_id = 4) const int MAX_LIGHTS = 2048; // point lights + emissives (64 KiB UBO)
 
@@ -48,6 +52,16 @@ layout(std430, binding = 13) writeonly buffer UpperNZ { uvec2 texels[]; } o_uppe
 layout(std430, binding = 14) readonly buffer PointMapBins { uvec2 bins[]; } u_point_map; // gi_point_map.glsl
 layout(std430, binding = 15) readonly buffer ProxyBins { uint masks[]; } u_proxy_bins; // gi_light_bins
 layout(std430, binding = 16) readonly buffer DirtyBins { uint bins[]; } u_dirty; // LIST
+layout(binding = 17) uniform samplerBuffer u_sun_direct; // SUNS: rgba16f views
+layout(binding = 18) uniform samplerBuffer u_sun_shadow; // rg8 unorm: G
+layout(binding = 19) uniform samplerBuffer u_sun_face_px;
+layout(binding = 20) uniform samplerBuffer u_sun_face_nx;
+layout(binding = 21) uniform samplerBuffer u_sun_face_pz;
+layout(binding = 22) uniform samplerBuffer u_sun_face_nz;
+layout(binding = 23) uniform samplerBuffer u_sun_upper_px;
+layout(binding = 24) uniform samplerBuffer u_sun_upper_nx;
+layout(binding = 25) uniform samplerBuffer u_sun_upper_pz;
+layout(binding = 26) uniform samplerBuffer u_sun_upper_nz;
 
 // The proxies this workgroup's bin lists (gi_shadow.glsl's loops).
 int g_proxy_base;
@@ -191,6 +205,31 @@ void texel_light(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     FOR_EACH_BIN_LIGHT(i, points, lights) emissive_light(i, wall, p, mask, softness, t);
 }
 
+// Adds the suns' light of texel `index` to t (SUNS): colour and faces summed, the upper
+// faces' edges merged, each weighted by the light its shadows take. Returns their shadow (G).
+float add_suns(inout TexelLight t, uint faces, int index) {
+    t.color += texelFetch(u_sun_direct, index).rgb;
+    if (!HAS_WALLS) return texelFetch(u_sun_shadow, index).g;
+    vec4 low[4] = vec4[4](texelFetch(u_sun_face_px, index), texelFetch(u_sun_face_nx, index),
+                          texelFetch(u_sun_face_pz, index), texelFetch(u_sun_face_nz, index));
+    for (int f = 0; f < 4; ++f) {
+        if (!computes_face(faces, f)) continue;
+        if (UPPER) {
+            vec4 up = f == 0 ? texelFetch(u_sun_upper_px, index)
+                    : f == 1 ? texelFetch(u_sun_upper_nx, index)
+                    : f == 2 ? texelFetch(u_sun_upper_pz, index) : texelFetch(u_sun_upper_nz, index);
+            float taken = (up.r - low[f].r) + (up.g - low[f].g) + (up.b - low[f].b);
+            if (taken > 0.0) {
+                t.edge_sum[f] += taken * up.a;
+                t.edge_weight[f] += taken;
+            }
+            t.upper[f] += up.rgb;
+        }
+        t.face[f] += low[f].rgb;
+    }
+    return texelFetch(u_sun_shadow, index).g;
+}
+
 void main() {
     uvec2 group = gl_WorkGroupID.xy, groups = gl_NumWorkGroups.xy;
     if (LIST) {
@@ -222,6 +261,7 @@ void main() {
                 if (!NO_LIGHTS && (!wall || FACES != 0u)) texel_light(wall, cell, p, t);
             }
             int index = texel_index(x, y);
+            float sun_shadow = SUNS ? add_suns(t, FACES, index) : 0.0;
             o_direct.texels[index] = pack_rgba16f(vec4(t.color, 0.0));
             if (HAS_WALLS) { // otherwise the face textures are cleared once by the host
                 float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
@@ -237,7 +277,7 @@ void main() {
                     if (computes_face(faces, 3)) o_upper_nz.texels[index] = pack_rgba16f(vec4(t.upper[3], face_edge(t, 3)));
                 }
             }
-            shadow[k] = vec2(wall ? 0.0 : t.shadow, 0.0);
+            shadow[k] = vec2(wall ? 0.0 : t.shadow, sun_shadow);
         }
         o_shadow.texels[texel_index(o.x, y) / 4] = uvec2(pack_rg8x2(shadow[0], shadow[1]), pack_rg8x2(shadow[2], shadow[3]));
     }

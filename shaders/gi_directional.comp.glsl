@@ -1,7 +1,8 @@
 // Directional lights (sun, moon): traversal towards the light with the wall-height test,
-// added into the direct colour and wall faces; writes shadow map G (max visibility). The
-// directional row lights the realtime suns (point-light textures in, contract textures out);
-// the mixed row the mixed suns, in place on its own textures (FEATURES & 64).
+// into the direct colour and wall faces; writes shadow map G (max visibility). The
+// directional row lights the realtime suns into their own textures (nothing read: the
+// direct pass adds them); the mixed row the mixed suns, added in place to its own textures
+// (FEATURES & 64).
 // Each workgroup visits only the proxies whose shadow from the sun can reach it (a mask per
 // sun and workgroup, built on the host: record_directional's sun_proxy_bins).
 // Parameters: DirectionalParams.
@@ -22,6 +23,10 @@ const bool SUN_MAP = (FEATURES & 2u) != 0u; // the suns' grid shadows by their s
 // The mixed suns (the mixed row: in place on its textures), else the realtime ones
 // (frame_inputs.hpp is_mixed_sun: bounce.y != 0).
 const bool MIXED_SUNS = (FEATURES & 64u) != 0u;
+
+// An input texel: what the mixed suns add to; the realtime suns start from zero (their
+// inputs are bound to their outputs and never read).
+vec4 input_texel(samplerBuffer t, int index) { return MIXED_SUNS ? texelFetch(t, index) : vec4(0.0); }
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
@@ -108,13 +113,13 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     }
 }
 
-// Adds the suns' upper-face light to the point lights' and merges the edges, each weighted
-// by the light its shadows take (reference_passes.cpp reference_directional).
+// Adds the suns' upper-face light to the input's and merges the edges, each weighted by the
+// light its shadows take (reference_passes.cpp reference_directional).
 void merge_upper(inout TexelLight t, uint faces, int index) {
-    vec4 low[4] = vec4[4](texelFetch(u_face_px_in, index), texelFetch(u_face_nx_in, index),
-                          texelFetch(u_face_pz_in, index), texelFetch(u_face_nz_in, index));
-    vec4 up[4] = vec4[4](texelFetch(u_upper_px_in, index), texelFetch(u_upper_nx_in, index),
-                         texelFetch(u_upper_pz_in, index), texelFetch(u_upper_nz_in, index));
+    vec4 low[4] = vec4[4](input_texel(u_face_px_in, index), input_texel(u_face_nx_in, index),
+                          input_texel(u_face_pz_in, index), input_texel(u_face_nz_in, index));
+    vec4 up[4] = vec4[4](input_texel(u_upper_px_in, index), input_texel(u_upper_nx_in, index),
+                         input_texel(u_upper_pz_in, index), input_texel(u_upper_nz_in, index));
     vec4 out_upper[4];
     for (int f = 0; f < 4; ++f) {
         float taken = (up[f].r - low[f].r) + (up[f].g - low[f].g) + (up[f].b - low[f].b);
@@ -151,22 +156,22 @@ void main() {
                 wall = HAS_WALLS && is_wall(cell);
                 sun_texel(wall, cell, p, t);
             }
-            vec4 direct = texelFetch(u_direct_in, index);
+            vec4 direct = input_texel(u_direct_in, index);
             o_direct.texels[index] = pack_rgba16f(vec4(direct.rgb + t.color, direct.a));
             if (HAS_WALLS) {
                 float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
                 uint faces = FACES;         // a face not computed has no texture
                 if (UPPER) merge_upper(t, faces, index);
                 if (computes_face(faces, 0))
-                    o_face_px.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_px_in, index).rgb + t.face[0], has_faces));
+                    o_face_px.texels[index] = pack_rgba16f(vec4(input_texel(u_face_px_in, index).rgb + t.face[0], has_faces));
                 if (computes_face(faces, 1))
-                    o_face_nx.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_nx_in, index).rgb + t.face[1], has_faces));
+                    o_face_nx.texels[index] = pack_rgba16f(vec4(input_texel(u_face_nx_in, index).rgb + t.face[1], has_faces));
                 if (computes_face(faces, 2))
-                    o_face_pz.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_pz_in, index).rgb + t.face[2], has_faces));
+                    o_face_pz.texels[index] = pack_rgba16f(vec4(input_texel(u_face_pz_in, index).rgb + t.face[2], has_faces));
                 if (computes_face(faces, 3))
-                    o_face_nz.texels[index] = pack_rgba16f(vec4(texelFetch(u_face_nz_in, index).rgb + t.face[3], has_faces));
+                    o_face_nz.texels[index] = pack_rgba16f(vec4(input_texel(u_face_nz_in, index).rgb + t.face[3], has_faces));
             }
-            shadow[k] = vec2(texelFetch(u_shadow_in, index).r, wall ? 0.0 : t.shadow);
+            shadow[k] = vec2(input_texel(u_shadow_in, index).r, wall ? 0.0 : t.shadow);
         }
         o_shadow.texels[texel_index(o.x, y) / 4] = uvec2(pack_rg8x2(shadow[0], shadow[1]), pack_rg8x2(shadow[2], shadow[3]));
     }

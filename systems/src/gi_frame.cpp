@@ -166,7 +166,7 @@ std::array<std::uint64_t, gi::pass_count> pass_keys(const gi::FrameInputs& in, g
                                lights_hash, proxies_hash,
                                suns_hash,   gi::baked_input_key(in),
                                Hasher().add_span(std::span(in.mixed_lights)).add_span(std::span(in.mixed_emissives)).value(),
-                               gi::baked_pulse_key(in)};
+                               gi::baked_pulse_key(in), gi::mixed_suns_key(in)};
     return gi::derive_keys(in, plan, inputs, convergence);
 }
 

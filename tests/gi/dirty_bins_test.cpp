@@ -141,8 +141,9 @@ TEST_F(DirtyBins, OnlyTheBinsOfChangedLightsAreRecordedAndTheFrameIsTheSame) {
     frame("after it, a flicker again", inputs_of(s), Expect::some);
 }
 
-// With a sun the direct pass writes the point lights' textures and the directional pass the
-// frame's; when the sun sets, the direct pass writes the frame's textures again (all of it).
+// With a sun the direct pass adds the suns' own textures (the directional pass's) as it
+// writes: when the sun rises, moves or sets, every bin is recorded; a flicker under a still
+// sun records the flickering light's bins alone.
 TEST_F(DirtyBins, ASunComingAndGoingRecordsEverything) {
     Scene s = lit_cave();
     frame("the first frame", inputs_of(s), Expect::all);
@@ -153,6 +154,10 @@ TEST_F(DirtyBins, ASunComingAndGoingRecordsEverything) {
     frame("the sun rises", inputs_of(s), Expect::all);
     s.point_lights[0].intensity *= 0.9f;
     frame("a flicker under the sun", inputs_of(s), Expect::some);
+    s.directional_lights[0].direction = glm::normalize(glm::vec3(0.5f, -0.8f, -0.3f));
+    frame("the sun moves", inputs_of(s), Expect::all);
+    s.point_lights[0].intensity *= 0.9f;
+    frame("a flicker under the moved sun", inputs_of(s), Expect::some);
     s.directional_lights.clear();
     frame("the sun sets", inputs_of(s), Expect::all);
     s.point_lights[0].intensity *= 0.9f;

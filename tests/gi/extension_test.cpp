@@ -164,7 +164,7 @@ std::vector<std::string> row_names() {
 
 TEST(PassTableExtension, AddedRowsTakeTheirPlaceInTheMethod) {
     const Added& a = added_rows();
-    EXPECT_EQ(row_names(), (std::vector<std::string>{"conduction", "ao", "direct", "directional", "emission",
+    EXPECT_EQ(row_names(), (std::vector<std::string>{"conduction", "ao", "directional", "direct", "emission",
                                                      "accumulate", "heat", "blur", "tint", "wall_indirect", "probes", "mixed", "baked_sample", "baked", "lit"}));
     EXPECT_STREQ(pass_name(a.tint), "tint");
     EXPECT_EQ(registered_pass_count(), builtin_pass_count + 2);

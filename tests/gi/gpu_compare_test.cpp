@@ -64,7 +64,7 @@ class GiGpuScenes : public GiGpuCompare, public ::testing::WithParamInterface<st
 } // namespace
 
 TEST_P(GiGpuScenes, DirectPassesMatchReference) {
-    compare_scene(gi_test::comparison_scene(GetParam()), Pass::directional, false);
+    compare_scene(gi_test::comparison_scene(GetParam()), Pass::direct, false); // through the suns, which come first
 }
 
 TEST_P(GiGpuScenes, WholePipelineMatchesReference) {
@@ -107,7 +107,7 @@ TEST_F(GiGpuCompare, SunsSkipOnlyProxiesWhoseShadowsCannotReachAWorkgroup) {
     for (auto unfold : {lantern::scene::ProxyWallShadows::full, lantern::scene::ProxyWallShadows::unfold}) {
         named.scene.gi.proxy_wall_shadows = unfold;
         SCOPED_TRACE(unfold == lantern::scene::ProxyWallShadows::unfold ? "unfolded" : "folded");
-        compare_scene(named, Pass::directional, false);
+        compare_scene(named, Pass::direct, false);
     }
 }
 
@@ -149,7 +149,7 @@ TEST_F(GiGpuCompare, SunShadowMapOnRealMapsAndACheckerboard) {
                 {glm::normalize(glm::vec3(-1.0f, -0.3f, -1.0f)), {1.0f, 0.8f, 0.6f}, 0.8f, 4.0f, 0.3f},
                 {glm::normalize(glm::vec3(0.35f, -0.9f, -0.2f)), {0.5f, 0.6f, 1.0f}, 0.5f, 4.0f, 0.2f}};
             s.name += " sun map, wall height " + std::to_string(wall_height);
-            compare_scene(s, Pass::directional, false);
+            compare_scene(s, Pass::direct, false);
         }
 }
 

@@ -34,7 +34,11 @@ TEST(Reflect, GiShadersDeclareTheBindingsTheirRecordersPush) {
          {B::uniform_texel_buffer, B::uniform_buffer, B::uniform_buffer, B::storage_buffer, B::storage_buffer,
           B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
           B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer, B::storage_buffer,
-          B::storage_buffer, B::storage_buffer}}, // 16: the dirty light bins' list
+          B::storage_buffer, B::storage_buffer, // 16: the dirty light bins' list
+          // 17-26: the realtime suns' own textures (SUNS)
+          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
+          B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer, B::uniform_texel_buffer,
+          B::uniform_texel_buffer, B::uniform_texel_buffer}},
     };
     for (const auto& [shader, bindings] : expected) {
         auto layout = reflect_spirv(lantern_gi_shaders_spirv(shader));

@@ -54,20 +54,20 @@ constexpr TextureRow builtin_textures[builtin_tex_count] = {
     {wall_indirect_pz, "wall_indirect_pz", TexFormat::rgba16f},
     {wall_indirect_nz, "wall_indirect_nz", TexFormat::rgba16f},
     {lit, "lit", TexFormat::r8, TexScale::window, true, true},
-    {direct_point, "direct_point", TexFormat::rgba16f, TexScale::window, false, true},
-    {shadow_point, "shadow_point", TexFormat::rg8, TexScale::window, false, true},
-    {wall_direct_point_px, "wall_direct_point_px", TexFormat::rgba16f, TexScale::window, false, true},
-    {wall_direct_point_nx, "wall_direct_point_nx", TexFormat::rgba16f, TexScale::window, false, true},
-    {wall_direct_point_pz, "wall_direct_point_pz", TexFormat::rgba16f, TexScale::window, false, true},
-    {wall_direct_point_nz, "wall_direct_point_nz", TexFormat::rgba16f, TexScale::window, false, true},
+    {direct_sun, "direct_sun", TexFormat::rgba16f, TexScale::window, false, true},
+    {shadow_sun, "shadow_sun", TexFormat::rg8, TexScale::window, false, true},
+    {wall_direct_sun_px, "wall_direct_sun_px", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_direct_sun_nx, "wall_direct_sun_nx", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_direct_sun_pz, "wall_direct_sun_pz", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_direct_sun_nz, "wall_direct_sun_nz", TexFormat::rgba16f, TexScale::window, false, true},
     {wall_upper_px, "wall_upper_px", TexFormat::rgba16f},
     {wall_upper_nx, "wall_upper_nx", TexFormat::rgba16f},
     {wall_upper_pz, "wall_upper_pz", TexFormat::rgba16f},
     {wall_upper_nz, "wall_upper_nz", TexFormat::rgba16f},
-    {wall_upper_point_px, "wall_upper_point_px", TexFormat::rgba16f, TexScale::window, false, true},
-    {wall_upper_point_nx, "wall_upper_point_nx", TexFormat::rgba16f, TexScale::window, false, true},
-    {wall_upper_point_pz, "wall_upper_point_pz", TexFormat::rgba16f, TexScale::window, false, true},
-    {wall_upper_point_nz, "wall_upper_point_nz", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_sun_px, "wall_upper_sun_px", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_sun_nx, "wall_upper_sun_nx", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_sun_pz, "wall_upper_sun_pz", TexFormat::rgba16f, TexScale::window, false, true},
+    {wall_upper_sun_nz, "wall_upper_sun_nz", TexFormat::rgba16f, TexScale::window, false, true},
     {jfa_a, "jfa_a", TexFormat::r8, TexScale::custom, true, true, radiosity_grid_size},
     {jfa_b, "jfa_b", TexFormat::r8, TexScale::custom, true, true, radiosity_grid_size},
     {distance_field, "distance_field", TexFormat::rgba16f, TexScale::custom, false, false, radiosity_grid_size},
@@ -110,13 +110,13 @@ static_assert(rows_in_order(), "builtin_textures must list the textures in the o
 
 // Seed 000's heat diffusion: the pipeline order.
 constexpr const PassRow* heat_rows[] = {
-    &rows::conduction, &rows::ao,   &rows::direct,        &rows::directional, &rows::emission,
+    &rows::conduction, &rows::ao,   &rows::directional,   &rows::direct, &rows::emission,
     &rows::heat,       &rows::blur, &rows::wall_indirect, &rows::probes, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 // Seed 003's radiosity: the same direct light and emission, then the distance field and the
 // raymarch in place of heat; the blur is the seed's denoiser.
 constexpr const PassRow* radiosity_rows[] = {
-    &rows::conduction,     &rows::ao,        &rows::direct, &rows::directional,   &rows::emission,
+    &rows::conduction,     &rows::ao,        &rows::directional, &rows::direct,   &rows::emission,
     &rows::distance_field, &rows::radiosity, &rows::blur,   &rows::wall_indirect, &rows::probes, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 
@@ -124,7 +124,7 @@ constexpr const PassRow* radiosity_rows[] = {
 // ground gather in place of emission and heat; the blur smooths the gather's ray pattern.
 // (It writes wall_indirect_* itself: no wall_indirect row.)
 constexpr const PassRow* gather_rows[] = {
-    &rows::conduction, &rows::ao, &rows::direct, &rows::directional, &rows::gather, &rows::blur, &rows::probes, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
+    &rows::conduction, &rows::ao, &rows::directional, &rows::direct, &rows::gather, &rows::blur, &rows::probes, &rows::mixed, &rows::baked_sample, &rows::baked, &rows::lit,
 };
 
 // The registry: the built-in textures, rows and methods, then what add_texture/add_row
@@ -209,6 +209,7 @@ std::uint64_t own_key(const PassRow& row, const FrameInputs& in, const PassPlan&
     if (row.inputs & input_lights) h.add(inputs.lights);
     if (row.inputs & input_proxies) h.add(inputs.proxies);
     if (row.inputs & input_suns) h.add(inputs.suns);
+    if (row.inputs & input_mixed_suns) h.add(inputs.mixed_suns);
     if (row.inputs & input_wall_height) h.add(in.wall_height);
     if (row.inputs & input_walls_in_window) h.add(plan.has_walls_in_window);
     if (row.inputs & input_baked) h.add(inputs.baked);
@@ -405,6 +406,7 @@ InputKeys input_keys_of(const FrameInputs& in) {
     k.suns = Hasher().add_span(std::span(in.directional_lights)).value();
     k.baked = baked_input_key(in);
     k.baked_pulse = baked_pulse_key(in);
+    k.mixed_suns = mixed_suns_key(in);
     return k;
 }
 
@@ -413,6 +415,13 @@ std::uint64_t baked_input_key(const FrameInputs& in) {
     const BakedSun sun = baked_sun_of(in);
     if (sun.key < 0) return in.baked->key;
     return Hasher().add(in.baked->key).add(sun.key).add(sun.blend).add(sun.color.r).add(sun.color.g).add(sun.color.b).value();
+}
+
+std::uint64_t mixed_suns_key(const FrameInputs& in) {
+    Hasher h;
+    for (const GpuDirectionalLight& sun : in.directional_lights)
+        if (is_mixed_sun(sun)) h.add_bytes(&sun, sizeof sun);
+    return h.value();
 }
 
 std::uint64_t baked_pulse_key(const FrameInputs& in) {

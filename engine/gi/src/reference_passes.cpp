@@ -294,7 +294,7 @@ Texture reference_ao(const FrameInputs& in, const RefOptions& options) {
     return t;
 }
 
-DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options) {
+DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options, const DirectTextures* suns) {
     const GiWindow& w = in.window;
     DirectTextures out{Texture("direct", TexFormat::rgba16f, w.width, w.height),
                        Texture("shadow", TexFormat::rg8, w.width, w.height),
@@ -307,8 +307,9 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
             out.wall_direct[f] = Texture(std::string("wall_direct_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
             if (unfold) out.wall_upper[f] = Texture(std::string("wall_upper_") + face_suffix[f], TexFormat::rgba16f, w.width, w.height);
         }
-    // No point or emissive lights: every output is zero (as the GPU clears them, face flags too).
-    if (in.point_lights.empty() && in.emissive_lights.empty()) return out;
+    // No point or emissive lights and no suns: every output is zero (as the GPU clears them,
+    // face flags too).
+    if (in.point_lights.empty() && in.emissive_lights.empty() && !suns) return out;
     std::optional<PointMaps> maps;
     if (in.settings.shadow_method == scene::ShadowMethod::shadow_map && !in.point_lights.empty()) maps = build_point_maps(in);
     const PointMaps* map = maps ? &*maps : nullptr;
@@ -322,12 +323,31 @@ DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options
                 ground_texel(in, map, p, light);
             else if (faces != 0) // a wall texel's ground light is zero; its faces hold its light
                 wall_texel(in, map, cell, p, light);
+            const auto sun = [&](const Texture& t) {
+                const float* v = t.at(x, y);
+                return glm::vec4(v[0], v[1], v[2], v[3]);
+            };
+            float sun_shadow = 0.0f;
+            if (suns) {
+                light.color += glm::vec3(sun(suns->direct));
+                sun_shadow = suns->shadow.at(x, y)[1];
+            }
             store_rgb(out.direct, x, y, light.color, 0.0f);
-            const float shadow[2] = {wall ? 0.0f : light.shadow, 0.0f};
+            const float shadow[2] = {wall ? 0.0f : light.shadow, sun_shadow};
             out.shadow.store(x, y, shadow);
             // Face alpha flags texels that hold face light (wall texels).
             for (int f = 0; f < 4; ++f) {
                 if (!computes_face(faces, f)) continue;
+                if (suns && unfold) { // the suns' edge, weighted by the light their shadows take
+                    const glm::vec4 low = sun(suns->wall_direct[f]), up = sun(suns->wall_upper[f]);
+                    const float taken = (up.r - low.r) + (up.g - low.g) + (up.b - low.b);
+                    if (taken > 0.0f) {
+                        light.edge_sum[f] += taken * up.a;
+                        light.edge_weight[f] += taken;
+                    }
+                    light.upper[f] += glm::vec3(up);
+                }
+                if (suns) light.face[f] += glm::vec3(sun(suns->wall_direct[f]));
                 store_rgb(out.wall_direct[f], x, y, light.face[f], wall ? 1.0f : 0.0f);
                 if (unfold) store_rgb(out.wall_upper[f], x, y, light.upper[f], light.edge(f));
             }

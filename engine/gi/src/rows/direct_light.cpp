@@ -26,28 +26,22 @@ namespace {
 using vk::PassRecorder;
 
 constexpr Tex direct_set[] = {Tex::direct, Tex::shadow, Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz};
-constexpr Tex point_set[] = {Tex::direct_point,         Tex::shadow_point,         Tex::wall_direct_point_px,
-                             Tex::wall_direct_point_nx, Tex::wall_direct_point_pz, Tex::wall_direct_point_nz};
+// The realtime suns alone: the directional pass writes them, the direct pass adds them.
+constexpr Tex sun_set[] = {Tex::direct_sun,         Tex::shadow_sun,         Tex::wall_direct_sun_px,
+                           Tex::wall_direct_sun_nx, Tex::wall_direct_sun_pz, Tex::wall_direct_sun_nz};
 
 constexpr Tex upper_set[] = {Tex::wall_upper_px, Tex::wall_upper_nx, Tex::wall_upper_pz, Tex::wall_upper_nz};
-constexpr Tex upper_point_set[] = {Tex::wall_upper_point_px, Tex::wall_upper_point_nx, Tex::wall_upper_point_pz,
-                                   Tex::wall_upper_point_nz};
+constexpr Tex upper_sun_set[] = {Tex::wall_upper_sun_px, Tex::wall_upper_sun_nx, Tex::wall_upper_sun_pz,
+                                 Tex::wall_upper_sun_nz};
 // The mixed lights alone (a bake is used): written by the mixed pass, added by the baked pass.
 constexpr Tex mixed_set[] = {Tex::direct_mixed,         Tex::shadow_mixed,         Tex::wall_direct_mixed_px,
                              Tex::wall_direct_mixed_nx, Tex::wall_direct_mixed_pz, Tex::wall_direct_mixed_nz};
 constexpr Tex upper_mixed_set[] = {Tex::wall_upper_mixed_px, Tex::wall_upper_mixed_nx, Tex::wall_upper_mixed_pz,
                                    Tex::wall_upper_mixed_nz};
 
-// The direct pass writes the point-light set when realtime suns follow (the directional
-// pass then reads it and writes the contract textures), else the contract set: the colour,
-// the shadow map and the faces computed (computed_faces).
-std::span<const Tex> direct_outputs(const FrameInputs& in) {
-    return has_live_suns(in) ? std::span<const Tex>(point_set) : std::span<const Tex>(direct_set);
-}
-
 // The upper-face textures that go with a set (unfolded proxy shadows).
 std::span<const Tex> upper_outputs(std::span<const Tex> ids) {
-    if (ids.data() == point_set) return upper_point_set;
+    if (ids.data() == sun_set) return upper_sun_set;
     return ids.data() == mixed_set ? std::span<const Tex>(upper_mixed_set) : std::span<const Tex>(upper_set);
 }
 
@@ -64,8 +58,10 @@ TexSet face_set(std::span<const Tex> ids, const FrameInputs& in) {
     return set;
 }
 
-TexSet direct_writes(const FrameInputs& in) { return face_set(direct_outputs(in), in); }
-TexSet directional_writes(const FrameInputs& in) { return face_set(direct_set, in); }
+// The direct pass writes the contract set (the colour, the shadow map, the faces computed:
+// computed_faces); the directional pass the suns' own set, which the direct pass reads.
+TexSet direct_writes(const FrameInputs& in) { return face_set(direct_set, in); }
+TexSet directional_writes(const FrameInputs& in) { return face_set(sun_set, in); }
 
 void put_direct(ReferenceStore& store, std::span<const Tex> ids, DirectTextures d) {
     store.put(ids[0], std::move(d.direct));
@@ -122,6 +118,7 @@ constexpr std::uint32_t feature_linear_falloff = 8; // gi.light_softness 1: no p
 constexpr std::uint32_t feature_list = 16; // gi_direct.comp: one workgroup per listed bin (dirty light bins)
 constexpr std::uint32_t feature_no_lights = 32; // gi_direct.comp: bins no light reaches (the light loops left out)
 constexpr std::uint32_t feature_mixed_suns = 64; // gi_directional.comp: the mixed suns, in place (else the realtime ones)
+constexpr std::uint32_t feature_suns = 128; // gi_direct.comp: adds the realtime suns' own textures (sun_set)
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
@@ -216,7 +213,9 @@ struct DirectState : vk::PassState {
 // did not change holds what a new run would write, and the row records the other bins
 // alone (a torch's flicker, the player's lantern: a few bins of the window).
 
-// Everything the outputs depend on but the lights.
+// Everything the outputs depend on but the lights: with the suns' textures added
+// (feature_suns), also what those depend on besides the walls, proxies and window hashed
+// already (the suns and the suns' settings), so a bin is kept only over the same sunlight.
 std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uint32_t features, bool proxy_per_light) {
     const FrameInputs& in = r.in;
     const WallView& walls = in.walls;
@@ -230,6 +229,12 @@ std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uin
     h.add(reinterpret_cast<std::uintptr_t>(out.data()));
     for (const Tex t : out) h.add(r.has(t) ? r.serial(t) : 0);
     for (const Tex t : upper_outputs(out)) h.add(r.has(t) ? r.serial(t) : 0);
+    if (features & feature_suns) {
+        h.add_span(std::span(in.directional_lights)).add(in.settings.directional_angle_scale);
+        h.add(int(in.settings.sun_shadow_method)).add(int(in.settings.proxy_wall_shadows));
+        for (const Tex t : sun_set) h.add(r.has(t) ? r.serial(t) : 0);
+        for (const Tex t : upper_sun_set) h.add(r.has(t) ? r.serial(t) : 0);
+    }
     const std::uint64_t v = h.value();
     return v ? v : 1;
 }
@@ -337,14 +342,16 @@ bool upload_point_maps(PassRecorder& r, const FrameInputs& in, DirectState& s, b
 }
 
 // The point and emissive lights of `lights` (its point_lights and emissive_lights; window,
-// walls, proxies and settings are the frame's) into the texture set `out`.
-void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<const Tex> out) {
+// walls, proxies and settings are the frame's) into the texture set `out`, with `suns` the
+// realtime suns' own textures (sun_set, the directional pass's) added texel by texel.
+void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<const Tex> out, bool suns = false) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
     const std::uint32_t faces = computed_faces(in.settings);
-    // No point or emissive lights: the outputs are zero. No wall in view: the shader skips
-    // the faces, which stay zero.
-    const bool no_lights = lights.point_lights.empty() && lights.emissive_lights.empty();
+    // No point or emissive lights and no suns: the outputs are zero (with suns, the shader's
+    // light-free variant copies theirs). No wall in view: the shader skips the faces, which
+    // stay zero.
+    const bool no_lights = lights.point_lights.empty() && lights.emissive_lights.empty() && !suns;
     if (no_lights || (!r.plan.has_walls_in_window && faces != 0)) {
         for (std::size_t i = no_lights ? 0 : 2; i < out.size(); ++i)
             if (r.has(out[i])) r.clear(out[i]);
@@ -368,7 +375,8 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const VkDeviceSize per_light = per_bin * lights.point_lights.size();
     const bool proxy_per_light = proxy_words > 0 && per_light <= (VkDeviceSize(16) << 20);
     const std::uint32_t base_features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
-                                        (in.settings.light_softness == 1.0f ? feature_linear_falloff : 0u);
+                                        (in.settings.light_softness == 1.0f ? feature_linear_falloff : 0u) |
+                                        (suns ? feature_suns : 0u);
 
     // Dirty light bins: the bins to record, all of them unless only lights changed. Of those,
     // the bins no light reaches take the light-free variant.
@@ -448,7 +456,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     r.cmd.barrier_compute_to_compute();
 
     const std::uint32_t features = base_features | (point_map ? feature_point_map : 0u);
-    const gpu::DescriptorWrites writes = gpu::DescriptorWrites()
+    gpu::DescriptorWrites writes = gpu::DescriptorWrites()
                                              .uniform_texel_buffer(0, r.walls())
                                              .uniform_buffer(1, r.proxies())
                                              .uniform_buffer(2, s.lights)
@@ -466,6 +474,12 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
                                              .storage_buffer(14, s.map_bins.buffer)
                                              .storage_buffer(15, s.proxy_bins)
                                              .storage_buffer(16, s.dirty);
+    // The suns' textures (faces not computed, and without suns all of them: bound to the
+    // output's colour buffer, never read).
+    for (std::uint32_t i = 0; i < 6; ++i)
+        writes.uniform_texel_buffer(17 + i, suns && r.has(sun_set[i]) ? r.view(sun_set[i]) : r.view(out[0]));
+    for (std::uint32_t f = 0; f < 4; ++f)
+        writes.uniform_texel_buffer(23 + f, suns && r.has(upper_sun_set[f]) ? r.view(upper_sun_set[f]) : r.view(out[0]));
     auto p = r.params<DirectParams>(w.width, w.height);
     p.counts.x = counts.x, p.counts.y = counts.y;
     p.pass.light_softness = in.settings.light_softness;
@@ -494,15 +508,17 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
         if (!dark.empty()) run(feature_list | feature_no_lights, lit.size(), dark.size());
     }
     r.cmd.barrier_compute_to_compute();
-    if (out.data() != direct_set && out.data() != point_set) return;
+    if (out.data() != direct_set) return;
     // What a later frame may need, before it does (creating it then stalls that frame): this
-    // pass with proxies and walls come or gone, and the suns' pass.
+    // pass with proxies and walls come or gone, with and without suns, and the suns' pass.
     const bool sun_map = in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map;
-    for (int flip = 0; flip < 4; ++flip) {
+    for (int flip = 0; flip < 8; ++flip) {
         const bool proxies = (flip & 1) != 0, walls = (flip & 2) != 0;
+        const std::uint32_t with_suns = (flip & 4) != 0 ? (features ^ feature_suns) : features;
         for (std::uint32_t variant : {0u, feature_list, feature_list | feature_no_lights})
             r.prefetch_pipeline<DirectParams>("gi_direct.comp",
-                                              {.proxies = proxies, .walls = walls, .features = features | variant, .faces = faces});
+                                              {.proxies = proxies, .walls = walls, .features = with_suns | variant, .faces = faces});
+        if (flip & 4) continue;
         for (std::uint32_t variant : {0u, feature_mixed_suns})
             r.prefetch_pipeline<DirectionalParams>(
                 "gi_directional.comp",
@@ -510,10 +526,25 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     }
 }
 
-void record_direct(PassRecorder& r) { record_direct_lights(r, r.in, direct_outputs(r.in)); }
+void record_direct(PassRecorder& r) { record_direct_lights(r, r.in, direct_set, has_live_suns(r.in)); }
+
+// The realtime suns' own textures from the store (what the directional row wrote).
+DirectTextures stored_suns(const ReferenceStore& store) {
+    DirectTextures d{store.at(Tex::direct_sun), store.at(Tex::shadow_sun), {}, {}};
+    for (std::size_t f = 0; f < 4; ++f) {
+        if (const Texture* face = store.find(sun_set[2 + f])) d.wall_direct[f] = *face;
+        if (const Texture* upper = store.find(upper_sun_set[f])) d.wall_upper[f] = *upper;
+    }
+    return d;
+}
 
 void reference_direct_row(ReferenceContext& c) {
-    put_direct(c.store, direct_outputs(c.in), reference_direct(c.in, c.options));
+    if (!has_live_suns(c.in)) {
+        put_direct(c.store, direct_set, reference_direct(c.in, c.options));
+        return;
+    }
+    const DirectTextures suns = stored_suns(c.store);
+    put_direct(c.store, direct_set, reference_direct(c.in, c.options, &suns));
 }
 
 // ---- mixed lights: their direct light on its own (a bake holds their bounce; the baked
@@ -628,11 +659,11 @@ bool upload_sun_maps(PassRecorder& r, bool wanted) {
     return wanted;
 }
 
-// The suns' pass: the realtime suns read the point-light set and write the contract
-// textures (never in place); the mixed suns (`mixed`, the mixed row) add to the mixed set in
-// place (each texel reads and writes only its own texels). The shader lights the suns of its
-// kind (is_mixed_sun) from the frame's sun list, so their shadow maps and proxy bins keep
-// their indices.
+// The suns' pass: the realtime suns write their own textures (sun_set; the direct pass adds
+// them); the mixed suns (`mixed`, the mixed row) add to the mixed set in place (each texel
+// reads and writes only its own texels). The shader lights the suns of its kind
+// (is_mixed_sun) from the frame's sun list, so their shadow maps and proxy bins keep their
+// indices.
 void record_suns(PassRecorder& r, bool mixed) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
@@ -642,14 +673,14 @@ void record_suns(PassRecorder& r, bool mixed) {
     upload_array(r, maps.proxy_bins, std::span<const std::uint32_t>(sun_proxy_bins(r)), VK_FORMAT_UNDEFINED,
                  "sun proxy bins");
     r.cmd.barrier_transfer_to_compute();
-    const std::span<const Tex> reads = mixed ? std::span<const Tex>(mixed_set) : std::span<const Tex>(point_set);
-    const std::span<const Tex> upper_reads = upper_outputs(reads);
-    const std::span<const Tex> outs = mixed ? std::span<const Tex>(mixed_set) : std::span<const Tex>(direct_set);
+    // The shader's inputs are bound to its outputs: the mixed suns add in place, the realtime
+    // suns read nothing.
+    const std::span<const Tex> outs = mixed ? std::span<const Tex>(mixed_set) : std::span<const Tex>(sun_set);
     const std::span<const Tex> upper_outs = upper_outputs(outs);
     if (!mixed && !r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
-        for (Tex t : {Tex::wall_direct_px, Tex::wall_direct_nx, Tex::wall_direct_pz, Tex::wall_direct_nz,
-                      Tex::wall_upper_px, Tex::wall_upper_nx, Tex::wall_upper_pz, Tex::wall_upper_nz})
-            if (r.has(t)) r.clear(t);
+        for (std::size_t f = 0; f < 4; ++f)
+            for (Tex t : {outs[2 + f], upper_outs[f]})
+                if (r.has(t)) r.clear(t);
         r.cmd.barrier_transfer_to_compute();
     }
     r.cmd.bind(r.pipeline<DirectionalParams>("gi_directional.comp",
@@ -660,12 +691,12 @@ void record_suns(PassRecorder& r, bool mixed) {
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
     // Faces not computed: bound to the colour's buffers, neither read nor written.
-    for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(r.has(reads[i]) ? reads[i] : reads[0]));
+    for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(r.has(outs[i]) ? outs[i] : outs[0]));
     for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(r.has(outs[i]) ? outs[i] : outs[0]));
     writes.uniform_texel_buffer(15, maps.headers.view).uniform_texel_buffer(16, maps.first.view).uniform_texel_buffer(17, maps.entries.view);
     for (std::uint32_t f = 0; f < 4; ++f) {
-        const Tex in_upper = upper_reads[f], out_upper = upper_outs[f];
-        writes.uniform_texel_buffer(18 + f, r.view(r.has(in_upper) ? in_upper : reads[0]));
+        const Tex out_upper = upper_outs[f];
+        writes.uniform_texel_buffer(18 + f, r.view(r.has(out_upper) ? out_upper : outs[0]));
         writes.storage_buffer(22 + f, r.buffer(r.has(out_upper) ? out_upper : outs[0]));
     }
     writes.storage_buffer(26, maps.proxy_bins.buffer);
@@ -682,20 +713,21 @@ void record_suns(PassRecorder& r, bool mixed) {
 
 void record_directional(PassRecorder& r) { record_suns(r, false); }
 
+// The realtime suns onto zero textures (what the direct pass writes without lights).
 void reference_directional_row(ReferenceContext& c) {
-    DirectTextures d{c.store.at(Tex::direct_point), c.store.at(Tex::shadow_point), {}, {}};
-    for (std::size_t f = 0; f < 4; ++f) {
-        if (const Texture* face = c.store.find(point_set[2 + f])) d.wall_direct[f] = *face;
-        if (const Texture* upper = c.store.find(upper_point_set[f])) d.wall_upper[f] = *upper;
-    }
-    reference_directional(with_suns(c.in, false), d, c.options); // adds the suns to a copy: never in place
-    put_direct(c.store, direct_set, std::move(d));
+    FrameInputs suns = with_suns(c.in, false);
+    suns.point_lights.clear();
+    suns.emissive_lights.clear();
+    DirectTextures d = reference_direct(suns, c.options);
+    reference_directional(suns, d, c.options);
+    put_direct(c.store, sun_set, std::move(d));
 }
 
-constexpr Tex directional_reads[] = {Tex::direct_point,         Tex::shadow_point,         Tex::wall_direct_point_px,
-                                     Tex::wall_direct_point_nx, Tex::wall_direct_point_pz, Tex::wall_direct_point_nz,
-                                     Tex::wall_upper_point_px,  Tex::wall_upper_point_nx,  Tex::wall_upper_point_pz,
-                                     Tex::wall_upper_point_nz};
+// The direct pass reads the suns' own textures when realtime suns light the frame.
+constexpr Tex direct_reads[] = {Tex::direct_sun,        Tex::shadow_sun,        Tex::wall_direct_sun_px,
+                                Tex::wall_direct_sun_nx, Tex::wall_direct_sun_pz, Tex::wall_direct_sun_nz,
+                                Tex::wall_upper_sun_px,  Tex::wall_upper_sun_nx,  Tex::wall_upper_sun_pz,
+                                Tex::wall_upper_sun_nz};
 
 const char* ao_not_needed(const FrameInputs& in, bool, bool) { return in.settings.ao.enabled ? nullptr : "AO disabled"; }
 const char* directional_not_needed(const FrameInputs& in, bool, bool) {
@@ -747,6 +779,7 @@ constinit const PassRow ao{
 constinit const PassRow direct{
     .pass = Pass::direct,
     .name = "direct",
+    .reads = direct_reads,
     .writes_for = direct_writes,
     .settings = direct_settings,
     .inputs = input_walls | input_lights | input_proxies | input_wall_height | input_walls_in_window,
@@ -759,7 +792,7 @@ constinit const PassRow mixed{
     .name = "mixed",
     .writes_for = mixed_writes,
     .settings = mixed_settings,
-    .inputs = input_walls | input_mixed_lights | input_suns | input_proxies | input_wall_height | input_walls_in_window,
+    .inputs = input_walls | input_mixed_lights | input_mixed_suns | input_proxies | input_wall_height | input_walls_in_window,
     .not_needed = mixed_not_needed,
     .record = record_mixed,
     .reference = reference_mixed_row,
@@ -768,7 +801,6 @@ constinit const PassRow mixed{
 constinit const PassRow directional{
     .pass = Pass::directional,
     .name = "directional",
-    .reads = directional_reads,
     .writes_for = directional_writes,
     .settings = directional_settings,
     .inputs = input_walls | input_proxies | input_suns | input_wall_height | input_walls_in_window,

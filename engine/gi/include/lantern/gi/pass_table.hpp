@@ -62,15 +62,16 @@ enum class Tex : std::uint8_t {
     wall_indirect_pz,
     wall_indirect_nz,
     lit, // rgba8 sRGB, one 32-bit word per texel
-    // Point and emissive light alone, when the scene has directional lights: the
-    // directional pass reads these and writes direct/shadow/wall_direct_*, so either pass
-    // can be rerun (or cached) without the other.
-    direct_point,
-    shadow_point,
-    wall_direct_point_px,
-    wall_direct_point_nx,
-    wall_direct_point_pz,
-    wall_direct_point_nz,
+    // The realtime suns' light alone (the directional pass writes it; shadow: G only): the
+    // direct pass adds it to the point and emissive lights' as it writes the contract set, so
+    // the suns' pass reruns only when a sun, the walls, the proxies or the window change, and
+    // the point lights' only when they do (docs/gi.md, "The suns' own textures").
+    direct_sun,
+    shadow_sun,
+    wall_direct_sun_px,
+    wall_direct_sun_nx,
+    wall_direct_sun_pz,
+    wall_direct_sun_nz,
     // gi.proxy_wall_shadows = unfold, with shadow proxies: per face the light at the top of
     // the face (rgb) and the height where the proxies' shadows end (a, world units); the
     // wall_direct_* textures then hold the light at the face's foot.
@@ -78,10 +79,10 @@ enum class Tex : std::uint8_t {
     wall_upper_nx,
     wall_upper_pz,
     wall_upper_nz,
-    wall_upper_point_px, // the point-light part, when directional lights follow
-    wall_upper_point_nx,
-    wall_upper_point_pz,
-    wall_upper_point_nz,
+    wall_upper_sun_px, // the realtime suns' part
+    wall_upper_sun_nx,
+    wall_upper_sun_pz,
+    wall_upper_sun_nz,
     // gi.method = radiosity (seed 003), on the radiosity grid (gi.radiosity.scale):
     jfa_a, // jump flood ping-pong: the nearest wall texel's coordinate (internal)
     jfa_b,
@@ -217,6 +218,7 @@ enum InputBits : std::uint32_t {
     input_baked = 1u << 6,           // the baked light (FrameInputs::baked, its key)
     input_mixed_lights = 1u << 7,    // the mixed lights (FrameInputs::mixed_lights, mixed_emissives)
     input_baked_pulse = 1u << 8,     // the pulsing glow's factor (FrameInputs::baked_pulse) when the bake pulses
+    input_mixed_suns = 1u << 9,      // the mixed suns alone (the mixed row: a realtime sun's move leaves it be)
 };
 
 // The hashes of the frame inputs (the frame systems keep them as versions; input_keys_of
@@ -230,6 +232,7 @@ struct InputKeys {
     std::uint64_t baked = 0; // FrameInputs::baked->key, 0 without
     std::uint64_t mixed = 0; // the mixed lights
     std::uint64_t baked_pulse = 0; // the pulsing glow's factor, 0 without a pulsing bake
+    std::uint64_t mixed_suns = 0;  // the mixed suns (mixed_suns_key)
 };
 InputKeys input_keys_of(const FrameInputs& in);
 // InputKeys::baked of a frame: the baked light's key, with the keyed sun's keys, blend and
@@ -238,6 +241,8 @@ std::uint64_t baked_input_key(const FrameInputs& in);
 // InputKeys::baked_pulse: the pulsing glow's factor when the bake has a pulsing part (a new
 // pulse reruns the baked pass's adds, not the atlas reads); 0 otherwise.
 std::uint64_t baked_pulse_key(const FrameInputs& in);
+// InputKeys::mixed_suns: a hash of the mixed suns alone (is_mixed_sun), in order.
+std::uint64_t mixed_suns_key(const FrameInputs& in);
 
 namespace vk {
 class PassRecorder; // lantern/gi/vulkan/pass_recorder.hpp

@@ -13,8 +13,8 @@ namespace lantern::gi {
 enum class Pass : std::uint8_t {
     conduction,
     ao,
-    direct,      // point + emissive lights (the seed's "DDA")
-    directional, // the seed's "DDA_Directional"
+    direct,      // point + emissive lights (the seed's "DDA"), plus the realtime suns' own textures
+    directional, // the seed's "DDA_Directional": the realtime suns into their own textures (runs before direct)
     emission,
     heat,        // heat transfer x rounds, with down/upsample at half and quarter scale
     blur,
@@ -55,7 +55,7 @@ struct PassSet {
 
 // What the scene and settings need: the rows of gi.method whose `not_needed` says nothing,
 // and for each pass left out, why ("no directional lights", "AO disabled", ...). `through`
-// limits the pipeline to the rows up to it (e.g. Pass::directional for direct light only).
+// limits the pipeline to the rows up to it (e.g. Pass::direct for direct light only: the suns come before it).
 struct PassPlan {
     PassSet run;
     std::string_view reason[pass_count] = {}; // static text; empty for passes that run

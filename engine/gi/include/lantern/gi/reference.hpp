@@ -41,8 +41,12 @@ struct RefOptions {
 
 Texture reference_conduction(const FrameInputs& in, const RefOptions& options = {});
 Texture reference_ao(const FrameInputs& in, const RefOptions& options = {});
-// Point and emissive lights (the seed's "DDA" pass).
-DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options = {});
+// Point and emissive lights (the seed's "DDA" pass); with `suns` (the realtime suns' own
+// textures: reference_directional onto zero textures), their light added texel by texel as
+// the direct shader adds it: colours and faces summed, the suns' shadow as G, the upper
+// faces' edges merged weighted by the light their shadows take.
+DirectTextures reference_direct(const FrameInputs& in, const RefOptions& options = {},
+                                const DirectTextures* suns = nullptr);
 // Adds the directional lights into `textures` (the seed's "DDA_Directional" pass).
 void reference_directional(const FrameInputs& in, DirectTextures& textures, const RefOptions& options = {});
 
