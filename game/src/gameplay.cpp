@@ -155,6 +155,11 @@ glm::vec3 sun_direction(float time_of_day) { return scene::day_sun_direction(tim
 
 glm::vec3 sun_light(float time_of_day) { return scene::day_sun_light(time_of_day); }
 
+float sun_step_time(float time_of_day) {
+    const float steps = float(sun_steps_per_day);
+    return std::floor(time_of_day * steps) / steps;
+}
+
 // A lamp post's light hangs from its arm, a little towards +z of the post.
 const glm::vec2 lamp_light_offset{0.0f, 0.4f};
 
@@ -464,9 +469,10 @@ void add_gameplay_systems(ecs::Schedule& schedule) {
         }
         if (!day.drives_sun) return; // a scene's own suns, until the cycle is switched on
         if (day.running) day.time_of_day = std::fmod(day.time_of_day + w.resource<GameClock>().dt / day.day_length, 1.0f);
-        // The sun follows the time of day (also when it was set directly, e.g. from the HUD);
-        // an unchanged sun is not touched, so its GI passes stay cached.
-        const glm::vec3 direction = sun_direction(day.time_of_day), color = sun_light(day.time_of_day);
+        // The sun follows the time of day (also when it was set directly, e.g. from the HUD),
+        // in steps; an unchanged sun is not touched, so its GI passes stay cached.
+        const float t = sun_step_time(day.time_of_day);
+        const glm::vec3 direction = sun_direction(t), color = sun_light(t);
         w.view<Sun, DirectionalLight>().each([&](ecs::Entity e, const Sun&, const DirectionalLight& d) {
             if (d.direction == direction && d.color == color && d.intensity == 1.0f) return;
             DirectionalLight& p = w.patch<DirectionalLight>(e);

@@ -181,6 +181,10 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
         },
         true);
     p.flag("--no-player-light", "the player carries no light", [&] { o.player_light = false; });
+    p.number("--time-of-day", "T",
+             "the time of day a new game starts at: 0 midnight, 0.25 sunrise, 0.5 noon, 0.75 sunset\n"
+             "(default 0.85: night, the caves lit by torches and crystals; a save keeps its own)",
+             o.time_of_day, 0.0f, 0.999f);
     p.flag("--no-sound", "no sound (without an audio device the game runs silent anyway)", [&] { o.sound = false; });
     p.flag("--no-texel-lighting", "light props and the player per pixel by the GI, not per texel of their art",
            [&] { o.texel_lighting = false; });

@@ -92,7 +92,7 @@ ecs::Entity spawn_sun(ecs::World& world) {
     const ecs::Entity e = world.create();
     world.emplace<Sun>(e);
     const float t = world.has_resource<DayCycle>() ? world.resource<DayCycle>().time_of_day : DayCycle{}.time_of_day;
-    world.emplace<DirectionalLight>(e, DirectionalLight{sun_direction(t), sun_light(t), 1.0f, 4.0f, 0.5f});
+    world.emplace<DirectionalLight>(e, DirectionalLight{sun_direction(sun_step_time(t)), sun_light(sun_step_time(t)), 1.0f, 4.0f, 0.5f});
     return e;
 }
 

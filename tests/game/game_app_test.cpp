@@ -1146,6 +1146,7 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
                                    "direction, jump_flood, baked, bricks, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},
         {{"--bake-rays", "0"}, "--bake-rays: must be an integer in [1, 1024], got '0'"},
+        {{"--time-of-day", "1.5"}, "--time-of-day: must be a number in [0, "},
         {{"--watch"}, "--watch needs a --scene FILE or a --tables FILE to watch"},
         {{"--tables", dir.file("bad_tables.json")}, "bad_tables.json:1:34: lights.lantern: unknown key"},
         {{"--schedule", dir.path().string()}, "--schedule " + dir.path().string() + ": is a folder"},

@@ -16,12 +16,15 @@
 #include "lantern/gi/passes.hpp"
 #include "lantern/profile/profiler.hpp"
 
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 #include <imgui.h>
 #include <imgui_internal.h>
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <string>
 
 namespace lantern::game {
@@ -585,6 +588,58 @@ TEST(Gameplay, MinedThingsDropAsItemsThatThePlayerCollectsByWalkingNear) {
     for (int i = 0; i < 60 && !items().empty(); ++i) frame();
     EXPECT_TRUE(items().empty());
     EXPECT_EQ(world.resource<Inventory>()[Item::torch], 4);
+}
+
+// The day cycle moves the sun in steps of 1/sun_steps_per_day of a day: at the game's day
+// length (60 s a day, 60 frames a second) the sun changes every fifth frame, so between
+// steps its GI pass stays cached while torches flicker; each step is half a degree.
+TEST(Gameplay, TheDayCycleMovesTheSunInSteps) {
+    ecs::World world;
+    jobs::JobSystem::Config no_workers;
+    no_workers.worker_threads = 0;
+    jobs::JobSystem jobs(no_workers);
+    scene::WallGrid grid;
+    grid.width = grid.height = 16;
+    grid.cells.assign(std::size_t(grid.width * grid.height), 0);
+    world.set_resource<systems::Streaming>(std::make_shared<systems::GridSource>(grid));
+    world.set_resource<Controls>();
+    world.set_resource<GameClock>();
+    world.set_resource<CameraRig>();
+    world.set_resource<DayCycle>(DayCycle{true, 0.4f, 60.0f, true});
+    world.set_resource<systems::GiConfig>();
+    world.set_resource<Inventory>();
+    world.set_resource<WorldEdits>();
+    world.set_resource<SoundCues>();
+    spawn_player(world, {8.5f, 8.5f}, false);
+    const ecs::Entity sun = world.create();
+    world.emplace<Sun>(sun);
+    world.emplace<DirectionalLight>(sun, DirectionalLight{sun_direction(0.4f), sun_light(0.4f), 1.0f, 4.0f, 0.5f});
+    ecs::Schedule schedule(jobs);
+    add_gameplay_systems(schedule);
+    schedule.run(world);
+    glm::vec3 last = world.get<DirectionalLight>(sun).direction;
+    long last_step = std::lround(sun_step_time(world.resource<DayCycle>().time_of_day) * float(sun_steps_per_day));
+    int changes = 0;
+    for (int f = 0; f < 120; ++f) {
+        schedule.run(world);
+        const DirectionalLight& d = world.get<DirectionalLight>(sun);
+        const float shown = sun_step_time(world.resource<DayCycle>().time_of_day);
+        EXPECT_EQ(d.direction, sun_direction(shown)) << "frame " << f;
+        EXPECT_EQ(d.color, sun_light(shown)) << "frame " << f;
+        const long step = std::lround(shown * float(sun_steps_per_day));
+        if (d.direction != last) {
+            ++changes;
+            EXPECT_EQ(step, last_step + 1) << "frame " << f << ": one step at a time";
+            const float degrees = glm::degrees(std::acos(std::clamp(glm::dot(d.direction, last), -1.0f, 1.0f)));
+            EXPECT_LT(degrees, 0.51f) << "frame " << f;
+        } else {
+            EXPECT_EQ(step, last_step) << "frame " << f;
+        }
+        last = d.direction;
+        last_step = step;
+    }
+    EXPECT_GE(changes, 23);
+    EXPECT_LE(changes, 25) << "120 frames of 1/3600 of a day: one step every five frames";
 }
 
 // Seed 001's static lights in the game: under a bake (context.probes), the crystal's light

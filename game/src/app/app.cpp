@@ -98,7 +98,7 @@ Result<std::unique_ptr<Session>> Game::make_session(const WorldSpec& spec, const
     w.set_resource<Inventory>();
     w.set_resource<GameClock>();
     DayCycle day;
-    day.time_of_day = 0.85f; // night: torches and crystals carry the caves
+    day.time_of_day = options_.time_of_day; // 0.85 by default: night, torches and crystals carry the caves
     day.drives_sun = spec.kind != WorldKind::scene;
     w.set_resource<DayCycle>(day);
     CameraRig rig;

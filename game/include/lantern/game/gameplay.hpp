@@ -45,6 +45,11 @@ float flicker(double time, float phase);
 // (scene::day_sun_direction and day_sun_light: the path a bake's sun keys follow).
 glm::vec3 sun_direction(float time_of_day);
 glm::vec3 sun_light(float time_of_day);
+// The day cycle moves the sun in steps of 1/sun_steps_per_day of a day (half a degree):
+// the time of day the sun shows, rounded down to its step. Between steps the suns' GI pass
+// stays cached while torches flicker (docs/game.md, "The day cycle").
+inline constexpr int sun_steps_per_day = 720;
+float sun_step_time(float time_of_day);
 
 // Adds the game systems (input-driven movement and camera, interaction, flicker, day
 // cycle) to a GI frame's schedule; they run before the GI systems.

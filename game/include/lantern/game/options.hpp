@@ -53,6 +53,7 @@ struct GameOptions {
     scene::GiSettings gi;            // the game's defaults, then --set gi.KEY=VALUE overrides
     std::vector<std::string> gi_overrides; // the --set assignments (applied again to a scene's own settings)
     bool player_light = true;        // --no-player-light
+    float time_of_day = 0.85f;       // --time-of-day T: a new game's start (0 midnight, 0.5 noon; a save keeps its own)
     bool sound = true;               // --no-sound (a window without an audio device runs silent anyway)
     bool bake = true;                // --no-bake: no baked light (docs/baked.md, "In the game")
     bool texel_lighting = true;      // --no-texel-lighting: props and the player lit per pixel by
