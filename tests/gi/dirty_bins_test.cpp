@@ -49,17 +49,22 @@ class DirtyBins : public lantern::test::GpuTest {
     enum class Expect { any, none, some, all };
 
     // One frame on both renderers: every contract texture equal bit for bit; the direct and
-    // mixed passes recorded as many workgroups as `direct` and `mixed` say.
-    void frame(const std::string& name, const FrameInputs& in, Expect direct, Expect mixed = Expect::any) {
+    // mixed passes recorded as many workgroups as `direct` and `mixed` say, and the heat
+    // pass as many of its tap masks' workgroups as `heat` says.
+    void frame(const std::string& name, const FrameInputs& in, Expect direct, Expect mixed = Expect::any,
+               Expect heat = Expect::any) {
         PassPlan plan = plan_passes(in, true);
-        const vk::Renderer::PartialWork before[2] = {dirty_->partial_work(Pass::direct), dirty_->partial_work(Pass::mixed)};
+        constexpr Pass passes[3] = {Pass::direct, Pass::mixed, Pass::heat};
+        constexpr const char* names[3] = {": direct", ": mixed", ": heat's tap masks"};
+        vk::Renderer::PartialWork before[3], after[3];
+        for (int k = 0; k < 3; ++k) before[k] = dirty_->partial_work(passes[k]);
         auto a = run_vulkan_frame(*dirty_, in, plan);
         auto b = run_vulkan_frame(*full_, in, plan);
         ASSERT_TRUE(a.ok() && b.ok()) << name;
-        const vk::Renderer::PartialWork after[2] = {dirty_->partial_work(Pass::direct), dirty_->partial_work(Pass::mixed)};
-        const Expect expect[2] = {direct, mixed};
-        for (int k = 0; k < 2; ++k) {
-            const std::string what = name + (k == 0 ? ": direct" : ": mixed");
+        for (int k = 0; k < 3; ++k) after[k] = dirty_->partial_work(passes[k]);
+        const Expect expect[3] = {direct, mixed, heat};
+        for (int k = 0; k < 3; ++k) {
+            const std::string what = name + names[k];
             const std::uint64_t workgroups = after[k].workgroups - before[k].workgroups,
                                 recorded = after[k].recorded - before[k].recorded;
             if (expect[k] != Expect::any) {
@@ -191,4 +196,30 @@ TEST_F(DirtyBins, MixedLightsKeepTheirOwnBins) {
     frame("the mixed light leaves (nothing is added in place)", inputs(), Expect::all, Expect::any);
     s.point_lights[0].intensity *= 1.2f;
     frame("a realtime torch flickers again", inputs(), Expect::some, Expect::any);
+}
+
+// The heat pass reruns whenever the direct light changes (every frame a torch flickers), but
+// its tap masks depend on the window, the walls and the heat settings alone: they are kept
+// through flickers and proxy moves and recomputed when a wall is mined or the window steps,
+// and the frames stay the same bit for bit as with everything recomputed.
+TEST_F(DirtyBins, TheHeatPassKeepsItsTapMasksWhileTheWallsAndWindowStay) {
+    Scene s = lit_cave();
+    s.gi.resolution = 8;
+    s.gi.heat_scale = lantern::scene::HeatScale::half; // four heat texels a tile: far taps, segment checks
+    s.gi.heat_rounds = 6;
+    ASSERT_TRUE(plan_passes(inputs_of(s), true).run.has(Pass::heat));
+    frame("the first frame", inputs_of(s), Expect::all, Expect::any, Expect::all);
+    s.point_lights[0].intensity *= 0.83f;
+    frame("a torch flickers", inputs_of(s), Expect::some, Expect::any, Expect::none);
+    s.shadow_proxies[0].position.x += 0.25f;
+    frame("a proxy moves", inputs_of(s), Expect::all, Expect::any, Expect::none);
+    s.walls.cells[std::size_t(15 * 40 + 20)] ^= 1;
+    frame("a wall is mined", inputs_of(s), Expect::all, Expect::any, Expect::all);
+    s.point_lights[1].intensity *= 1.1f;
+    frame("after it, a flicker", inputs_of(s), Expect::some, Expect::any, Expect::none);
+    std::get<lantern::scene::OrthoView>(s.view).center += glm::vec2(1.0f, 0.0f);
+    frame("the window steps", inputs_of(s), Expect::all, Expect::any, Expect::all);
+    s.gi.segment_check = !s.gi.segment_check;
+    frame("the segment check is switched (the direct pass does not read it)", inputs_of(s), Expect::none, Expect::any,
+          Expect::all);
 }

@@ -208,10 +208,10 @@ Texture reference_heat_upsample(const FrameInputs& in, const Texture& heat, cons
     return reference_upsample(in, heat_grid(in.window, in.settings.heat_scale), heat, options);
 }
 
-Texture reference_blur(const FrameInputs& in, const Texture& indirect, const RefOptions& options) {
+Texture reference_blur(const FrameInputs& in, const Texture& indirect, const Texture& conduction, const RefOptions& options) {
     static constexpr float kernel[5] = {0.13533528f, 0.60653066f, 1.0f, 0.60653066f, 0.13533528f};
     const GiWindow& w = in.window;
-    auto conductive = [&](int x, int y) { return air_at(in.walls, w.texel_center(x, y)); };
+    auto conductive = [&](int x, int y) { return *conduction.at(x, y) > 0.5f; };
     auto pass = [&](const Texture& src, glm::ivec2 axis) {
         Texture dst(indirect.name, TexFormat::rgba16f, w.width, w.height);
         for_each_row(w.height, options, [&](int y) {

@@ -218,12 +218,8 @@ struct DirectState : vk::PassState {
 // already (the suns and the suns' settings), so a bin is kept only over the same sunlight.
 std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uint32_t features, bool proxy_per_light) {
     const FrameInputs& in = r.in;
-    const WallView& walls = in.walls;
     Hasher h;
-    h.add(hash_window(in.window)).add(in.window.width).add(in.window.height).add(in.window.resolution);
-    h.add(walls.width).add(walls.height).add(walls.origin.x).add(walls.origin.y).add(walls.phase.x).add(walls.phase.y);
-    h.add_bytes(walls.cells, std::size_t(walls.width) * std::size_t(walls.height));
-    h.add_span(std::span(in.proxies)).add(in.wall_height).add(r.plan.has_walls_in_window);
+    add_window_and_walls(h, in).add_span(std::span(in.proxies)).add(in.wall_height).add(r.plan.has_walls_in_window);
     h.add(in.settings.light_softness).add(in.settings.wall_face_exponent).add(computed_faces(in.settings));
     h.add(features).add(proxy_per_light).add(r.block_h()).add(r.group_x()).add(r.group_y());
     h.add(reinterpret_cast<std::uintptr_t>(out.data()));

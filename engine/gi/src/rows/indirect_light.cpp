@@ -66,11 +66,29 @@ int heat_iterations(const FrameInputs& in) { return in.settings.heat_rounds + 2;
 Tex heat_source(int round) { return round % 2 == 1 ? Tex::heat_a : Tex::heat_b; }
 Tex heat_result(int rounds) { return rounds % 2 == 1 ? Tex::heat_b : Tex::heat_a; }
 
+// The tap masks depend on the window, the walls and the heat grid's settings, not on the
+// light: the row keeps them from its last run while those stay (a torch's flicker and the
+// player's lantern rerun the heat every frame; the masks' segment checks were a fifth of it).
+struct HeatState : vk::PassState {
+    std::uint64_t mask_context = 0; // what the masks were computed for; 0: nothing known
+};
+
+std::uint64_t heat_mask_context(PassRecorder& r, const HeatGrid& g, float distance, float segment_radius) {
+    Hasher h;
+    add_window_and_walls(h, r.in);
+    h.add(g.width).add(g.height).add(g.scale).add(g.texels_per_unit).add(distance).add(segment_radius);
+    h.add(r.in.settings.segment_check).add(r.serial(Tex::heat_mask));
+    h.add(r.block_h()).add(r.group_x()).add(r.group_y());
+    const std::uint64_t v = h.value();
+    return v ? v : 1;
+}
+
 void record_heat(PassRecorder& r) {
     const GiWindow& w = r.in.window;
     const scene::GiSettings& s = r.in.settings;
     const HeatGrid g = heat_grid(w, s.heat_scale);
     const float distance = s.diffusion_distance * g.texels_per_unit;
+    const float segment_radius = s.diffusion_distance * 2.0f + 2.0f;
     const int rounds = s.heat_rounds;
     if (r.iteration == 0) {
         // Seed.
@@ -85,7 +103,15 @@ void record_heat(PassRecorder& r) {
         r.cmd.push_constants(seed);
         r.dispatch(g.width, g.height);
         r.cmd.barrier_compute_to_compute();
-        // Tap masks: which taps each heat texel may use (air, segment clear), once per frame.
+        // Tap masks: which taps each heat texel may use (air, segment clear), kept while the
+        // window, the walls and the settings stay (RendererOptions::dirty_bins).
+        HeatState& state = r.state<HeatState>();
+        const std::uint64_t context = heat_mask_context(r, g, distance, segment_radius);
+        const std::uint64_t mask_groups = r.dispatch_groups(g.width, g.height);
+        const bool kept = r.dirty_bins() && state.mask_context == context;
+        r.count_workgroups(mask_groups, kept ? 0 : mask_groups);
+        if (kept) return;
+        state.mask_context = context;
         r.cmd.bind(r.pipeline<HeatMaskParams>("gi_heat_mask.comp", {.proxies = false, .segment_check = s.segment_check}));
         r.cmd.push_descriptors(gpu::DescriptorWrites()
                                    .uniform_texel_buffer(0, r.walls())
@@ -93,7 +119,7 @@ void record_heat(PassRecorder& r) {
                                    .storage_buffer(2, r.buffer(Tex::heat_mask)));
         auto mask = r.params<HeatMaskParams>(g.width, g.height);
         mask.pass = {.texels_per_unit = g.texels_per_unit, .distance = distance,
-                     .segment_radius = s.diffusion_distance * 2.0f + 2.0f};
+                     .segment_radius = segment_radius};
         r.cmd.push_constants(mask);
         r.dispatch(g.width, g.height);
         r.cmd.barrier_compute_to_compute();
@@ -137,10 +163,9 @@ void record_blur(PassRecorder& r) {
     auto blur_pass = [&](Tex src, Tex dst, glm::ivec2 axis) {
         r.cmd.bind(pipeline);
         r.cmd.push_descriptors(gpu::DescriptorWrites()
-                                   .uniform_texel_buffer(0, r.walls())
-                                   .uniform_buffer(1, r.proxies())
-                                   .uniform_texel_buffer(2, r.view(src))
-                                   .storage_buffer(3, r.buffer(dst)));
+                                   .uniform_texel_buffer(0, r.view(Tex::conduction))
+                                   .uniform_texel_buffer(1, r.view(src))
+                                   .storage_buffer(2, r.buffer(dst)));
         auto p = r.params<BlurParams>(w.width, w.height);
         p.pass = {.axis_x = axis.x, .axis_y = axis.y};
         r.cmd.push_constants(p);
@@ -152,7 +177,7 @@ void record_blur(PassRecorder& r) {
 }
 
 void reference_blur_row(ReferenceContext& c) {
-    c.store.put(Tex::indirect, reference_blur(c.in, c.store.at(Tex::indirect), c.options));
+    c.store.put(Tex::indirect, reference_blur(c.in, c.store.at(Tex::indirect), c.store.at(Tex::conduction), c.options));
 }
 
 // ---- wall-face indirect
@@ -206,7 +231,7 @@ constexpr Tex heat_writes[] = {Tex::heat_a, Tex::heat_b, Tex::heat_mask, Tex::in
 constexpr std::string_view heat_settings[] = {"heat_rounds",    "heat_scale",           "diffusion_rate",
                                               "diffusion_distance", "range_boost", "intensity_multiplier",
                                               "per_channel",    "segment_check"};
-constexpr Tex blur_reads[] = {Tex::indirect};
+constexpr Tex blur_reads[] = {Tex::indirect, Tex::conduction};
 constexpr Tex blur_writes[] = {Tex::blur_temp, Tex::indirect};
 constexpr std::string_view blur_settings[] = {"blur"};
 constexpr Tex wall_indirect_reads[] = {Tex::indirect};
@@ -214,6 +239,13 @@ constexpr std::string_view wall_indirect_settings[] = {"wall_lighting", "wall_fa
                                                        "wall_faces.pz", "wall_faces.nz"};
 
 } // namespace
+
+Hasher& add_window_and_walls(Hasher& h, const FrameInputs& in) {
+    const WallView& walls = in.walls;
+    h.add(hash_window(in.window)).add(in.window.width).add(in.window.height).add(in.window.resolution);
+    h.add(walls.width).add(walls.height).add(walls.origin.x).add(walls.origin.y).add(walls.phase.x).add(walls.phase.y);
+    return h.add_bytes(walls.cells, std::size_t(walls.width) * std::size_t(walls.height));
+}
 
 void record_upsample(PassRecorder& r, Tex src, const HeatGrid& g) {
     const GiWindow& w = r.in.window;

@@ -4,6 +4,7 @@
 // lists in pass_table.cpp can point at them from any translation unit.
 #pragma once
 
+#include "lantern/core/hash.hpp"
 #include "lantern/gi/pass_table.hpp"
 #include "lantern/gi/reference_indirect.hpp"
 #include "lantern/gi/vulkan/pass_recorder.hpp"
@@ -32,6 +33,10 @@ extern const PassRow probes;
 
 // Records the upsample of a grid texture (heat, radiosity) into Tex::indirect (gi_upsample).
 void record_upsample(vk::PassRecorder& r, Tex src, const HeatGrid& grid);
+
+// Adds to `h` the GI window and the walls in it: what a row's kept work (the direct pass's
+// light bins, the heat row's tap masks) depends on besides its own inputs.
+Hasher& add_window_and_walls(Hasher& h, const FrameInputs& in);
 
 // A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown
 // as needed.

@@ -237,10 +237,15 @@ GiPassParams Renderer::params(const FrameInputs& in, int width, int height) cons
     return p;
 }
 
-void Renderer::dispatch_blocks(gpu::CommandList& cmd, int width, int height) {
+glm::uvec2 Renderer::block_groups(int width, int height) const {
     const std::uint32_t blocks_x = std::uint32_t(pitch_of(width) / 4);
     const std::uint32_t blocks_y = (std::uint32_t(height) + block_h_ - 1) / block_h_;
-    cmd.dispatch((blocks_x + group_x_ - 1) / group_x_, (blocks_y + group_y_ - 1) / group_y_);
+    return {(blocks_x + group_x_ - 1) / group_x_, (blocks_y + group_y_ - 1) / group_y_};
+}
+
+void Renderer::dispatch_blocks(gpu::CommandList& cmd, int width, int height) {
+    const glm::uvec2 groups = block_groups(width, height);
+    cmd.dispatch(groups.x, groups.y);
 }
 
 void Renderer::clear(gpu::CommandList& cmd, Tex t) { cmd.fill_buffer(textures_[int(t)].buffer, 0); }

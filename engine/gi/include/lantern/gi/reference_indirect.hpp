@@ -54,8 +54,10 @@ Texture reference_upsample(const FrameInputs& in, const HeatGrid& grid, const Te
                            const RefOptions& options = {});
 
 // Two-pass separable blur (5 taps, Gaussian sigma 1) that only mixes texels of the same
-// conduction class and renormalises, so a uniform region keeps its brightness.
-Texture reference_blur(const FrameInputs& in, const Texture& indirect, const RefOptions& options = {});
+// conduction class (the conduction texture: 1 in air, 0 in walls) and renormalises, so a
+// uniform region keeps its brightness.
+Texture reference_blur(const FrameInputs& in, const Texture& indirect, const Texture& conduction,
+                       const RefOptions& options = {});
 
 // Wall indirect: for each exposed face of a wall texel, the indirect light of the texel one
 // world unit away across that face (clamped to the window). Faces not computed

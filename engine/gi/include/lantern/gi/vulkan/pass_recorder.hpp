@@ -108,6 +108,11 @@ class PassRecorder {
     }
     // One invocation per block of 4 x block_h texels of a width x height texture.
     void dispatch(int width, int height) { r_.dispatch_blocks(cmd, width, height); }
+    // How many workgroups dispatch(width, height) records.
+    std::uint64_t dispatch_groups(int width, int height) const {
+        const glm::uvec2 g = r_.block_groups(width, height);
+        return std::uint64_t(g.x) * g.y;
+    }
     void clear(Tex t) { r_.clear(cmd, t); }
 
     template <typename T>

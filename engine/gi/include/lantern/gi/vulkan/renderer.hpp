@@ -52,6 +52,8 @@ struct RendererOptions {
     // and runs the ones no light reaches without its light loops (docs/gi.md, "Dirty light
     // bins"). The results are the same bit for bit; false records every workgroup the one
     // way (benchmarks compare the two).
+    // With it the heat pass also keeps its tap masks while the window, the walls and its
+    // settings stay (a torch's flicker reruns the heat, not the masks).
     bool dirty_bins = true;
 };
 
@@ -131,9 +133,11 @@ class Renderer {
     std::uint32_t group_x() const { return group_x_; }
     std::uint32_t group_y() const { return group_y_; }
 
-    // Workgroups of a pass that can record only part of its window (the direct and mixed
+    // Workgroups of a pass that can record only part of its work (the direct and mixed
     // passes keep the workgroups whose lights did not change: docs/gi.md, "Dirty light
-    // bins"), summed over every frame recorded: how many it had, and how many it recorded.
+    // bins"; the heat pass keeps its tap masks while the window and walls stay: its count
+    // is the masks' workgroups), summed over every frame recorded: how many it had, and how
+    // many it recorded.
     struct PartialWork {
         std::uint64_t workgroups = 0;
         std::uint64_t recorded = 0;
@@ -167,6 +171,8 @@ class Renderer {
     void clear(gpu::CommandList& cmd, Tex t);
     GiPassParams params(const FrameInputs& in, int width, int height) const;
     void dispatch_blocks(gpu::CommandList& cmd, int width, int height);
+    // The workgroups dispatch_blocks dispatches over a width x height texture.
+    glm::uvec2 block_groups(int width, int height) const;
     const gpu::ComputePipeline& pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
                                          std::span<const gpu::ScalarKind> kinds);
     void prefetch_pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
