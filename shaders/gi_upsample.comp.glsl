@@ -1,5 +1,8 @@
 // Indirect light at full resolution from the heat grid: a copy at scale 1, else bilinear
 // over the conductive heat texels around the texel centre (nearest when none conducts).
+// FEATURES bit 0 (the heat grid's): which grid texels are walls comes from the heat row's
+// tap masks (bit 31: the tile under the texel centre is a wall, the same test), one fetch
+// instead of a wall lookup per tap; else from the wall grid.
 // size = full (w, h, pitch, res); parameters: UpsampleParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -16,8 +19,16 @@ layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[1]; } u_proxies; // unused
 layout(binding = 2) uniform samplerBuffer u_heat;
 layout(std430, binding = 3) writeonly buffer Out { uvec2 texels[]; } o_indirect;
+layout(binding = 4) uniform usamplerBuffer u_grid_mask; // FEATURES bit 0
 
 #include "lantern/gi_shadow.glsl"
+
+const bool GRID_MASK = (FEATURES & 1u) != 0u;
+
+bool grid_wall(int hi, int hj) {
+    if (GRID_MASK) return (texelFetch(u_grid_mask, hj * pc.pass.heat_pitch + hi).r & 0x80000000u) != 0u;
+    return is_wall(ivec2(floor(grid_texel_center(hi, hj, pc.pass.texels_per_unit))));
+}
 
 vec3 heat_at(int i, int j) { return texelFetch(u_heat, j * pc.pass.heat_pitch + i).rgb; }
 
@@ -34,8 +45,7 @@ vec3 upsample(int x, int y) {
     for (int dy = 0; dy <= 1; ++dy)
         for (int dx = 0; dx <= 1; ++dx) {
             int hi = clamp(i0.x + dx, 0, hw - 1), hj = clamp(i0.y + dy, 0, hh - 1);
-            vec2 c = grid_texel_center(hi, hj, tpu);
-            if (is_wall(ivec2(floor(c)))) continue;
+            if (grid_wall(hi, hj)) continue;
             float wt = (dx == 1 ? f.x : 1.0 - f.x) * (dy == 1 ? f.y : 1.0 - f.y);
             sum += heat_at(hi, hj) * wt;
             wsum += wt;

@@ -138,7 +138,7 @@ void record_heat(PassRecorder& r) {
         r.dispatch(g.width, g.height);
         r.cmd.barrier_compute_to_compute();
     } else {
-        record_upsample(r, heat_result(rounds), g);
+        record_upsample(r, heat_result(rounds), g, true);
     }
 }
 
@@ -247,14 +247,15 @@ Hasher& add_window_and_walls(Hasher& h, const FrameInputs& in) {
     return h.add_bytes(walls.cells, std::size_t(walls.width) * std::size_t(walls.height));
 }
 
-void record_upsample(PassRecorder& r, Tex src, const HeatGrid& g) {
+void record_upsample(PassRecorder& r, Tex src, const HeatGrid& g, bool heat_mask) {
     const GiWindow& w = r.in.window;
-    r.cmd.bind(r.pipeline<UpsampleParams>("gi_upsample.comp", {.proxies = false}));
+    r.cmd.bind(r.pipeline<UpsampleParams>("gi_upsample.comp", {.proxies = false, .features = heat_mask ? 1u : 0u}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_texel_buffer(0, r.walls())
                                .uniform_buffer(1, r.proxies())
                                .uniform_texel_buffer(2, r.view(src))
-                               .storage_buffer(3, r.buffer(Tex::indirect)));
+                               .storage_buffer(3, r.buffer(Tex::indirect))
+                               .uniform_texel_buffer(4, heat_mask ? r.view_u32(Tex::heat_mask) : r.walls()));
     auto up = r.params<UpsampleParams>(w.width, w.height);
     up.pass = {.heat_width = g.width, .heat_height = g.height, .heat_pitch = r.pitch(src),
                .texels_per_unit = g.texels_per_unit, .scale = g.scale};

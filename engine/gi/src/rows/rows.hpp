@@ -31,8 +31,9 @@ extern const PassRow baked_sample;
 extern const PassRow baked;
 extern const PassRow probes;
 
-// Records the upsample of a grid texture (heat, radiosity) into Tex::indirect (gi_upsample).
-void record_upsample(vk::PassRecorder& r, Tex src, const HeatGrid& grid);
+// Records the upsample of a grid texture (heat, radiosity) into Tex::indirect (gi_upsample);
+// `heat_mask`: the grid is the heat grid, whose walls the tap masks (Tex::heat_mask) mark.
+void record_upsample(vk::PassRecorder& r, Tex src, const HeatGrid& grid, bool heat_mask = false);
 
 // Adds to `h` the GI window and the walls in it: what a row's kept work (the direct pass's
 // light bins, the heat row's tap masks) depends on besides its own inputs.
