@@ -7,6 +7,7 @@
 // Parameters: HeatRoundParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 struct HeatRoundParams {
     float texels_per_unit;      // heat texels per world unit
     float distance;             // diffusion distance in heat texels
@@ -27,29 +28,22 @@ layout(std430, binding = 2) writeonly buffer Out { uvec2 texels[]; } o_heat;
 
 const vec3 LUMA = vec3(0.299, 0.587, 0.114);
 
-ivec2 g_offsets[24];
-float g_weights[24];
-int g_taps;
-
-void prepare_taps() {
-    float distance = pc.pass.distance;
-    g_taps = heat_tap_count(distance);
-    for (int t = 0; t < g_taps; ++t) {
-        g_offsets[t] = heat_tap_offset(t, distance);
-        g_weights[t] = heat_tap_weight(t, distance) * pc.pass.rate;
-    }
-}
+// FEATURES bit 0: three rings (24 taps; the distance exceeds 2.5 heat texels), else 8.
+// The tap loop is unrolled with every tap's offset and weight uniform across the
+// invocations, and a tap the mask refuses weighs 0 (its fetch stays in range): no per-lane
+// loop over the mask's bits and no private arrays indexed per lane, which llvmpipe runs as
+// scattered stack loads. Adding the refused taps' exact zeros leaves the sums unchanged.
+const int HEAT_TAPS = (FEATURES & 1u) != 0u ? 24 : 8;
 
 vec4 heat_texel(int i, int j, uint mask) {
     vec4 center = texelFetch(u_heat_in, texel_index(i, j));
     float rate = pc.pass.rate;
+    float distance = pc.pass.distance;
     vec3 accum = vec3(0.0), wsum = vec3(0.0);
-    while (mask != 0u) {
-        int t = findLSB(mask);
-        mask &= mask - 1u;
-        ivec2 k = g_offsets[t];
+    [[unroll]] for (int t = 0; t < HEAT_TAPS; ++t) {
+        ivec2 k = heat_tap_offset(t, distance);
         int ti = clamp(i + k.x, 0, pc.size.x - 1), tj = clamp(j + k.y, 0, pc.size.y - 1);
-        float weight = g_weights[t];
+        float weight = ((mask >> uint(t)) & 1u) != 0u ? heat_tap_weight(t, distance) * rate : 0.0;
         vec3 n = texelFetch(u_heat_in, texel_index(ti, tj)).rgb;
         vec3 w = PER_CHANNEL ? weight * clamp(n + 0.1, 0.0, 1.0) : vec3(weight);
         accum += n * w;
@@ -70,7 +64,6 @@ vec4 heat_texel(int i, int j, uint mask) {
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
-    prepare_taps();
     for (uint r = 0; r < BLOCK_H; ++r) {
         int j = o.y + int(r);
         if (j >= pc.size.y) return;
