@@ -1,7 +1,8 @@
 // One direction of the edge-aware blur: 5 taps, Gaussian sigma 1, only texels of the
 // centre's conduction class, renormalised (brightness preserving). The class comes from the
 // conduction texture (1 in air, 0 in walls: the tile under the texel centre), one byte per
-// tap instead of a wall lookup. Parameters: BlurParams.
+// tap instead of a wall lookup; each invocation slides a window of five taps along its
+// block's lines. Parameters: BlurParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 struct BlurParams {
@@ -15,34 +16,64 @@ layout(binding = 0) uniform samplerBuffer u_conduction;
 layout(binding = 1) uniform samplerBuffer u_src;
 layout(std430, binding = 2) writeonly buffer Out { uvec2 texels[]; } o_dst;
 
-const float KERNEL[5] = float[5](0.13533528, 0.60653066, 1.0, 0.60653066, 0.13533528);
+const float K0 = 0.13533528, K1 = 0.60653066, K2 = 1.0; // exp(-k^2 / 2), k = 2, 1, 0
 
-bool air_texel(int x, int y) { return texelFetch(u_conduction, texel_index(x, y)).r > 0.5; }
+// A tap: its conduction class (1 air, 0 wall, -1 outside the window, which no centre
+// matches) and its value.
+struct Tap {
+    float cls;
+    vec4 value;
+};
 
-vec4 blur(int x, int y) {
-    ivec2 axis = ivec2(pc.pass.axis_x, pc.pass.axis_y);
-    bool center_air = air_texel(x, y);
-    vec3 sum = vec3(0.0);
-    float wsum = 0.0;
-    for (int k = -2; k <= 2; ++k) {
-        int sx = x + axis.x * k, sy = y + axis.y * k;
-        if (sx < 0 || sy < 0 || sx >= pc.size.x || sy >= pc.size.y) continue;
-        if (air_texel(sx, sy) != center_air) continue;
-        sum += texelFetch(u_src, texel_index(sx, sy)).rgb * KERNEL[k + 2];
-        wsum += KERNEL[k + 2];
+Tap tap(ivec2 q) {
+    bool inside = q.x >= 0 && q.y >= 0 && q.x < pc.size.x && q.y < pc.size.y;
+    int index = texel_index(clamp(q.x, 0, pc.size.x - 1), clamp(q.y, 0, pc.size.y - 1));
+    Tap t;
+    t.cls = inside ? (texelFetch(u_conduction, index).r > 0.5 ? 1.0 : 0.0) : -1.0;
+    t.value = texelFetch(u_src, index);
+    return t;
+}
+
+void take(Tap t, float centre, float k, inout vec3 sum, inout float wsum) {
+    if (t.cls == centre) {
+        sum += t.value.rgb * k;
+        wsum += k;
     }
-    return vec4(sum / wsum, texelFetch(u_src, texel_index(x, y)).a);
+}
+
+// Blurs `length` texels from `first` along `axis`, sliding a window of five taps: each
+// texel is read once per line instead of five times. The taps add in the order -2..2.
+void blur_line(ivec2 first, ivec2 axis, int length) {
+    Tap t0 = tap(first - 2 * axis), t1 = tap(first - axis), t2 = tap(first), t3 = tap(first + axis);
+    for (int n = 0; n < length; ++n) {
+        ivec2 q = first + n * axis;
+        if (q.y >= pc.size.y) return;
+        Tap t4 = tap(q + 2 * axis);
+        vec4 value = vec4(0.0); // the pitch's padding texels
+        if (q.x < pc.size.x) {
+            vec3 sum = vec3(0.0);
+            float wsum = 0.0;
+            take(t0, t2.cls, K0, sum, wsum);
+            take(t1, t2.cls, K1, sum, wsum);
+            take(t2, t2.cls, K2, sum, wsum);
+            take(t3, t2.cls, K1, sum, wsum);
+            take(t4, t2.cls, K0, sum, wsum);
+            value = vec4(sum / wsum, t2.value.a);
+        }
+        o_dst.texels[texel_index(q.x, q.y)] = pack_rgba16f(value);
+        t0 = t1;
+        t1 = t2;
+        t2 = t3;
+        t3 = t4;
+    }
 }
 
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
-    for (uint r = 0; r < BLOCK_H; ++r) {
-        int y = o.y + int(r);
-        if (y >= pc.size.y) return;
-        for (int k = 0; k < 4; ++k) {
-            int x = o.x + k;
-            o_dst.texels[texel_index(x, y)] = pack_rgba16f(x < pc.size.x ? blur(x, y) : vec4(0.0));
-        }
+    if (pc.pass.axis_x != 0) {
+        for (uint r = 0; r < BLOCK_H; ++r) blur_line(o + ivec2(0, r), ivec2(1, 0), 4);
+    } else {
+        for (int k = 0; k < 4; ++k) blur_line(o + ivec2(k, 0), ivec2(0, 1), int(BLOCK_H));
     }
 }
