@@ -1,6 +1,8 @@
 // Wall indirect: each exposed face of a wall texel takes the indirect light of the texel
 // one world unit across that face (clamped to the window); ground texels stay zero.
 // No parameters of its own; the faces computed are FACES (a specialisation constant).
+// FEATURES bit 0: every block lies in one wall tile (window.hpp blocks_in_one_tile), whose
+// wall bit and exposed faces are looked up once per block instead of once per texel.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "lantern/gi_common.glsl"
@@ -26,9 +28,14 @@ vec4 face_value(int f, vec4 mask, vec2 p) {
     return vec4(texelFetch(u_indirect, texel_index(sx, sy)).rgb, 1.0);
 }
 
+const bool BLOCK_TILE = (FEATURES & 1u) != 0u;
+
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
+    ivec2 block_cell = ivec2(floor(texel_center(o.x, o.y)));
+    bool block_wall = BLOCK_TILE && is_wall(block_cell);
+    vec4 block_mask = block_wall ? wall_face_mask(block_cell) * face_bits_mask(FACES) : vec4(0.0);
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);
         if (y >= pc.size.y) return;
@@ -39,8 +46,8 @@ void main() {
             if (x < pc.size.x) {
                 vec2 p = texel_center(x, y);
                 ivec2 cell = ivec2(floor(p));
-                if (is_wall(cell)) {
-                    vec4 mask = wall_face_mask(cell) * face_bits_mask(FACES);
+                if (BLOCK_TILE ? block_wall : is_wall(cell)) {
+                    vec4 mask = BLOCK_TILE ? block_mask : wall_face_mask(cell) * face_bits_mask(FACES);
                     for (int f = 0; f < 4; ++f) v[f] = face_value(f, mask, p);
                 }
             }

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 using namespace lantern::gi;
 using gi_test::NamedScene;
 
@@ -208,6 +210,31 @@ TEST_F(GiGpuCompare, HeatScalesAndModes) {
                          " distance " + std::to_string(distance);
                 compare_scene(s, Pass::wall_indirect, false);
             }
+}
+
+TEST_F(GiGpuCompare, WallIndirectWithBlocksInOneTileAndAcross) {
+    // gi_wall_indirect looks a block's tile up once when every block lies in one tile
+    // (blocks_in_one_tile). A window snapped to texels at giRes 8 is on that alignment at some
+    // origins and off it at others: one of each, against the reference.
+    NamedScene base = gi_test::comparison_scene("rooms");
+    base.scene.gi.resolution = 8;
+    base.scene.gi.window_snap = lantern::scene::WindowSnap::texel;
+    base.scene.gi.heat_scale = lantern::scene::HeatScale::full;
+    const std::uint32_t block_h = gi_test::shared_renderer(device()).block_h();
+    std::optional<NamedScene> on, off;
+    for (int sx = 0; sx < 4; ++sx)
+        for (int sz = 0; sz < 4; ++sz) {
+            NamedScene s = base;
+            std::get<lantern::scene::OrthoView>(s.scene.view).center += glm::vec2(0.125f * float(sx), 0.125f * float(sz));
+            auto w = compute_window(s.scene.view, s.scene.gi);
+            ASSERT_TRUE(w);
+            const bool aligned = lantern::gi::blocks_in_one_tile(*w, block_h);
+            s.name += aligned ? " blocks in one tile" : " blocks across tiles";
+            (aligned ? on : off) = s;
+        }
+    ASSERT_TRUE(on && off);
+    compare_scene(*on, Pass::wall_indirect, false);
+    compare_scene(*off, Pass::wall_indirect, false);
 }
 
 TEST_F(GiGpuCompare, PhaseLockSubTileMotionIsBitIdentical) {

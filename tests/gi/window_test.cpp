@@ -189,3 +189,57 @@ TEST(GatherOffers, ProxiesNearTheCapFadeContinuouslyAsTheWindowMoves) {
     const FadedOffers hard = gather_offers_faded(offers, *w, cap, 0.0f);
     for (float f : hard.fade) EXPECT_EQ(f, 1.0f);
 }
+
+TEST(GiWindow, BlocksInOneTileOnlyWhereEveryBlocksTexelsShareTheirTile) {
+    using lantern::gi::blocks_in_one_tile;
+    using lantern::gi::GiWindow;
+    // A window at texel origin (tx, tz) of w x h texels at `res`, as compute_window places it.
+    auto window = [](int res, long tx, long tz, int w, int h) {
+        GiWindow win;
+        win.resolution = res;
+        win.width = w;
+        win.height = h;
+        win.view = {float(double(tx) / res), float(double(tz) / res), float(double(w) / res), float(double(h) / res)};
+        return win;
+    };
+    // Whether every 4 x block_h block's texel centres (as the shaders and GiWindow compute
+    // them, in float) fall in the tile of the block's first texel.
+    auto shares = [](const GiWindow& win, int block_h) {
+        for (int y = 0; y < win.height; ++y)
+            for (int x = 0; x < win.width; ++x) {
+                const glm::vec2 p = win.texel_center(x, y), o = win.texel_center(x & ~3, y - y % block_h);
+                if (std::floor(p.x) != std::floor(o.x) || std::floor(p.y) != std::floor(o.y)) return false;
+            }
+        return true;
+    };
+    int yes = 0, no = 0;
+    for (int res : {1, 2, 3, 4, 6, 8, 12, 16})
+        for (int block_h : {1, 2, 4, 8})
+            for (long tx : {0L, 2L, 4L, 8L, -4L, -6L, -16L, 36L, 4000000L, -4194300L})
+                for (long tz : {0L, 1L, 4L, -8L, 12L}) {
+                    const GiWindow win = window(res, tx, tz, 64, 40);
+                    if (!blocks_in_one_tile(win, std::uint32_t(block_h))) {
+                        ++no;
+                        continue;
+                    }
+                    ++yes;
+                    EXPECT_TRUE(shares(win, block_h)) << "res " << res << " block_h " << block_h << " origin " << tx << ", " << tz;
+                    // And every centre is exact: (t + i + 0.5) / res.
+                    EXPECT_EQ(double(win.texel_center(63, 39).x), (double(tx) + 63.5) / res);
+                    EXPECT_EQ(double(win.texel_center(63, 39).y), (double(tz) + 39.5) / res);
+                }
+    EXPECT_GT(yes, 50);
+    EXPECT_GT(no, 50);
+    // The cases the rule names.
+    EXPECT_TRUE(blocks_in_one_tile(window(8, 16, 8, 64, 64), 4));
+    EXPECT_TRUE(blocks_in_one_tile(window(4, -8, -4, 64, 64), 1));
+    EXPECT_FALSE(blocks_in_one_tile(window(8, 18, 8, 64, 64), 4)); // x origin not a multiple of 4
+    EXPECT_FALSE(blocks_in_one_tile(window(8, 16, 2, 64, 64), 4)); // z origin not a multiple of block_h
+    EXPECT_FALSE(blocks_in_one_tile(window(12, 0, 0, 64, 64), 4)); // not a power of two
+    EXPECT_FALSE(blocks_in_one_tile(window(2, 0, 0, 64, 64), 1));  // a tile narrower than a block
+    EXPECT_FALSE(blocks_in_one_tile(window(4, 0, 0, 64, 64), 8));  // a block taller than a tile
+    EXPECT_FALSE(blocks_in_one_tile(window(8, 1L << 22, 0, 64, 64), 4)); // centres no longer exact
+    GiWindow half = window(8, 16, 8, 64, 64);
+    half.view.min_x += 0.0625f; // half a texel: no whole texel origin
+    EXPECT_FALSE(blocks_in_one_tile(half, 4));
+}

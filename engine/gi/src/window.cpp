@@ -105,6 +105,18 @@ glm::ivec2 window_texel_origin(const GiWindow& w) {
     return {int(std::lround(double(w.view.min_x) * w.resolution)), int(std::lround(double(w.view.min_z) * w.resolution))};
 }
 
+bool blocks_in_one_tile(const GiWindow& w, std::uint32_t block_h) {
+    const int res = w.resolution;
+    if (res < 4 || (res & (res - 1)) != 0 || block_h == 0 || res % int(block_h) != 0) return false;
+    // The texel origin: min * res is exact for a power of two; it must be a whole number.
+    const double tx = double(w.view.min_x) * res, tz = double(w.view.min_z) * res;
+    constexpr double limit = double(1 << 22); // centres (t + i + 0.5) / res exact in a float
+    if (!(std::abs(tx) + w.width < limit && std::abs(tz) + w.height < limit)) return false;
+    if (tx != std::floor(tx) || tz != std::floor(tz)) return false;
+    const auto x = std::int64_t(tx), z = std::int64_t(tz);
+    return x % 4 == 0 && z % std::int64_t(block_h) == 0;
+}
+
 std::uint64_t hash_window(const GiWindow& w) {
     return Hasher().add(w.view.min_x).add(w.view.min_z).add(w.view.width).add(w.view.height).add(w.width)
         .add(w.height).add(w.resolution).value();

@@ -198,7 +198,13 @@ void record_wall_indirect(PassRecorder& r) {
         const Tex t = Tex(int(Tex::wall_indirect_px) + f);
         writes.storage_buffer(std::uint32_t(3 + f), r.buffer(computes_face(faces, f) ? t : first));
     }
-    r.cmd.bind(r.pipeline("gi_wall_indirect.comp", {.proxies = false, .faces = faces}));
+    // FEATURES bit 0: the block's tile looked up once.
+    const std::uint32_t block_tile = r.blocks_in_one_tile() ? 1u : 0u;
+    r.cmd.bind(r.pipeline("gi_wall_indirect.comp", {.proxies = false, .features = block_tile, .faces = faces}));
+    // A window snapped to texels may move off the blocks' alignment (or onto it): the other
+    // variant, before a frame needs it.
+    if (r.in.settings.window_snap == scene::WindowSnap::texel)
+        r.prefetch_pipeline("gi_wall_indirect.comp", {.proxies = false, .features = block_tile ^ 1u, .faces = faces});
     r.cmd.push_descriptors(writes);
     r.cmd.push_constants(r.params(w.width, w.height));
     r.dispatch(w.width, w.height);

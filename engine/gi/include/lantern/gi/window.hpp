@@ -73,4 +73,12 @@ int window_snap_texels(const scene::GiSettings& gi);
 // The global index of the window's first texel column and row: round(min * res).
 glm::ivec2 window_texel_origin(const GiWindow& w);
 
+// Whether every block of 4 x block_h window texels (a GI pass's invocation, 4-aligned in x
+// and block_h-aligned in z) lies in one wall tile, with every texel centre exact in float
+// as the shaders compute it: the resolution a power of two that 4 and block_h divide, the
+// window's texel origin whole and a multiple of 4 in x and of block_h in z, and every
+// texel index of the window within 2^22. The passes that need a texel's tile then look it
+// up once a block (their FEATURES bit; docs/gi.md, "Wall indirect").
+bool blocks_in_one_tile(const GiWindow& w, std::uint32_t block_h);
+
 } // namespace lantern::gi

@@ -76,6 +76,8 @@ class PassRecorder {
     std::uint32_t block_h() const { return r_.block_h_; }
     std::uint32_t group_x() const { return r_.group_x_; }
     std::uint32_t group_y() const { return r_.group_y_; }
+    // Whether each block of this frame's window lies in one wall tile (window.hpp).
+    bool blocks_in_one_tile() const { return gi::blocks_in_one_tile(in.window, r_.block_h_); }
 
     // The pipeline of a shader of the row's library (PassRow::shaders; the engine's
     // lantern_gi_shaders by default: "gi_ao.comp") whose parameters are P (GI_PASS_PARAMS in
