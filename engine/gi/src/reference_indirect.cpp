@@ -54,7 +54,7 @@ std::vector<HeatTap> heat_taps(float d) {
             taps.push_back({offset, dir.weight * share, std::abs(k.x) > 1.0f || std::abs(k.y) > 1.0f});
         }
     };
-    if (d > 2.5f) {
+    if (heat_tap_rings(d)) {
         add_ring(1.5f, 0.3f);     // near: fills holes between sparse taps
         add_ring(d * 0.5f, 0.3f); // mid: bridges near and far
         add_ring(d, 0.4f);        // far: long-range transport

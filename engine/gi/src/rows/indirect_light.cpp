@@ -126,8 +126,8 @@ void record_heat(PassRecorder& r) {
     } else if (r.iteration <= rounds) {
         // One round, ping-pong.
         const Tex src = heat_source(r.iteration), dst = src == Tex::heat_a ? Tex::heat_b : Tex::heat_a;
-        // FEATURES bit 0: the three rings' 24 taps (heat_tap_count in gi_heat_taps.glsl).
-        const std::uint32_t rings = distance > 2.5f ? 1u : 0u;
+        // FEATURES bit 0: the three rings' 24 taps.
+        const std::uint32_t rings = heat_tap_rings(distance) ? 1u : 0u;
         r.cmd.bind(r.pipeline<HeatRoundParams>("gi_heat.comp",
                                                {.proxies = false, .per_channel = s.per_channel, .features = rings}));
         r.cmd.push_descriptors(gpu::DescriptorWrites()

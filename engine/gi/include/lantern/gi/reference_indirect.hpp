@@ -29,6 +29,8 @@ struct HeatTap {
 // The taps for a diffusion distance in heat texels: 8 neighbours at that distance, or the
 // three tiers (1.5 texels, half and full distance) when it exceeds 2.5 texels.
 std::vector<HeatTap> heat_taps(float distance_texels);
+// Whether that distance takes the three tiers (24 taps; heat_tap_count in gi_heat_taps.glsl).
+inline bool heat_tap_rings(float distance_texels) { return distance_texels > 2.5f; }
 
 // Emission extraction (rgba16f, full resolution): 1 - exp(-2 * maxChannel) roll-off,
 // emission strength, saturation boost 1.2 around Rec.601 luma, negative channels clamped.
