@@ -3,14 +3,17 @@
 // adds (docs/baked.md, "At run time"): the baked light into the indirect textures, the
 // mixed lights' direct light into the direct ones. FEATURES bit k: pair k is used; bit
 // 16 + k: pair k copies; bit 15: pairs 0..4 add `scale` x their scaled texture to their
-// source first (the bake's pulsing part, by this frame's pulse). C++ reference:
-// engine/gi/src/rows/baked.cpp.
+// source first (the bake's pulsing part, by this frame's pulse); bit 14: workgroup i adds
+// the texels of workgroup u_groups.groups[i] of the full dispatch's grid (row-major,
+// `groups_x` wide), the others being left as they are (the workgroups the mixed lights
+// reach: elsewhere their textures hold zeros). C++ reference: engine/gi/src/rows/baked.cpp.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
 struct AddParams {
-    float scale; // the scaled textures' factor (FrameInputs::baked_pulse)
-    int unused0, unused1, unused2, unused3, unused4, unused5, unused6;
+    float scale;  // the scaled textures' factor (FrameInputs::baked_pulse)
+    int groups_x; // LIST: the full dispatch's workgroups across
+    int unused1, unused2, unused3, unused4, unused5, unused6;
 };
 #define GI_PASS_PARAMS AddParams
 #include "lantern/gi_common.glsl"
@@ -38,10 +41,12 @@ layout(binding = 19) uniform samplerBuffer u_scaled1;
 layout(binding = 20) uniform samplerBuffer u_scaled2;
 layout(binding = 21) uniform samplerBuffer u_scaled3;
 layout(binding = 22) uniform samplerBuffer u_scaled4;
+layout(std430, binding = 23) readonly buffer Groups { uint groups[]; } u_groups; // LIST
 
 bool used(int k) { return ((FEATURES >> uint(k)) & 1u) != 0u; }
 bool copies(int k) { return ((FEATURES >> uint(16 + k)) & 1u) != 0u; }
 const bool SCALED = (FEATURES & (1u << 15)) != 0u;
+const bool LIST = (FEATURES & (1u << 14)) != 0u;
 
 // Source k, with its scaled texture's part when the pairs have one.
 vec4 source(int k, samplerBuffer src, samplerBuffer scaled, int i) {
@@ -58,6 +63,11 @@ uvec2 combine(int k, uvec2 old, vec4 add) {
 
 void main() {
     ivec2 o = block_origin();
+    if (LIST) {
+        uint g = u_groups.groups[gl_WorkGroupID.x];
+        uvec2 group = uvec2(g % uint(pc.pass.groups_x), g / uint(pc.pass.groups_x));
+        o = ivec2((group * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy) * uvec2(BLOCK_W, BLOCK_H));
+    }
     if (o.x >= pc.size.x) return;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);

@@ -49,21 +49,23 @@ class DirtyBins : public lantern::test::GpuTest {
     enum class Expect { any, none, some, all };
 
     // One frame on both renderers: every contract texture equal bit for bit; the direct and
-    // mixed passes recorded as many workgroups as `direct` and `mixed` say, and the heat
-    // pass as many of its tap masks' workgroups as `heat` says.
+    // mixed passes recorded as many workgroups as `direct` and `mixed` say, the heat pass as
+    // many of its tap masks' workgroups as `heat` says, and the baked pass as many of its
+    // mixed lights' adds as `mixed_add` says (the renderer without dirty bins adds them all).
     void frame(const std::string& name, const FrameInputs& in, Expect direct, Expect mixed = Expect::any,
-               Expect heat = Expect::any) {
+               Expect heat = Expect::any, Expect mixed_add = Expect::any) {
         PassPlan plan = plan_passes(in, true);
-        constexpr Pass passes[3] = {Pass::direct, Pass::mixed, Pass::heat};
-        constexpr const char* names[3] = {": direct", ": mixed", ": heat's tap masks"};
-        vk::Renderer::PartialWork before[3], after[3];
-        for (int k = 0; k < 3; ++k) before[k] = dirty_->partial_work(passes[k]);
+        constexpr int n = 4;
+        constexpr Pass passes[n] = {Pass::direct, Pass::mixed, Pass::heat, Pass::baked};
+        constexpr const char* names[n] = {": direct", ": mixed", ": heat's tap masks", ": the mixed lights' adds"};
+        vk::Renderer::PartialWork before[n], after[n];
+        for (int k = 0; k < n; ++k) before[k] = dirty_->partial_work(passes[k]);
         auto a = run_vulkan_frame(*dirty_, in, plan);
         auto b = run_vulkan_frame(*full_, in, plan);
         ASSERT_TRUE(a.ok() && b.ok()) << name;
-        for (int k = 0; k < 3; ++k) after[k] = dirty_->partial_work(passes[k]);
-        const Expect expect[3] = {direct, mixed, heat};
-        for (int k = 0; k < 3; ++k) {
+        for (int k = 0; k < n; ++k) after[k] = dirty_->partial_work(passes[k]);
+        const Expect expect[n] = {direct, mixed, heat, mixed_add};
+        for (int k = 0; k < n; ++k) {
             const std::string what = name + names[k];
             const std::uint64_t workgroups = after[k].workgroups - before[k].workgroups,
                                 recorded = after[k].recorded - before[k].recorded;
@@ -171,7 +173,8 @@ TEST_F(DirtyBins, ASunComingAndGoingRecordsEverything) {
 
 // Mixed lights (a bake is used): the baked pass adds their direct light into the direct
 // textures in place, after the bounce passes read them, so the direct pass keeps no bin
-// then. The mixed pass keeps its own bins while realtime lights change.
+// then. The mixed pass keeps its own bins while realtime lights change, and the baked pass
+// adds the mixed set only in the workgroups a mixed light reaches (the rest hold zeros).
 TEST_F(DirtyBins, MixedLightsKeepTheirOwnBins) {
     Scene s = lit_cave();
     s.point_lights[3].mode = lantern::scene::LightMode::mixed;
@@ -187,11 +190,17 @@ TEST_F(DirtyBins, MixedLightsKeepTheirOwnBins) {
         const PassPlan plan = plan_passes(in, true);
         ASSERT_TRUE(plan.run.has(Pass::mixed) && plan.run.has(Pass::baked));
     }
-    frame("the first frame", inputs(), Expect::all, Expect::all);
+    frame("the first frame", inputs(), Expect::all, Expect::all, Expect::any, Expect::some);
     s.point_lights[0].intensity *= 0.8f;
-    frame("a realtime torch flickers", inputs(), Expect::all, Expect::none);
+    frame("a realtime torch flickers", inputs(), Expect::all, Expect::none, Expect::any, Expect::some);
     s.point_lights[3].position += glm::vec2(0.5f, 0.0f);
-    frame("the mixed light moves", inputs(), Expect::all, Expect::some);
+    frame("the mixed light moves", inputs(), Expect::all, Expect::some, Expect::any, Expect::some);
+    s.emissive_lights[0].mode = lantern::scene::LightMode::mixed;
+    frame("an emissive turns mixed", inputs(), Expect::all, Expect::any, Expect::any, Expect::some);
+    s.point_lights[3].radius = 100.0f;
+    frame("the mixed light reaches every texel", inputs(), Expect::all, Expect::any, Expect::any, Expect::all);
+    s.point_lights[3].radius = 6.0f;
+    s.emissive_lights[0].mode = lantern::scene::LightMode::realtime;
     s.point_lights[3].position = {-50.0f, 0.0f};
     frame("the mixed light leaves (nothing is added in place)", inputs(), Expect::all, Expect::any);
     s.point_lights[0].intensity *= 1.2f;

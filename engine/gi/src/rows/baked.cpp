@@ -316,10 +316,22 @@ const char* baked_not_needed(const FrameInputs& in, bool, bool) {
 constexpr int pairs_per_dispatch = 9; // gi_add.comp's
 constexpr int scaled_pairs = 5;       // the first pairs that may add a scaled texture
 
-// gi_add.comp's parameters: the scaled textures' factor.
+constexpr std::uint32_t feature_list = 1u << 14; // gi_add.comp: the workgroups listed alone
+
+// gi_add.comp's parameters: the scaled textures' factor; with a list, the grid's width.
 struct AddParams {
     float scale = 1.0f;
-    std::int32_t unused0 = 0, unused1 = 0, unused2 = 0, unused3 = 0, unused4 = 0, unused5 = 0, unused6 = 0;
+    std::int32_t groups_x = 0;
+    std::int32_t unused1 = 0, unused2 = 0, unused3 = 0, unused4 = 0, unused5 = 0, unused6 = 0;
+};
+
+// The workgroups the mixed group's adds record: those a mixed point light or emissive can
+// reach (bin_lights, the mixed row's own bins), where the mixed set is not all zeros. The
+// others would add zeros, which leave every texel as it is (x + 0 = x, the alpha kept). All
+// of them with a mixed sun (it lights every texel) or without dirty bins (the full dispatch
+// the listed one is compared with); none when no mixed light reaches the window.
+struct AddState : vk::PassState {
+    gpu::Buffer groups; // the list, or a 16-byte stand-in bound when the dispatch is full
 };
 
 // gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies, bit 15
@@ -336,9 +348,46 @@ std::uint32_t add_features(const std::vector<AddPair>& pairs) {
     return features;
 }
 
+// The listed workgroups of the mixed group's adds (AddState), or nullopt for all of them.
+std::optional<std::vector<std::uint32_t>> mixed_add_groups(PassRecorder& r, Tex target) {
+    const WorkgroupGrid grid = workgroup_grid(r, r.pitch(target), r.in.window.height);
+    const std::uint32_t count = grid.x * grid.y;
+    std::optional<std::vector<std::uint32_t>> list;
+    if (r.dirty_bins() && !has_mixed_suns(r.in)) {
+        const std::vector<std::uint64_t> bins = bin_lights(r.in.mixed_lights, r.in.mixed_emissives, r.in.window, grid.x, grid.y,
+                                                           float(4 * r.group_x()), float(r.block_h() * r.group_y()));
+        list.emplace();
+        for (std::uint32_t b = 0; b < count; ++b)
+            if (bins[b] != no_light_bin) list->push_back(b);
+        if (list->size() == count || list->size() > 65535) list.reset();
+    }
+    r.count_workgroups(count, list ? list->size() : count);
+    return list;
+}
+
 void record_baked(PassRecorder& r) {
-    for (const std::vector<AddPair>& pairs : add_pairs(r.in, r.plan)) {
+    AddState& s = r.state<AddState>();
+    const std::array<std::vector<AddPair>, 2> groups = add_pairs(r.in, r.plan);
+    for (std::size_t group = 0; group < groups.size(); ++group) {
+        const std::vector<AddPair>& pairs = groups[group];
         if (pairs.empty()) continue;
+        std::optional<std::vector<std::uint32_t>> list;
+        if (group == 1) {
+            list = mixed_add_groups(r, pairs[0].target);
+            if (list && list->empty()) continue; // no mixed light reaches the window
+        }
+        const VkDeviceSize list_bytes = std::max<VkDeviceSize>(16, list ? VkDeviceSize(list->size()) * 4 : 0);
+        if (!s.groups || s.groups.size() < list_bytes) {
+            gpu::BufferDesc desc;
+            desc.size = list_bytes + list_bytes / 4; // room to grow
+            desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+            desc.name = "gi add workgroups";
+            s.groups = r.device().create_buffer(desc);
+        }
+        if (list) {
+            r.cmd.upload(s.groups, 0, std::as_bytes(std::span<const std::uint32_t>(*list)));
+            r.cmd.barrier_transfer_to_compute();
+        }
         gpu::DescriptorWrites writes;
         for (int k = 0; k < pairs_per_dispatch; ++k) {
             // Unused slots are bound to the first pair's textures and never touched.
@@ -350,18 +399,29 @@ void record_baked(PassRecorder& r) {
             const AddPair& p = std::size_t(k) < pairs.size() && pairs[std::size_t(k)].scaled ? pairs[std::size_t(k)] : pairs[0];
             writes.uniform_texel_buffer(std::uint32_t(2 * pairs_per_dispatch + k), r.view(p.scaled.value_or(p.source)));
         }
-        r.cmd.bind(r.pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(pairs)}));
+        writes.storage_buffer(std::uint32_t(2 * pairs_per_dispatch + scaled_pairs), s.groups);
+        const std::uint32_t features = add_features(pairs) | (list ? feature_list : 0u);
+        r.cmd.bind(r.pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = features}));
         r.cmd.push_descriptors(writes);
         auto params = r.params<AddParams>(r.in.window.width, r.in.window.height);
         params.pass.scale = r.in.baked_pulse;
+        params.pass.groups_x = std::int32_t(workgroup_grid(r, r.pitch(pairs[0].target), r.in.window.height).x);
         r.cmd.push_constants(params);
-        r.dispatch(r.in.window.width, r.in.window.height);
+        if (list)
+            r.cmd.dispatch(std::uint32_t(list->size()), 1);
+        else
+            r.dispatch(r.in.window.width, r.in.window.height);
         r.cmd.barrier_compute_to_compute();
     }
-    // The other group's variant, before a frame needs it (creating it then stalls that
-    // frame: a mixed light coming into view, or the bake covering the window).
-    for (const std::vector<AddPair>& pairs : add_pairs(r.in, r.plan, true))
-        if (!pairs.empty()) r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(pairs)});
+    // The other variants, before a frame needs them (creating one then stalls that frame: a
+    // mixed light coming into view, or the bake covering the window).
+    const std::array<std::vector<AddPair>, 2> all = add_pairs(r.in, r.plan, true);
+    for (std::size_t group = 0; group < all.size(); ++group) {
+        if (all[group].empty()) continue;
+        r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group])});
+        if (group == 1) // the mixed group's listed variant
+            r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group]) | feature_list});
+    }
 }
 
 void reference_baked_row(ReferenceContext& c) {

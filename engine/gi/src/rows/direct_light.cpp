@@ -235,24 +235,16 @@ std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uin
     return v ? v : 1;
 }
 
-// A bin no light reaches (bin_lights).
-// The workgroup grid of a pass over a texture of this pitch and height (Renderer's
-// dispatch_blocks: blocks of 4 x block_h texels, group_x x group_y blocks a workgroup).
-struct WorkgroupGrid {
-    std::uint32_t x = 0, y = 0;
-};
-WorkgroupGrid workgroup_grid(const PassRecorder& r, int pitch, int height) {
+} // namespace
+
+WorkgroupGrid workgroup_grid(const vk::PassRecorder& r, int pitch, int height) {
     const std::uint32_t blocks_x = std::uint32_t(pitch / 4);
     const std::uint32_t blocks_y = (std::uint32_t(height) + r.block_h() - 1) / r.block_h();
     return {(blocks_x + r.group_x() - 1) / r.group_x(), (blocks_y + r.group_y() - 1) / r.group_y()};
 }
 
-constexpr std::uint64_t no_light_bin = 0x62696e73ull;
-
-// Per bin (row-major, bins_x x bins_y of bin_w x bin_h texels), a hash of the lights that
-// can reach one of its texels, in index order (points, then emissives: the shader's order).
-std::vector<std::uint64_t> bin_lights(const FrameInputs& lights, const GiWindow& w, std::uint32_t bins_x, std::uint32_t bins_y,
-                                      float bin_w, float bin_h) {
+std::vector<std::uint64_t> bin_lights(std::span<const GpuPointLight> points, std::span<const GpuPointLight> emissives,
+                                      const GiWindow& w, std::uint32_t bins_x, std::uint32_t bins_y, float bin_w, float bin_h) {
     std::vector<std::uint64_t> out(std::size_t(bins_x) * bins_y, no_light_bin);
     const float res = float(w.resolution);
     auto add = [&](const GpuPointLight& l, std::uint64_t id) {
@@ -287,12 +279,12 @@ std::vector<std::uint64_t> bin_lights(const FrameInputs& lights, const GiWindow&
                 h = Hasher(h).add(light).value();
             }
     };
-    const std::size_t points = lights.point_lights.size();
-    for (std::size_t i = 0; i < points; ++i) add(lights.point_lights[i], i);
-    for (std::size_t i = 0; i < lights.emissive_lights.size(); ++i)
-        add(lights.emissive_lights[i], (std::uint64_t(1) << 32) | (points + i));
+    for (std::size_t i = 0; i < points.size(); ++i) add(points[i], i);
+    for (std::size_t i = 0; i < emissives.size(); ++i) add(emissives[i], (std::uint64_t(1) << 32) | (points.size() + i));
     return out;
 }
+
+namespace {
 
 // Whether a row after this one writes one of `outputs` this frame. The baked row adds the
 // mixed lights' light into the direct textures in place, after the bounce passes read them:
@@ -379,7 +371,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const std::uint32_t bin_count = bins_x * bins_y;
     const std::uint64_t context = direct_context(r, out, base_features | (want_map ? feature_point_map : 0u), proxy_per_light);
     std::vector<std::uint64_t> hashes =
-        bin_lights(lights, w, bins_x, bins_y, float(4 * r.group_x()), float(r.block_h() * r.group_y()));
+        bin_lights(lights.point_lights, lights.emissive_lights, w, bins_x, bins_y, float(4 * r.group_x()), float(r.block_h() * r.group_y()));
     // The mixed suns are added onto the mixed set in place (record_mixed): no bin is kept then.
     const bool overwritten = !r.dirty_bins() || written_later(r, face_set(out, in)) ||
                              (out.data() == mixed_set && has_mixed_suns(r.in));

@@ -10,7 +10,9 @@
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <span>
+#include <vector>
 
 namespace lantern::gi::rows {
 
@@ -38,6 +40,21 @@ void record_upsample(vk::PassRecorder& r, Tex src, const HeatGrid& grid, bool he
 // Adds to `h` the GI window and the walls in it: what a row's kept work (the direct pass's
 // light bins, the heat row's tap masks) depends on besides its own inputs.
 Hasher& add_window_and_walls(Hasher& h, const FrameInputs& in);
+
+// The workgroup grid of a block pass over a texture of this pitch and height (Renderer's
+// dispatch_blocks: blocks of 4 x block_h texels, group_x x group_y blocks a workgroup).
+struct WorkgroupGrid {
+    std::uint32_t x = 0, y = 0;
+};
+WorkgroupGrid workgroup_grid(const vk::PassRecorder& r, int pitch, int height);
+
+// Light bins (docs/gi.md, "Dirty light bins"): per bin (row-major, bins_x x bins_y of bin_w x
+// bin_h texels, a block pass's workgroups), a hash of the lights that can reach one of its
+// texels, in index order (points, then emissives: the direct pass's order), or no_light_bin
+// where none can: there the direct pass writes no light, and the mixed set holds zeros.
+inline constexpr std::uint64_t no_light_bin = 0x62696e73ull;
+std::vector<std::uint64_t> bin_lights(std::span<const GpuPointLight> points, std::span<const GpuPointLight> emissives,
+                                      const GiWindow& w, std::uint32_t bins_x, std::uint32_t bins_y, float bin_w, float bin_h);
 
 // A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown
 // as needed.
