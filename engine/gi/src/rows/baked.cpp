@@ -351,17 +351,8 @@ std::uint32_t add_features(const std::vector<AddPair>& pairs) {
 // The listed workgroups of the mixed group's adds (AddState), or nullopt for all of them.
 std::optional<std::vector<std::uint32_t>> mixed_add_groups(PassRecorder& r, Tex target) {
     const WorkgroupGrid grid = workgroup_grid(r, r.pitch(target), r.in.window.height);
-    const std::uint32_t count = grid.x * grid.y;
-    std::optional<std::vector<std::uint32_t>> list;
-    if (r.dirty_bins() && !has_mixed_suns(r.in)) {
-        const std::vector<std::uint64_t> bins = bin_lights(r.in.mixed_lights, r.in.mixed_emissives, r.in.window, grid.x, grid.y,
-                                                           float(4 * r.group_x()), float(r.block_h() * r.group_y()));
-        list.emplace();
-        for (std::uint32_t b = 0; b < count; ++b)
-            if (bins[b] != no_light_bin) list->push_back(b);
-        if (list->size() == count || list->size() > 65535) list.reset();
-    }
-    r.count_workgroups(count, list ? list->size() : count);
+    std::optional<std::vector<std::uint32_t>> list = mixed_add_bins(r, grid);
+    r.count_workgroups(grid.x * grid.y, list ? list->size() : grid.x * grid.y);
     return list;
 }
 
@@ -476,6 +467,18 @@ constexpr std::string_view baked_settings[] = {"wall_lighting", "wall_faces.px",
                                                "probe_rays", "wall_albedo", "albedo_boost"};
 
 } // namespace
+
+std::optional<std::vector<std::uint32_t>> mixed_add_bins(const PassRecorder& r, WorkgroupGrid grid) {
+    if (!r.dirty_bins() || has_mixed_suns(r.in)) return std::nullopt;
+    const std::uint32_t count = grid.x * grid.y;
+    const std::vector<std::uint64_t> bins = bin_lights(r.in.mixed_lights, r.in.mixed_emissives, r.in.window, grid.x, grid.y,
+                                                       float(4 * r.group_x()), float(r.block_h() * r.group_y()));
+    std::vector<std::uint32_t> list;
+    for (std::uint32_t b = 0; b < count; ++b)
+        if (bins[b] != no_light_bin) list.push_back(b);
+    if (list.size() == count || list.size() > 65535) return std::nullopt;
+    return list;
+}
 
 constinit const PassRow baked_sample{
     .pass = Pass::baked_sample,

@@ -201,6 +201,8 @@ struct DirectState : vk::PassState {
     std::uint64_t context = 0;
     std::vector<std::uint64_t> bin_lights;
     gpu::Buffer dirty;
+    // The bins the baked row added the mixed set to after the last run (1 each; empty: none).
+    std::vector<std::uint8_t> added;
 };
 
 // ---- dirty light bins (docs/gi.md, "Dirty light bins")
@@ -289,10 +291,11 @@ namespace {
 // Whether a row after this one writes one of `outputs` this frame. The baked row adds the
 // mixed lights' light into the direct textures in place, after the bounce passes read them:
 // the texture then holds more than this row's light, and a kept bin would hold it twice.
-bool written_later(PassRecorder& r, TexSet outputs) {
+bool written_later(PassRecorder& r, TexSet outputs, bool but_baked = false) {
     bool after = false;
     for (const PassRow* row : method(r.in.settings.method).rows) {
-        if (after && r.plan.run.has(row->pass) && row->outputs(r.in).intersects(outputs)) return true;
+        if (after && r.plan.run.has(row->pass) && row->outputs(r.in).intersects(outputs) && !(but_baked && row->pass == Pass::baked))
+            return true;
         after = after || row->pass == r.row().pass;
     }
     return false;
@@ -373,14 +376,27 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     std::vector<std::uint64_t> hashes =
         bin_lights(lights.point_lights, lights.emissive_lights, w, bins_x, bins_y, float(4 * r.group_x()), float(r.block_h() * r.group_y()));
     // The mixed suns are added onto the mixed set in place (record_mixed): no bin is kept then.
-    const bool overwritten = !r.dirty_bins() || written_later(r, face_set(out, in)) ||
-                             (out.data() == mixed_set && has_mixed_suns(r.in));
+    // The baked row adds the mixed set into the direct textures in place, after the bounce
+    // passes read them, in the bins mixed_add_bins lists: those then hold more than this
+    // pass's light, and are recorded again the next time. Another row writing them later
+    // keeps no bin.
+    bool overwritten = !r.dirty_bins() || (out.data() == mixed_set && has_mixed_suns(r.in));
+    const std::vector<std::uint8_t> added_before = std::move(s.added);
+    s.added.clear();
+    if (!overwritten && written_later(r, face_set(out, in))) {
+        overwritten = written_later(r, face_set(out, in), true);
+        const std::optional<std::vector<std::uint32_t>> added = mixed_add_bins(r, grid);
+        s.added.assign(bin_count, added ? 0 : 1);
+        if (added)
+            for (const std::uint32_t b : *added) s.added[b] = 1;
+    }
     bool kept = s.context == context && s.bin_lights.size() == hashes.size() && !overwritten;
     std::vector<std::uint32_t> lit, dark;
     auto list_bins = [&] {
         lit.clear(), dark.clear();
         for (std::uint32_t b = 0; b < bin_count; ++b)
-            if (!kept || hashes[b] != s.bin_lights[b]) (hashes[b] == no_light_bin ? dark : lit).push_back(b);
+            if (!kept || hashes[b] != s.bin_lights[b] || (b < added_before.size() && added_before[b] != 0))
+                (hashes[b] == no_light_bin ? dark : lit).push_back(b);
     };
     list_bins();
     s.context = overwritten ? 0 : context;

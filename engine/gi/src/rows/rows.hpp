@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -55,6 +56,12 @@ WorkgroupGrid workgroup_grid(const vk::PassRecorder& r, int pitch, int height);
 inline constexpr std::uint64_t no_light_bin = 0x62696e73ull;
 std::vector<std::uint64_t> bin_lights(std::span<const GpuPointLight> points, std::span<const GpuPointLight> emissives,
                                       const GiWindow& w, std::uint32_t bins_x, std::uint32_t bins_y, float bin_w, float bin_h);
+
+// The workgroups of `grid` (a block pass over the window's textures) in which the baked row
+// adds the mixed set into the direct textures: those a mixed point light or emissive can
+// reach (the mixed set is zero elsewhere), or nullopt for all of them (a mixed sun, a
+// renderer without dirty bins, more than one dispatch row holds). Defined in baked.cpp.
+std::optional<std::vector<std::uint32_t>> mixed_add_bins(const vk::PassRecorder& r, WorkgroupGrid grid);
 
 // A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown
 // as needed.
