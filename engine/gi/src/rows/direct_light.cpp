@@ -288,6 +288,41 @@ std::vector<std::uint64_t> bin_lights(std::span<const GpuPointLight> points, std
 
 namespace {
 
+// Per bin (as bin_lights), whether a shadow proxy may be in its proxy mask (gi_light_bins:
+// within proxy_reach of the bin's texel centres padded by `pad`), or surely none: there the
+// direct pass runs its variant without proxy loops (HAS_PROXIES false), which writes what an
+// empty mask does (every proxy shadow 1, no unfolded reach). Conservative: the bin's whole
+// rectangle, a texel more, and the float error of far coordinates.
+std::vector<std::uint8_t> bin_proxies(std::span<const GpuShadowProxy> proxies, const GiWindow& w, std::uint32_t bins_x,
+                                      std::uint32_t bins_y, float bin_w, float bin_h, float pad) {
+    std::vector<std::uint8_t> out(std::size_t(bins_x) * bins_y, 0);
+    const double res = double(w.resolution);
+    for (const GpuShadowProxy& p : proxies) {
+        const glm::vec4 ps = p.position_size, l = p.lengths;
+        const double along = std::max(double(l.x) + double(l.w), 0.0);
+        const double across = std::abs(double(ps.z)) + std::abs(double(ps.w)) + std::max(double(l.z), 0.0);
+        const double slop = 1e-5 * (std::abs(double(ps.x)) + std::abs(double(ps.y)) + std::abs(double(w.view.min_x)) +
+                                    std::abs(double(w.view.min_z)) + along + across + 1.0);
+        // In texels from the window's corner.
+        const double reach = (std::sqrt(along * along + across * across) * 1.0001 + 1e-3 + double(pad) + slop) * res + 1.0;
+        const double cx = (double(ps.x) - double(w.view.min_x)) * res, cz = (double(ps.y) - double(w.view.min_z)) * res;
+        if (!std::isfinite(cx) || !std::isfinite(cz) || !std::isfinite(reach)) {
+            std::fill(out.begin(), out.end(), std::uint8_t(1));
+            return out;
+        }
+        auto span = [reach](double c, double size, std::uint32_t count, std::uint32_t& lo, std::uint32_t& hi) {
+            lo = std::uint32_t(std::clamp(std::floor((c - reach) / size), 0.0, double(count)));
+            hi = std::uint32_t(std::clamp(std::floor((c + reach) / size) + 1.0, 0.0, double(count)));
+        };
+        std::uint32_t x0 = 0, x1 = 0, z0 = 0, z1 = 0;
+        span(cx, bin_w, bins_x, x0, x1);
+        span(cz, bin_h, bins_y, z0, z1);
+        for (std::uint32_t bz = z0; bz < z1; ++bz)
+            for (std::uint32_t bx = x0; bx < x1; ++bx) out[std::size_t(bz) * bins_x + bx] = 1;
+    }
+    return out;
+}
+
 // Whether a row after this one writes one of `outputs` this frame. The baked row adds the
 // mixed lights' light into the direct textures in place, after the bounce passes read them:
 // the texture then holds more than this row's light, and a kept bin would hold it twice.
@@ -331,6 +366,10 @@ bool upload_point_maps(PassRecorder& r, const FrameInputs& in, DirectState& s, b
     r.cmd.barrier_transfer_to_compute();
     return wanted;
 }
+
+// How far beyond its texel centres a bin's proxy queries reach: face points half a tile
+// off, and with unfolded proxy shadows points a wall height beyond those.
+float proxy_pad(const FrameInputs& in) { return 0.51f + (unfolds_proxy_shadows(in) ? std::max(in.wall_height, 0.0f) : 0.0f); }
 
 // The point and emissive lights of `lights` (its point_lights and emissive_lights; window,
 // walls, proxies and settings are the frame's) into the texture set `out`, with `suns` the
@@ -416,11 +455,26 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
             std::swap(s.bin_lights, hashes);
         }
     }
-    // Lists (lit bins, then dark ones) unless every bin is lit; one dispatch row each.
-    const bool listed = r.dirty_bins() && lit.size() < bin_count && std::max(lit.size(), dark.size()) <= 65535;
+    // The lit bins no proxy can shade take the variant without proxy loops (lavapipe runs a
+    // loop's body at least once, masked: an empty proxy mask costs about what a proxy does).
+    std::vector<std::uint32_t> plain;
+    if (!in.proxies.empty() && r.dirty_bins()) {
+        const std::vector<std::uint8_t> proxied =
+            bin_proxies(in.proxies, w, bins_x, bins_y, float(4 * r.group_x()), float(r.block_h() * r.group_y()), proxy_pad(in));
+        std::erase_if(lit, [&](std::uint32_t b) { return proxied[b] == 0 && (plain.push_back(b), true); });
+    }
+    // Lists (lit bins with proxies, without, then dark ones) unless every bin is lit with
+    // proxies; one dispatch row each.
+    const bool listed = r.dirty_bins() && lit.size() < bin_count &&
+                        std::max({lit.size(), plain.size(), dark.size()}) <= 65535;
+    if (!listed) { // every bin, with proxies
+        lit.insert(lit.end(), plain.begin(), plain.end());
+        plain.clear();
+    }
     std::vector<std::uint32_t> list;
     if (listed) {
         list = lit;
+        list.insert(list.end(), plain.begin(), plain.end());
         list.insert(list.end(), dark.begin(), dark.end());
     }
     const VkDeviceSize proxy_bytes = std::max<VkDeviceSize>(16, per_bin + (proxy_per_light ? per_light : 0));
@@ -438,7 +492,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
         r.cmd.upload(s.dirty, 0, std::as_bytes(std::span<const std::uint32_t>(list)));
         r.cmd.barrier_transfer_to_compute();
     }
-    r.count_workgroups(bin_count, lit.size() + dark.size());
+    r.count_workgroups(bin_count, lit.size() + plain.size() + dark.size());
     const glm::ivec2 counts(int(lights.point_lights.size()), int(lights.emissive_lights.size()));
     r.cmd.bind(r.pipeline<LightBinParams>("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 8, .group_y = 8}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
@@ -448,12 +502,11 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
                                .storage_buffer(3, s.proxy_bins));
     auto b = r.params<LightBinParams>(w.width, w.height);
     b.counts.x = counts.x, b.counts.y = counts.y;
-    // A bin's proxy queries: its texel centres, face points (half a tile off), and with
-    // unfolded proxy shadows points a wall height beyond those.
+    // A bin's proxy queries reach proxy_pad beyond its texel centres.
     b.pass = {.bins_x = std::int32_t(bins_x), .bins_y = std::int32_t(bins_y), .words = std::int32_t(words),
               .bin_w = std::int32_t(4 * r.group_x()), .bin_h = std::int32_t(r.block_h() * r.group_y()),
               .proxy_words = std::int32_t(proxy_words),
-              .proxy_pad = 0.51f + (unfolds_proxy_shadows(in) ? std::max(in.wall_height, 0.0f) : 0.0f),
+              .proxy_pad = proxy_pad(in),
               .per_light = proxy_per_light ? 1 : 0};
     r.cmd.push_constants(b);
     r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
@@ -492,8 +545,8 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     p.pass.proxy_per_light = proxy_per_light ? 1 : 0;
     p.pass.bins_x = std::int32_t(bins_x);
     p.pass.bins_y = std::int32_t(bins_y);
-    auto run = [&](std::uint32_t variant, std::size_t first, std::size_t count) {
-        r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = !in.proxies.empty(),
+    auto run = [&](std::uint32_t variant, std::size_t first, std::size_t count, bool proxies = true) {
+        r.cmd.bind(r.pipeline<DirectParams>("gi_direct.comp", {.proxies = proxies && !in.proxies.empty(),
                                                               .walls = r.plan.has_walls_in_window,
                                                               .features = features | variant,
                                                               .faces = faces}));
@@ -509,7 +562,8 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
         run(0, 0, 0);
     } else {
         if (!lit.empty()) run(feature_list, 0, lit.size());
-        if (!dark.empty()) run(feature_list | feature_no_lights, lit.size(), dark.size());
+        if (!plain.empty()) run(feature_list, lit.size(), plain.size(), false);
+        if (!dark.empty()) run(feature_list | feature_no_lights, lit.size() + plain.size(), dark.size());
     }
     r.cmd.barrier_compute_to_compute();
     if (out.data() != direct_set) return;
