@@ -331,7 +331,7 @@ struct AddParams {
 // of them with a mixed sun (it lights every texel) or without dirty bins (the full dispatch
 // the listed one is compared with); none when no mixed light reaches the window.
 struct AddState : vk::PassState {
-    gpu::Buffer groups; // the list, or a 16-byte stand-in bound when the dispatch is full
+    UploadedArray groups; // the list (a storage buffer), or a stand-in bound when the dispatch is full
 };
 
 // gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies, bit 15
@@ -367,16 +367,10 @@ void record_baked(PassRecorder& r) {
             list = mixed_add_groups(r, pairs[0].target);
             if (list && list->empty()) continue; // no mixed light reaches the window
         }
-        const VkDeviceSize list_bytes = std::max<VkDeviceSize>(16, list ? VkDeviceSize(list->size()) * 4 : 0);
-        if (!s.groups || s.groups.size() < list_bytes) {
-            gpu::BufferDesc desc;
-            desc.size = list_bytes + list_bytes / 4; // room to grow
-            desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-            desc.name = "gi add workgroups";
-            s.groups = r.device().create_buffer(desc);
-        }
-        if (list) {
-            r.cmd.upload(s.groups, 0, std::as_bytes(std::span<const std::uint32_t>(*list)));
+        if (list || !s.groups.buffer) {
+            const std::uint32_t stand_in = 0;
+            upload_array(r, s.groups, list ? std::span<const std::uint32_t>(*list) : std::span(&stand_in, 1), VK_FORMAT_UNDEFINED,
+                         "gi add workgroups");
             r.cmd.barrier_transfer_to_compute();
         }
         gpu::DescriptorWrites writes;
@@ -390,7 +384,7 @@ void record_baked(PassRecorder& r) {
             const AddPair& p = std::size_t(k) < pairs.size() && pairs[std::size_t(k)].scaled ? pairs[std::size_t(k)] : pairs[0];
             writes.uniform_texel_buffer(std::uint32_t(2 * pairs_per_dispatch + k), r.view(p.scaled.value_or(p.source)));
         }
-        writes.storage_buffer(std::uint32_t(2 * pairs_per_dispatch + scaled_pairs), s.groups);
+        writes.storage_buffer(std::uint32_t(2 * pairs_per_dispatch + scaled_pairs), s.groups.buffer);
         const std::uint32_t features = add_features(pairs) | (list ? feature_list : 0u);
         r.cmd.bind(r.pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = features}));
         r.cmd.push_descriptors(writes);

@@ -237,6 +237,12 @@ std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uin
     return v ? v : 1;
 }
 
+// The bins [lo, hi) of `count` bins of `size` texels that [c - reach, c + reach] meets (texels).
+void bin_span(double c, double reach, double size, std::uint32_t count, std::uint32_t& lo, std::uint32_t& hi) {
+    lo = std::uint32_t(std::clamp(std::floor((c - reach) / size), 0.0, double(count)));
+    hi = std::uint32_t(std::clamp(std::floor((c + reach) / size) + 1.0, 0.0, double(count)));
+}
+
 } // namespace
 
 WorkgroupGrid workgroup_grid(const vk::PassRecorder& r, int pitch, int height) {
@@ -262,13 +268,8 @@ std::vector<std::uint64_t> bin_lights(std::span<const GpuPointLight> points, std
         const bool finite = std::isfinite(cx) && std::isfinite(cz) && std::isfinite(reach);
         if (finite) {
             if (!(reach >= 0.0)) return; // a negative radius reaches nothing
-            auto span = [reach](double c, double size, std::uint32_t count, std::uint32_t& lo, std::uint32_t& hi) {
-                const double a = std::floor((c - reach) / size), b = std::floor((c + reach) / size) + 1.0;
-                lo = std::uint32_t(std::clamp(a, 0.0, double(count)));
-                hi = std::uint32_t(std::clamp(b, 0.0, double(count)));
-            };
-            span(cx, bin_w, bins_x, x0, x1);
-            span(cz, bin_h, bins_y, z0, z1);
+            bin_span(cx, reach, bin_w, bins_x, x0, x1);
+            bin_span(cz, reach, bin_h, bins_y, z0, z1);
         }
         for (std::uint32_t bz = z0; bz < z1; ++bz)
             for (std::uint32_t bx = x0; bx < x1; ++bx) {
@@ -310,13 +311,9 @@ std::vector<std::uint8_t> bin_proxies(std::span<const GpuShadowProxy> proxies, c
             std::fill(out.begin(), out.end(), std::uint8_t(1));
             return out;
         }
-        auto span = [reach](double c, double size, std::uint32_t count, std::uint32_t& lo, std::uint32_t& hi) {
-            lo = std::uint32_t(std::clamp(std::floor((c - reach) / size), 0.0, double(count)));
-            hi = std::uint32_t(std::clamp(std::floor((c + reach) / size) + 1.0, 0.0, double(count)));
-        };
         std::uint32_t x0 = 0, x1 = 0, z0 = 0, z1 = 0;
-        span(cx, bin_w, bins_x, x0, x1);
-        span(cz, bin_h, bins_y, z0, z1);
+        bin_span(cx, reach, bin_w, bins_x, x0, x1);
+        bin_span(cz, reach, bin_h, bins_y, z0, z1);
         for (std::uint32_t bz = z0; bz < z1; ++bz)
             for (std::uint32_t bx = x0; bx < x1; ++bx) out[std::size_t(bz) * bins_x + bx] = 1;
     }
