@@ -16,13 +16,19 @@ struct BakedParams {
     int resolution;         // baked grid texels per tile
     int width, height;      // baked grid texels
     int parts;              // bit 0: layers 5..9 hold the pulsing glow's light (seed 004's pulsing
-                            // emission), written apart; bits 1..: the moving sun's first key
-                            // layer + 1 (0: none)
+                            // emission), written apart (FEATURES & 1); bits 1..: the moving
+                            // sun's first key layer + 1 (0: none; FEATURES & 2 when not 0)
     float intensity;        // gi.baked_intensity
     int unused;
 };
 #define GI_PASS_PARAMS BakedParams
 #include "lantern/gi_common.glsl"
+
+// The parts the atlas holds, as specialisation constants: lavapipe runs an untaken branch's
+// body too, masked, so a branch on `parts` would pay for the pulsing and keyed reads in every
+// frame (docs/performance.md, "The baked sampling's untaken reads").
+const bool PULSING = (FEATURES & 1u) != 0u;  // parts bit 0: layers 5..9 hold the pulsing glow's light
+const bool SUN_KEYS = (FEATURES & 2u) != 0u; // parts >> 1 is a keyed moving sun's first layer + 1
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[1]; } u_proxies; // unused
@@ -72,7 +78,7 @@ vec3 baked_sample(int layer, vec2 p, out float level) {
 vec3 baked_light(int layer, vec2 p, out float level) {
     vec3 v = baked_sample(layer, p, level);
     int sun_layer = (pc.pass.parts >> 1) - 1;
-    if (sun_layer >= 0) {
+    if (SUN_KEYS && sun_layer >= 0) {
         float key_level;
         vec3 below = baked_sample(sun_layer + layer, p, key_level);
         vec3 above = baked_sample(sun_layer + LAYERS + layer, p, key_level);
@@ -111,7 +117,7 @@ void main() {
                 float level;
                 vec3 c = baked_light(layer, p, level);
                 vec3 q = vec3(0.0);
-                if ((pc.pass.parts & 1) != 0) {
+                if (PULSING) {
                     float pulse_level;
                     q = baked_sample(LAYERS + layer, p, pulse_level) * pc.pass.intensity;
                 }
@@ -130,7 +136,7 @@ void main() {
             if (computes_face(FACES, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(v1, alpha));
             if (computes_face(FACES, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(v2, alpha));
             if (computes_face(FACES, 3)) o_face_nz.texels[index] = pack_rgba16f(vec4(v3, alpha));
-            if ((pc.pass.parts & 1) != 0) {
+            if (PULSING) {
                 o_pulse_ground.texels[index] = pack_rgba16f(vec4(pg, 0.0));
                 if (computes_face(FACES, 0)) o_pulse_px.texels[index] = pack_rgba16f(vec4(p0, alpha));
                 if (computes_face(FACES, 1)) o_pulse_nx.texels[index] = pack_rgba16f(vec4(p1, alpha));

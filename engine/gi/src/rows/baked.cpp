@@ -225,10 +225,17 @@ void record_sample(PassRecorder& r) {
         const bool written = b.pulsing && (layer == 0 || computes_face(faces, layer - 1));
         writes.storage_buffer(std::uint32_t(11 + layer), r.buffer(written ? pulse_tex(layer) : Tex::baked_ground));
     }
-    r.cmd.bind(r.pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .faces = faces}));
+    const int sun_first = sun.key >= 0 && sun.key + 1 < b.sun_keys ? b.sun_layer(sun.key, 0) + 1 : 0;
+    // The parts as the shader's FEATURES (bit 0 pulsing, bit 1 keyed sun), so the variant
+    // without them has none of their reads; the variants another composition or time of
+    // day may need are compiled before a frame asks for them.
+    const std::uint32_t features = (b.pulsing ? 1u : 0u) | (sun_first != 0 ? 2u : 0u);
+    for (std::uint32_t other = 0; other < 4; ++other)
+        if (other != features && ((other & 2u) == 0 || b.sun_keys > 1))
+            r.prefetch_pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .features = other, .faces = faces});
+    r.cmd.bind(r.pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .features = features, .faces = faces}));
     r.cmd.push_descriptors(writes);
     auto p = r.params<SampleParams>(w.width, w.height);
-    const int sun_first = sun.key >= 0 && sun.key + 1 < b.sun_keys ? b.sun_layer(sun.key, 0) + 1 : 0;
     p.pass = {.origin_x = b.origin.x, .origin_z = b.origin.y, .resolution = b.resolution, .width = b.width, .height = b.height,
               .parts = (b.pulsing ? 1 : 0) | (sun_first << 1), .intensity = in.settings.baked_intensity};
     r.cmd.push_constants(p);
