@@ -9,7 +9,8 @@ struct AoParams {
     float strength;      // how dark full occlusion is
     float dither;        // 1: ordered dithering before the 8-bit store
     int range;           // ceil(radius): neighbour tiles each way
-    int pad0, pad1, pad2;
+    int offset;          // the dispatch's first texel, x | y << 16 (a scrolled window's new strips; x a multiple of 4)
+    int pad1, pad2;
 };
 #define GI_PASS_PARAMS AoParams
 #include "lantern/gi_common.glsl"
@@ -69,7 +70,7 @@ float ao_texel(int x, int y) {
 }
 
 void main() {
-    ivec2 o = block_origin();
+    ivec2 o = block_origin() + ivec2(pc.pass.offset & 0xFFFF, pc.pass.offset >> 16);
     if (o.x >= pc.size.x) return;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);

@@ -19,7 +19,7 @@ struct BakedParams {
                             // emission), written apart (FEATURES & 1); bits 1..: the moving
                             // sun's first key layer + 1 (0: none; FEATURES & 2 when not 0)
     float intensity;        // gi.baked_intensity
-    int unused;
+    int offset;             // the dispatch's first texel, x | y << 16 (a scrolled window's new strips)
 };
 #define GI_PASS_PARAMS BakedParams
 #include "lantern/gi_common.glsl"
@@ -88,7 +88,7 @@ vec3 baked_light(int layer, vec2 p, out float level) {
 }
 
 void main() {
-    ivec2 o = block_origin();
+    ivec2 o = block_origin() + ivec2(pc.pass.offset & 0xFFFF, pc.pass.offset >> 16);
     if (o.x >= pc.size.x) return;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);

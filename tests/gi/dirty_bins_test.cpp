@@ -50,21 +50,25 @@ class DirtyBins : public lantern::test::GpuTest {
 
     // One frame on both renderers: every contract texture equal bit for bit; the direct and
     // mixed passes recorded as many workgroups as `direct` and `mixed` say, the heat pass as
-    // many of its tap masks' workgroups as `heat` says, and the baked pass as many of its
-    // mixed lights' adds as `mixed_add` says (the renderer without dirty bins adds them all).
+    // many of its tap masks' workgroups as `heat` says, the baked pass as many of its
+    // mixed lights' adds as `mixed_add` says (the renderer without dirty bins adds them all),
+    // and the baked sampling and AO rows as many workgroups as `sampled` and `ao` say (they
+    // scroll with the window).
     void frame(const std::string& name, const FrameInputs& in, Expect direct, Expect mixed = Expect::any,
-               Expect heat = Expect::any, Expect mixed_add = Expect::any) {
+               Expect heat = Expect::any, Expect mixed_add = Expect::any, Expect sampled = Expect::any,
+               Expect ao = Expect::any) {
         PassPlan plan = plan_passes(in, true);
-        constexpr int n = 4;
-        constexpr Pass passes[n] = {Pass::direct, Pass::mixed, Pass::heat, Pass::baked};
-        constexpr const char* names[n] = {": direct", ": mixed", ": heat's tap masks", ": the mixed lights' adds"};
+        constexpr int n = 6;
+        constexpr Pass passes[n] = {Pass::direct, Pass::mixed, Pass::heat, Pass::baked, Pass::baked_sample, Pass::ao};
+        constexpr const char* names[n] = {": direct", ": mixed", ": heat's tap masks", ": the mixed lights' adds",
+                                          ": the baked sampling", ": AO"};
         vk::Renderer::PartialWork before[n], after[n];
         for (int k = 0; k < n; ++k) before[k] = dirty_->partial_work(passes[k]);
         auto a = run_vulkan_frame(*dirty_, in, plan);
         auto b = run_vulkan_frame(*full_, in, plan);
         ASSERT_TRUE(a.ok() && b.ok()) << name;
         for (int k = 0; k < n; ++k) after[k] = dirty_->partial_work(passes[k]);
-        const Expect expect[n] = {direct, mixed, heat, mixed_add};
+        const Expect expect[n] = {direct, mixed, heat, mixed_add, sampled, ao};
         for (int k = 0; k < n; ++k) {
             const std::string what = name + names[k];
             const std::uint64_t workgroups = after[k].workgroups - before[k].workgroups,
@@ -235,4 +239,61 @@ TEST_F(DirtyBins, TheHeatPassKeepsItsTapMasksWhileTheWallsAndWindowStay) {
     s.gi.segment_check = !s.gi.segment_check;
     frame("the segment check is switched (the direct pass does not read it)", inputs_of(s), Expect::none, Expect::any,
           Expect::all);
+}
+
+// The baked sampling and AO rows rerun when the window steps, but a texel's baked light and
+// AO depend on its world point and the walls around its tile alone: at a step by whole texels
+// each row shifts what both windows hold and computes only the new strips, and every texture
+// stays the same bit for bit as with everything computed. A mined wall, a jump past the
+// window, a new bake and a resolution whose texel centres round (3) compute everything again;
+// with AO's dither (a pattern of the window's texels modulo 4) AO scrolls by multiples of 4
+// texels alone.
+TEST_F(DirtyBins, TheBakedSamplingAndAoScrollWithTheWindow) {
+    Scene s = lit_cave();
+    s.point_lights[3].mode = lantern::scene::LightMode::mixed;
+    s.gi.ao.enabled = true;
+    s.gi.ao.dither = false;
+    std::uint64_t bake_seed = 900;
+    bool pulsing = false;
+    auto inputs = [&] {
+        FrameInputs in = inputs_of(s);
+        in.baked = gi_test::synthetic_bake(in.walls, {-2, -2}, {44, 34}, 4, 0.0f, bake_seed, pulsing);
+        in.baked_pulse = 0.37f;
+        split_for_bake(in, s);
+        return in;
+    };
+    {
+        const PassPlan plan = plan_passes(inputs(), true);
+        ASSERT_TRUE(plan.run.has(Pass::baked_sample) && plan.run.has(Pass::ao));
+    }
+    constexpr Expect any = Expect::any, some = Expect::some, all = Expect::all;
+    auto step = [&](const std::string& name, glm::vec2 by, Expect sampled, Expect ao = Expect::any) {
+        std::get<lantern::scene::OrthoView>(s.view).center += by;
+        frame(name, inputs(), any, any, any, any, sampled, ao == any ? sampled : ao);
+    };
+    frame("the first frame", inputs(), any, any, any, any, all, all);
+    step("a step in +x", {1.0f, 0.0f}, some);
+    step("a step in -z", {0.0f, -1.0f}, some);
+    step("a diagonal step of several tiles", {-2.0f, 3.0f}, some);
+    step("a step in -x", {-1.0f, 0.0f}, some);
+    s.walls.cells[std::size_t(15 * 40 + 20)] ^= 1;
+    step("a wall mined where both windows are", {1.0f, 0.0f}, all);
+    step("a step after it", {0.0f, 1.0f}, some);
+    step("a jump past the bake (the baked sampling does not run)", {200.0f, 0.0f}, any);
+    step("back into the cave", {-199.0f, 0.0f}, any);
+    step("a step back", {1.0f, 1.0f}, some);
+    bake_seed = 901;
+    pulsing = true;
+    s.gi.ao.dither = true;
+    step("another bake, with a pulsing part; AO dithered", {1.0f, 0.0f}, all);
+    step("a step with the pulsing part and the dither", {0.0f, -2.0f}, some);
+    s.gi.window_snap = lantern::scene::WindowSnap::texel;
+    step("the window snapped to texels (it stays: nothing to compute)", {0.0f, 0.0f}, Expect::none);
+    step("a step of one texel (AO's dither would move)", {0.25f, 0.0f}, some, all);
+    s.gi.ao.dither = false;
+    step("the dither switched off", {0.0f, 0.0f}, any, all);
+    step("a step of one texel without the dither", {0.0f, 0.25f}, some, some);
+    s.gi.resolution = 3;
+    step("resolution 3", {0.0f, 0.0f}, all);
+    step("a step at resolution 3 (texel centres round)", {1.0f, 0.0f}, all);
 }

@@ -135,7 +135,7 @@ struct SampleParams {
     // moving sun's (baked_sun_of) atlas layer of the key below its time, plus 1 (0: no keyed sun).
     std::int32_t parts = 0;
     float intensity = 1.0f;
-    std::int32_t unused = 0;
+    std::int32_t offset = 0; // the dispatch's first texel, x | y << 16
 };
 
 // The atlas and indirection as images, rewritten when the baked light changes. Each keeps a
@@ -149,6 +149,7 @@ struct SampleState : vk::PassState {
     UploadedArray sun; // the keys' weights: colour x (1 - blend), colour x blend (BakedLight::light)
     std::uint64_t key = 0;
     bool uploaded = false;
+    WindowScroll scroll; // at a window step, the shared texels are shifted, not sampled again
 };
 
 std::uint32_t grown(std::uint32_t have, std::uint32_t need) {
@@ -233,13 +234,42 @@ void record_sample(PassRecorder& r) {
     for (std::uint32_t other = 0; other < 4; ++other)
         if (other != features && ((other & 2u) == 0 || b.sun_keys > 1))
             r.prefetch_pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .features = other, .faces = faces});
+    // Scrolling (rows.hpp WindowScroll): a texel depends on its world point (the atlas, the
+    // sun keys' weights, the intensity) and on the walls of its tile and the four beside it.
+    std::vector<Tex> outputs;
+    sample_writes(in).for_each([&](Tex t) { outputs.push_back(t); });
+    Hasher h;
+    h.add(b.key).add(b.origin.x).add(b.origin.y).add(b.resolution).add(b.width).add(b.height).add(b.pulsing);
+    h.add(features).add(sun_first).add_bytes(weights, sizeof weights).add(in.settings.baked_intensity).add(faces);
+    h.add(w.resolution).add(w.width).add(w.height);
+    for (const Tex t : outputs) h.add(std::uint32_t(t)).add(r.serial(t)).add(r.pitch(t)).add(r.buffer(t).size());
+    glm::ivec2 shift(0);
+    const bool scrolls = scroll_from_last(r, s.scroll, h.value(), 1, glm::ivec2(1), shift);
+
     r.cmd.bind(r.pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .features = features, .faces = faces}));
     r.cmd.push_descriptors(writes);
     auto p = r.params<SampleParams>(w.width, w.height);
     p.pass = {.origin_x = b.origin.x, .origin_z = b.origin.y, .resolution = b.resolution, .width = b.width, .height = b.height,
               .parts = (b.pulsing ? 1 : 0) | (sun_first << 1), .intensity = in.settings.baked_intensity};
-    r.cmd.push_constants(p);
-    r.dispatch(w.width, w.height);
+    const std::uint64_t all_groups = r.dispatch_groups(w.width, w.height);
+    if (!scrolls) {
+        r.count_workgroups(all_groups, all_groups);
+        r.cmd.push_constants(p);
+        r.dispatch(w.width, w.height);
+        r.cmd.barrier_compute_to_compute();
+        return;
+    }
+    shift_outputs(r, s.scroll, outputs, shift, 8); // rgba16f
+    // The new strips. A dispatch rounds up to whole workgroups: the texels it computes beyond
+    // its strip are shared ones, written again with what they hold.
+    std::uint64_t recorded = 0;
+    scroll_strips(w, shift, [&](int x0, int y0, int width, int height) {
+        p.pass.offset = x0 | (y0 << 16);
+        r.cmd.push_constants(p);
+        r.dispatch(width, height);
+        recorded += r.dispatch_groups(width, height);
+    });
+    r.count_workgroups(all_groups, recorded);
     r.cmd.barrier_compute_to_compute();
 }
 

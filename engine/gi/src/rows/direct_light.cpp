@@ -90,7 +90,9 @@ const gpu::Buffer& face_buffer(PassRecorder& r, std::span<const Tex> ids, int fa
 // the shader when its pipeline is created).
 struct AoParams {
     float radius = 0, power = 0, strength = 0, dither = 0;
-    std::int32_t range = 0, pad0 = 0, pad1 = 0, pad2 = 0;
+    std::int32_t range = 0;
+    std::int32_t offset = 0; // the dispatch's first texel, x | y << 16
+    std::int32_t pad1 = 0, pad2 = 0;
 };
 struct LightBinParams {
     std::int32_t bins_x = 0, bins_y = 0, words = 0, bin_w = 0, bin_h = 0, proxy_words = 0;
@@ -148,6 +150,7 @@ struct AoState : vk::PassState {
     gpu::BufferView view;
     std::tuple<int, float, float> key{0, 0.0f, 0.0f}; // resolution, radius, power
     int range = 0;
+    WindowScroll scroll; // at a window step, the shared texels are shifted, not computed again
 };
 
 void record_ao(PassRecorder& r) {
@@ -179,8 +182,35 @@ void record_ao(PassRecorder& r) {
     auto p = r.params<AoParams>(w.width, w.height);
     p.pass = {.radius = settings.radius, .power = settings.power, .strength = settings.strength,
               .dither = settings.dither ? 1.0f : 0.0f, .range = s.range};
-    r.cmd.push_constants(p);
-    r.dispatch(w.width, w.height);
+    // Scrolling (rows.hpp WindowScroll): a texel depends on its place in its tile (the global
+    // texel index) and the walls within `range` tiles of it; the dither on its window texel
+    // modulo 4, so with dithering the window moves by multiples of 4 texels.
+    Hasher h;
+    h.add(w.resolution).add(w.width).add(w.height).add(settings.radius).add(settings.power).add(settings.strength);
+    h.add(settings.dither).add(s.range).add(r.serial(Tex::ao)).add(r.pitch(Tex::ao)).add(r.buffer(Tex::ao).size());
+    glm::ivec2 shift(0);
+    const int align = settings.dither ? 4 : 1;
+    const std::uint64_t all_groups = r.dispatch_groups(w.width, w.height);
+    if (!scroll_from_last(r, s.scroll, h.value(), s.range + 1, glm::ivec2(align), shift)) {
+        r.count_workgroups(all_groups, all_groups);
+        r.cmd.push_constants(p);
+        r.dispatch(w.width, w.height);
+        r.cmd.barrier_compute_to_compute();
+        return;
+    }
+    const Tex out[] = {Tex::ao};
+    shift_outputs(r, s.scroll, out, shift, 1); // r8
+    // The new strips, from a multiple of 4 texels (an invocation writes 4 texels' word). The
+    // texels computed beyond a strip are shared ones, written again with what they hold.
+    std::uint64_t recorded = 0;
+    scroll_strips(w, shift, [&](int x0, int y0, int width, int height) {
+        const int from = x0 & ~3;
+        p.pass.offset = from | (y0 << 16);
+        r.cmd.push_constants(p);
+        r.dispatch(width + (x0 - from), height);
+        recorded += r.dispatch_groups(width + (x0 - from), height);
+    });
+    r.count_workgroups(all_groups, recorded);
     r.cmd.barrier_compute_to_compute();
 }
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <optional>
 #include <span>
 #include <vector>
@@ -62,6 +63,39 @@ std::vector<std::uint64_t> bin_lights(std::span<const GpuPointLight> points, std
 // reach (the mixed set is zero elsewhere), or nullopt for all of them (a mixed sun, a
 // renderer without dirty bins, more than one dispatch row holds). Defined in baked.cpp.
 std::optional<std::vector<std::uint32_t>> mixed_add_bins(const vk::PassRecorder& r, WorkgroupGrid grid);
+
+// Scrolling a window-keyed row's outputs at a window step (docs/gi.md, "Scrolling at a window
+// step"; scroll.cpp). For rows whose texel depends on its world point and the walls within
+// `margin` tiles of its tile alone, never on where the window lies: when the window steps by
+// whole texels and nothing else changed, the texels both windows hold are the last run's,
+// shifted, and only the new strips need computing. Exact when every texel centre is exact in
+// float (a power-of-two resolution, an origin on the half-texel grid, coordinates that need
+// no rounding), so that a texel's world point is the same number from either origin.
+struct WindowScroll {
+    // The last run: everything its outputs depend on but the window's origin and the walls (0:
+    // nothing to scroll from), its window, and the wall cells of its tiles and `margin` around.
+    std::uint64_t content = 0;
+    GiWindow window;
+    glm::ivec2 cells_lo{0}, cells_size{0};
+    std::vector<std::uint8_t> cells;
+    gpu::Buffer scratch; // the shift's intermediate copy
+};
+// Whether this run may scroll from the last (same content, walls within `margin` tiles of the
+// shared texels, exact texel centres, a shift by whole texels that are multiples of `align`
+// and smaller than the window, a renderer with partial recording); then `shift` is the texels
+// the window moved by. Records this run as the last either way.
+bool scroll_from_last(vk::PassRecorder& r, WindowScroll& s, std::uint64_t content, int margin, glm::ivec2 align, glm::ivec2& shift);
+// Moves each output's texels (`texel_bytes` each, in a buffer of its pitch) by `shift`: texel
+// (x, y) receives the old (x + shift.x, y + shift.y). The texels outside the shared part
+// receive other texels' values: the caller computes them again (scroll_strips).
+void shift_outputs(vk::PassRecorder& r, WindowScroll& s, std::span<const Tex> outputs, glm::ivec2 shift, VkDeviceSize texel_bytes);
+// The new strips of a window that moved by `shift` (the columns it moved into, every row;
+// then the rows, every column): f(x0, y0, width, height) for each that is not empty.
+template <typename F>
+void scroll_strips(const GiWindow& w, glm::ivec2 shift, F&& f) {
+    if (shift.x != 0) f(shift.x > 0 ? w.width - shift.x : 0, 0, std::abs(shift.x), w.height);
+    if (shift.y != 0) f(0, shift.y > 0 ? w.height - shift.y : 0, w.width, std::abs(shift.y));
+}
 
 // A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown
 // as needed.
