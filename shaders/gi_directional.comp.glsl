@@ -79,36 +79,44 @@ float sun_grid_visibility(int i, GpuDirectionalLight sun, vec2 from) {
                                 : directional_shadow_dda(from, dir, max_distance, pc.pass.wall_height);
 }
 
-float sun_visibility(int i, GpuDirectionalLight sun, vec2 from) {
-    return min(sun_grid_visibility(i, sun, from), directional_proxy_shadow(from, sun.direction_base.xyz));
-}
-
+// A texel's targets share one code path, as in the direct pass: the ground texel's centre,
+// or a wall texel's x face and z face that can face the sun (weight > 0; at most one of each
+// pair). lavapipe runs both sides of every branch, masked, so separate ground and wall paths
+// cost every texel both, and a loop over four faces four traversals.
 void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     vec4 mask = wall ? wall_face_mask(cell) * face_bits_mask(FACES) : vec4(0.0);
+    int targets = wall ? 2 : 1;
     for (int i = 0; i < pc.counts.z; ++i) {
         GpuDirectionalLight sun = u_suns.suns[i];
         if ((sun.bounce.y != 0.0) != MIXED_SUNS) continue;
         g_proxy_base = (i * g_bins_total + g_bin) * g_proxy_words;
         vec3 color = sun.color_multiplier.rgb * sun_angle(sun);
-        if (!wall) {
-            float visibility = sun_visibility(i, sun, p);
-            t.shadow = max(t.shadow, visibility);
-            t.color += color * visibility;
-            continue;
-        }
         vec2 to_sun = vec2(-sun.direction_base.x, -sun.direction_base.z);
         precise float len = gi_length(to_sun);
-        if (len < 1e-4) continue;
-        vec4 weight = mask * wall_facing(gi_div(to_sun, len), pc.pass.face_exponent);
-        for (int f = 0; f < 4; ++f) {
-            if (!(weight[f] > 0.0)) continue;
-            vec2 target = face_position(f, cell, p);
-            if (UPPER) {
-                add_face(t, f, color * weight[f], sun_grid_visibility(i, sun, target),
-                         directional_proxy_face_shadow(target, sun.direction_base.xyz, pc.pass.wall_height));
+        // The sun overhead lights no face (len < 1e-4).
+        vec4 weight = len < 1e-4 ? vec4(0.0) : mask * wall_facing(gi_div(to_sun, max(len, 1e-4)), pc.pass.face_exponent);
+        int fx = weight.x > 0.0 ? 0 : 1, fz = weight.z > 0.0 ? 2 : 3;
+        for (int s = 0; s < targets; ++s) {
+            int f = s == 0 ? fx : fz;
+            float w = s == 0 ? (fx == 0 ? weight.x : weight.y) : (fz == 2 ? weight.z : weight.w);
+            if (wall && !(w > 0.0)) continue;
+            vec2 target = wall ? face_position(f, cell, p) : p;
+            float grid = sun_grid_visibility(i, sun, target);
+            // The proxies' shadow at the target (x), and with unfolded proxy shadows at a
+            // face's top (y) and the height its shadow ends (z).
+            vec3 proxy = UPPER ? directional_proxy_face_shadow(target, sun.direction_base.xyz, pc.pass.wall_height)
+                               : vec3(directional_proxy_shadow(target, sun.direction_base.xyz), 1.0, 0.0);
+            if (UPPER && wall) {
+                add_face(t, f, color * w, grid, proxy);
                 continue;
             }
-            t.face[f] += color * (weight[f] * sun_visibility(i, sun, target));
+            float visibility = min(grid, proxy.x);
+            if (wall) {
+                add_face_light(t, f, color * (w * visibility));
+            } else {
+                t.shadow = max(t.shadow, visibility);
+                t.color += color * visibility;
+            }
         }
     }
 }
