@@ -6,7 +6,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 struct BlurParams {
-    int axis_x, axis_y; // (1, 0) horizontal, (0, 1) vertical
+    int axis_x, axis_y; // (1, 0) horizontal, (0, 1) vertical (FEATURES bit 0 says which the shader runs)
     int pad0, pad1, pad2, pad3, pad4, pad5;
 };
 #define GI_PASS_PARAMS BlurParams
@@ -68,10 +68,14 @@ void blur_line(ivec2 first, ivec2 axis, int length) {
     }
 }
 
+// The pass's axis (FEATURES bit 0: vertical) as a specialisation constant: lavapipe runs both
+// sides of a branch, masked, so a branch on axis_x would run both blurs in every invocation.
+const bool VERTICAL = (FEATURES & 1u) != 0u;
+
 void main() {
     ivec2 o = block_origin();
     if (o.x >= pc.size.x) return;
-    if (pc.pass.axis_x != 0) {
+    if (!VERTICAL) {
         for (uint r = 0; r < BLOCK_H; ++r) blur_line(o + ivec2(0, r), ivec2(1, 0), 4);
     } else {
         for (int k = 0; k < 4; ++k) blur_line(o + ivec2(k, 0), ivec2(0, 1), int(BLOCK_H));

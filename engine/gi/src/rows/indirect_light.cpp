@@ -162,9 +162,9 @@ void reference_heat_row(ReferenceContext& c) {
 
 void record_blur(PassRecorder& r) {
     const GiWindow& w = r.in.window;
-    const gpu::ComputePipeline& pipeline = r.pipeline<BlurParams>("gi_blur.comp", {.proxies = false});
     auto blur_pass = [&](Tex src, Tex dst, glm::ivec2 axis) {
-        r.cmd.bind(pipeline);
+        // The axis is the shader's FEATURES bit 0 (a specialisation constant), not a branch.
+        r.cmd.bind(r.pipeline<BlurParams>("gi_blur.comp", {.proxies = false, .features = axis.y != 0 ? 1u : 0u}));
         r.cmd.push_descriptors(gpu::DescriptorWrites()
                                    .uniform_texel_buffer(0, r.view(Tex::conduction))
                                    .uniform_texel_buffer(1, r.view(src))
