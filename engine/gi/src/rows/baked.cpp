@@ -242,34 +242,18 @@ void record_sample(PassRecorder& r) {
     h.add(b.key).add(b.origin.x).add(b.origin.y).add(b.resolution).add(b.width).add(b.height).add(b.pulsing);
     h.add(features).add(sun_first).add_bytes(weights, sizeof weights).add(in.settings.baked_intensity).add(faces);
     h.add(w.resolution).add(w.width).add(w.height);
-    for (const Tex t : outputs) h.add(std::uint32_t(t)).add(r.serial(t)).add(r.pitch(t)).add(r.buffer(t).size());
     glm::ivec2 shift(0);
-    const bool scrolls = scroll_from_last(r, s.scroll, h.value(), 1, glm::ivec2(1), shift);
+    const bool scrolls = scroll_from_last(r, s.scroll, h.value(), outputs, 1, glm::ivec2(1), shift);
 
     r.cmd.bind(r.pipeline<SampleParams>("gi_baked.comp", {.proxies = false, .features = features, .faces = faces}));
     r.cmd.push_descriptors(writes);
     auto p = r.params<SampleParams>(w.width, w.height);
     p.pass = {.origin_x = b.origin.x, .origin_z = b.origin.y, .resolution = b.resolution, .width = b.width, .height = b.height,
               .parts = (b.pulsing ? 1 : 0) | (sun_first << 1), .intensity = in.settings.baked_intensity};
-    const std::uint64_t all_groups = r.dispatch_groups(w.width, w.height);
-    if (!scrolls) {
-        r.count_workgroups(all_groups, all_groups);
-        r.cmd.push_constants(p);
-        r.dispatch(w.width, w.height);
-        r.cmd.barrier_compute_to_compute();
-        return;
-    }
-    shift_outputs(r, s.scroll, outputs, shift, 8); // rgba16f
-    // The new strips. A dispatch rounds up to whole workgroups: the texels it computes beyond
-    // its strip are shared ones, written again with what they hold.
-    std::uint64_t recorded = 0;
-    scroll_strips(w, shift, [&](int x0, int y0, int width, int height) {
+    dispatch_scrolled(r, s.scroll, scrolls, shift, outputs, 8 /* rgba16f */, 1, [&](int x0, int y0) {
         p.pass.offset = x0 | (y0 << 16);
         r.cmd.push_constants(p);
-        r.dispatch(width, height);
-        recorded += r.dispatch_groups(width, height);
     });
-    r.count_workgroups(all_groups, recorded);
     r.cmd.barrier_compute_to_compute();
 }
 

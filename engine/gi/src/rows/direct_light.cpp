@@ -184,33 +184,19 @@ void record_ao(PassRecorder& r) {
               .dither = settings.dither ? 1.0f : 0.0f, .range = s.range};
     // Scrolling (rows.hpp WindowScroll): a texel depends on its place in its tile (the global
     // texel index) and the walls within `range` tiles of it; the dither on its window texel
-    // modulo 4, so with dithering the window moves by multiples of 4 texels.
+    // modulo 4, so with dithering the window moves by multiples of 4 texels. An invocation
+    // writes 4 texels' word: strips start at a multiple of 4.
     Hasher h;
     h.add(w.resolution).add(w.width).add(w.height).add(settings.radius).add(settings.power).add(settings.strength);
-    h.add(settings.dither).add(s.range).add(r.serial(Tex::ao)).add(r.pitch(Tex::ao)).add(r.buffer(Tex::ao).size());
+    h.add(settings.dither).add(s.range);
+    const Tex out[] = {Tex::ao};
     glm::ivec2 shift(0);
     const int align = settings.dither ? 4 : 1;
-    const std::uint64_t all_groups = r.dispatch_groups(w.width, w.height);
-    if (!scroll_from_last(r, s.scroll, h.value(), s.range + 1, glm::ivec2(align), shift)) {
-        r.count_workgroups(all_groups, all_groups);
+    const bool scrolls = scroll_from_last(r, s.scroll, h.value(), out, s.range + 1, glm::ivec2(align), shift);
+    dispatch_scrolled(r, s.scroll, scrolls, shift, out, 1 /* r8 */, 4, [&](int x0, int y0) {
+        p.pass.offset = x0 | (y0 << 16);
         r.cmd.push_constants(p);
-        r.dispatch(w.width, w.height);
-        r.cmd.barrier_compute_to_compute();
-        return;
-    }
-    const Tex out[] = {Tex::ao};
-    shift_outputs(r, s.scroll, out, shift, 1); // r8
-    // The new strips, from a multiple of 4 texels (an invocation writes 4 texels' word). The
-    // texels computed beyond a strip are shared ones, written again with what they hold.
-    std::uint64_t recorded = 0;
-    scroll_strips(w, shift, [&](int x0, int y0, int width, int height) {
-        const int from = x0 & ~3;
-        p.pass.offset = from | (y0 << 16);
-        r.cmd.push_constants(p);
-        r.dispatch(width + (x0 - from), height);
-        recorded += r.dispatch_groups(width + (x0 - from), height);
     });
-    r.count_workgroups(all_groups, recorded);
     r.cmd.barrier_compute_to_compute();
 }
 

@@ -80,21 +80,45 @@ struct WindowScroll {
     std::vector<std::uint8_t> cells;
     gpu::Buffer scratch; // the shift's intermediate copy
 };
-// Whether this run may scroll from the last (same content, walls within `margin` tiles of the
-// shared texels, exact texel centres, a shift by whole texels that are multiples of `align`
-// and smaller than the window, a renderer with partial recording); then `shift` is the texels
-// the window moved by. Records this run as the last either way.
-bool scroll_from_last(vk::PassRecorder& r, WindowScroll& s, std::uint64_t content, int margin, glm::ivec2 align, glm::ivec2& shift);
+// Whether this run may scroll from the last (the same `content` and `outputs` (their identity,
+// pitch and size), walls within `margin` tiles of the shared texels, exact texel centres, a
+// shift by whole texels that are multiples of `align` and smaller than the window, a renderer
+// with partial recording); then `shift` is the texels the window moved by. Records this run
+// as the last either way.
+bool scroll_from_last(vk::PassRecorder& r, WindowScroll& s, std::uint64_t content, std::span<const Tex> outputs, int margin,
+                      glm::ivec2 align, glm::ivec2& shift);
 // Moves each output's texels (`texel_bytes` each, in a buffer of its pitch) by `shift`: texel
 // (x, y) receives the old (x + shift.x, y + shift.y). The texels outside the shared part
-// receive other texels' values: the caller computes them again (scroll_strips).
+// receive other texels' values: the caller computes them again.
 void shift_outputs(vk::PassRecorder& r, WindowScroll& s, std::span<const Tex> outputs, glm::ivec2 shift, VkDeviceSize texel_bytes);
-// The new strips of a window that moved by `shift` (the columns it moved into, every row;
-// then the rows, every column): f(x0, y0, width, height) for each that is not empty.
-template <typename F>
-void scroll_strips(const GiWindow& w, glm::ivec2 shift, F&& f) {
-    if (shift.x != 0) f(shift.x > 0 ? w.width - shift.x : 0, 0, std::abs(shift.x), w.height);
-    if (shift.y != 0) f(0, shift.y > 0 ? w.height - shift.y : 0, w.width, std::abs(shift.y));
+// Records a scrolling row's work and counts its workgroups: without `scrolls`, one dispatch
+// over the window; with it, the outputs shifted (shift_outputs) and the new strips, the
+// columns the window moved into (every row) and then the rows (every column), each from a
+// multiple of `x_align` texels. `at(x0, y0)` sets the row's parameters for a dispatch from
+// texel (x0, y0); a dispatch rounds up to whole workgroups, and the shared texels it covers
+// beyond its strip are written again with the value they hold.
+template <typename At>
+void dispatch_scrolled(vk::PassRecorder& r, WindowScroll& s, bool scrolls, glm::ivec2 shift, std::span<const Tex> outputs,
+                       VkDeviceSize texel_bytes, int x_align, At&& at) {
+    const GiWindow& w = r.in.window;
+    const std::uint64_t all = r.dispatch_groups(w.width, w.height);
+    if (!scrolls) {
+        at(0, 0);
+        r.dispatch(w.width, w.height);
+        r.count_workgroups(all, all);
+        return;
+    }
+    shift_outputs(r, s, outputs, shift, texel_bytes);
+    std::uint64_t recorded = 0;
+    auto strip = [&](int x0, int y0, int width, int height) {
+        const int from = x0 / x_align * x_align;
+        at(from, y0);
+        r.dispatch(width + (x0 - from), height);
+        recorded += r.dispatch_groups(width + (x0 - from), height);
+    };
+    if (shift.x != 0) strip(shift.x > 0 ? w.width - shift.x : 0, 0, std::abs(shift.x), w.height);
+    if (shift.y != 0) strip(0, shift.y > 0 ? w.height - shift.y : 0, w.width, std::abs(shift.y));
+    r.count_workgroups(all, recorded);
 }
 
 // A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown

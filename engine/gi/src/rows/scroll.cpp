@@ -60,10 +60,13 @@ bool same_walls(const WindowScroll& s, const FrameInputs& in, int margin) {
 
 } // namespace
 
-bool scroll_from_last(PassRecorder& r, WindowScroll& s, std::uint64_t content, int margin, glm::ivec2 align, glm::ivec2& shift) {
+bool scroll_from_last(PassRecorder& r, WindowScroll& s, std::uint64_t content, std::span<const Tex> outputs, int margin,
+                      glm::ivec2 align, glm::ivec2& shift) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window, old = s.window;
-    content |= 1; // 0 is "nothing to scroll from"
+    Hasher h(content);
+    for (const Tex t : outputs) h.add(std::uint32_t(t)).add(r.serial(t)).add(r.pitch(t)).add(r.buffer(t).size());
+    content = h.value() | 1; // 0 is "nothing to scroll from"
     bool scrolls = r.dirty_bins() && s.content == content && old.resolution == w.resolution && old.width == w.width &&
                    old.height == w.height && exact_texel_centres(old) && exact_texel_centres(w);
     if (scrolls) {
