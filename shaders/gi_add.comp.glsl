@@ -6,14 +6,18 @@
 // source first (the bake's pulsing part, by this frame's pulse); bit 14: workgroup i adds
 // the texels of workgroup u_groups.groups[i] of the full dispatch's grid (row-major,
 // `groups_x` wide), the others being left as they are (the workgroups the mixed lights
-// reach: elsewhere their textures hold zeros). C++ reference: engine/gi/src/rows/baked.cpp.
+// reach: elsewhere their textures hold zeros); bit 13: invocation i adds the texels of block
+// u_groups.groups[i] (x | y << 16, in blocks of 4 x BLOCK_H texels), i < `blocks`, the
+// others none (the blocks holding a wall texel, for the pairs of wall faces: elsewhere their
+// sources are zeros). C++ reference: engine/gi/src/rows/baked.cpp.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
 struct AddParams {
     float scale;  // the scaled textures' factor (FrameInputs::baked_pulse)
     int groups_x; // LIST: the full dispatch's workgroups across
-    int unused1, unused2, unused3, unused4, unused5, unused6;
+    int blocks;   // BLOCKS: how many blocks are listed
+    int unused2, unused3, unused4, unused5, unused6;
 };
 #define GI_PASS_PARAMS AddParams
 #include "lantern/gi_common.glsl"
@@ -41,12 +45,13 @@ layout(binding = 19) uniform samplerBuffer u_scaled1;
 layout(binding = 20) uniform samplerBuffer u_scaled2;
 layout(binding = 21) uniform samplerBuffer u_scaled3;
 layout(binding = 22) uniform samplerBuffer u_scaled4;
-layout(std430, binding = 23) readonly buffer Groups { uint groups[]; } u_groups; // LIST
+layout(std430, binding = 23) readonly buffer Groups { uint groups[]; } u_groups; // LIST, BLOCKS
 
 bool used(int k) { return ((FEATURES >> uint(k)) & 1u) != 0u; }
 bool copies(int k) { return ((FEATURES >> uint(16 + k)) & 1u) != 0u; }
 const bool SCALED = (FEATURES & (1u << 15)) != 0u;
 const bool LIST = (FEATURES & (1u << 14)) != 0u;
+const bool BLOCKS = (FEATURES & (1u << 13)) != 0u;
 
 // Source k, with its scaled texture's part when the pairs have one.
 vec4 source(int k, samplerBuffer src, samplerBuffer scaled, int i) {
@@ -67,6 +72,12 @@ void main() {
         uint g = u_groups.groups[gl_WorkGroupID.x];
         uvec2 group = uvec2(g % uint(pc.pass.groups_x), g / uint(pc.pass.groups_x));
         o = ivec2((group * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy) * uvec2(BLOCK_W, BLOCK_H));
+    }
+    if (BLOCKS) {
+        uint i = gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
+        if (i >= uint(pc.pass.blocks)) return;
+        uint b = u_groups.groups[i];
+        o = ivec2(int(b & 0xFFFFu) * int(BLOCK_W), int(b >> 16) * int(BLOCK_H));
     }
     if (o.x >= pc.size.x) return;
     for (uint r = 0; r < BLOCK_H; ++r) {

@@ -18,9 +18,12 @@
 #include "lantern/gi/reference.hpp"
 #include "reference_util.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -337,13 +340,15 @@ const char* baked_not_needed(const FrameInputs& in, bool, bool) {
 constexpr int pairs_per_dispatch = 9; // gi_add.comp's
 constexpr int scaled_pairs = 5;       // the first pairs that may add a scaled texture
 
-constexpr std::uint32_t feature_list = 1u << 14; // gi_add.comp: the workgroups listed alone
+constexpr std::uint32_t feature_list = 1u << 14;   // gi_add.comp: the workgroups listed alone
+constexpr std::uint32_t feature_blocks = 1u << 13; // gi_add.comp: the blocks listed alone
 
 // gi_add.comp's parameters: the scaled textures' factor; with a list, the grid's width.
 struct AddParams {
     float scale = 1.0f;
     std::int32_t groups_x = 0;
-    std::int32_t unused1 = 0, unused2 = 0, unused3 = 0, unused4 = 0, unused5 = 0, unused6 = 0;
+    std::int32_t blocks = 0; // with a list of blocks, its length
+    std::int32_t unused2 = 0, unused3 = 0, unused4 = 0, unused5 = 0, unused6 = 0;
 };
 
 // The workgroups the mixed group's adds record: those a mixed point light or emissive can
@@ -353,11 +358,45 @@ struct AddParams {
 // the listed one is compared with); none when no mixed light reaches the window.
 struct AddState : vk::PassState {
     UploadedArray groups; // the list (a storage buffer), or a stand-in bound when the dispatch is full
+    UploadedArray blocks; // the baked faces' blocks (wall_blocks), or a stand-in
 };
+
+// The blocks of the window's texels (4 x block_h, x | y << 16, row-major) that hold a wall
+// texel, or nullopt when every block does or there are more than `most`. Only there can a
+// wall face's baked light be other than zero: gi_baked.comp writes face light at wall texels
+// alone. A texel's tile is its centre's (GiWindow::texel_center, texel_center in
+// gi_common.glsl); a block is listed when any tile within 1e-3 of its texels' centres is a
+// wall, so that a centre rounded differently on a GPU lists a block too many, never too few.
+std::optional<std::vector<std::uint32_t>> wall_blocks(const FrameInputs& in, int block_h, std::uint64_t most) {
+    const GiWindow& w = in.window;
+    const int blocks_x = (w.width + 3) / 4, blocks_y = (w.height + block_h - 1) / block_h;
+    if (blocks_x > 65536 || blocks_y > 65536) return std::nullopt;
+    constexpr float margin = 1e-3f;
+    auto cells = [&](int first, int last, int axis) {
+        const float lo = axis == 0 ? w.texel_center(first, 0).x : w.texel_center(0, first).y;
+        const float hi = axis == 0 ? w.texel_center(last, 0).x : w.texel_center(0, last).y;
+        return glm::ivec2(int(std::floor(lo - margin)), int(std::floor(hi + margin)));
+    };
+    std::vector<glm::ivec2> columns(static_cast<std::size_t>(blocks_x)), rows_z(static_cast<std::size_t>(blocks_y));
+    for (int bx = 0; bx < blocks_x; ++bx) columns[std::size_t(bx)] = cells(4 * bx, std::min(4 * bx + 3, w.width - 1), 0);
+    for (int by = 0; by < blocks_y; ++by)
+        rows_z[std::size_t(by)] = cells(by * block_h, std::min(by * block_h + block_h - 1, w.height - 1), 1);
+    std::vector<std::uint32_t> list;
+    for (int by = 0; by < blocks_y; ++by)
+        for (int bx = 0; bx < blocks_x; ++bx) {
+            const glm::ivec2 cx = columns[std::size_t(bx)], cz = rows_z[std::size_t(by)];
+            bool wall = false;
+            for (int z = cz.x; z <= cz.y && !wall; ++z)
+                for (int x = cx.x; x <= cx.y && !wall; ++x) wall = in.walls.is_wall(x, z);
+            if (wall) list.push_back(std::uint32_t(bx) | std::uint32_t(by) << 16);
+        }
+    if (list.size() == std::size_t(blocks_x) * std::size_t(blocks_y) || list.size() > most) return std::nullopt;
+    return list;
+}
 
 // gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies, bit 15
 // pairs 0..scaled_pairs - 1 add their scaled texture.
-std::uint32_t add_features(const std::vector<AddPair>& pairs) {
+std::uint32_t add_features(std::span<const AddPair> pairs) {
     std::uint32_t features = 0;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         features |= (1u << k) | (pairs[k].write ? 1u << (16 + k) : 0u);
@@ -377,56 +416,93 @@ std::optional<std::vector<std::uint32_t>> mixed_add_groups(PassRecorder& r, Tex 
     return list;
 }
 
+// Whether the face pairs of a group (pairs 1..: add_pairs puts the ground's first) add, so
+// that they may skip the blocks where their sources are zeros; a pair that copies writes
+// every texel.
+bool faces_add(std::span<const AddPair> pairs) {
+    return pairs.size() > 1 && std::none_of(pairs.begin() + 1, pairs.end(), [](const AddPair& p) { return p.write; });
+}
+
+// Records gi_add.comp over `pairs`: every workgroup, the workgroups in `groups` (LIST), or
+// the blocks in `blocks` (BLOCKS), the list uploaded into `list_buffer`.
+void record_add(PassRecorder& r, std::span<const AddPair> pairs, const std::vector<std::uint32_t>* groups,
+                const std::vector<std::uint32_t>* blocks, UploadedArray& list_buffer) {
+    const std::vector<std::uint32_t>* list = groups ? groups : blocks;
+    if (list || !list_buffer.buffer) {
+        const std::uint32_t stand_in = 0;
+        upload_array(r, list_buffer, list ? std::span<const std::uint32_t>(*list) : std::span(&stand_in, 1),
+                     VK_FORMAT_UNDEFINED, "gi add workgroups");
+        r.cmd.barrier_transfer_to_compute();
+    }
+    gpu::DescriptorWrites writes;
+    for (int k = 0; k < pairs_per_dispatch; ++k) {
+        // Unused slots are bound to the first pair's textures and never touched.
+        const AddPair& p = std::size_t(k) < pairs.size() ? pairs[std::size_t(k)] : pairs[0];
+        writes.uniform_texel_buffer(std::uint32_t(k), r.view(p.source));
+        writes.storage_buffer(std::uint32_t(pairs_per_dispatch + k), r.buffer(p.target));
+    }
+    for (int k = 0; k < scaled_pairs; ++k) {
+        const AddPair& p = std::size_t(k) < pairs.size() && pairs[std::size_t(k)].scaled ? pairs[std::size_t(k)] : pairs[0];
+        writes.uniform_texel_buffer(std::uint32_t(2 * pairs_per_dispatch + k), r.view(p.scaled.value_or(p.source)));
+    }
+    writes.storage_buffer(std::uint32_t(2 * pairs_per_dispatch + scaled_pairs), list_buffer.buffer);
+    const std::uint32_t features = add_features(pairs) | (groups ? feature_list : 0u) | (blocks ? feature_blocks : 0u);
+    r.cmd.bind(r.pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = features}));
+    r.cmd.push_descriptors(writes);
+    auto params = r.params<AddParams>(r.in.window.width, r.in.window.height);
+    params.pass.scale = r.in.baked_pulse;
+    params.pass.groups_x = std::int32_t(workgroup_grid(r, r.pitch(pairs[0].target), r.in.window.height).x);
+    params.pass.blocks = blocks ? std::int32_t(blocks->size()) : 0;
+    r.cmd.push_constants(params);
+    const std::uint32_t per_group = r.group_x() * r.group_y();
+    if (groups)
+        r.cmd.dispatch(std::uint32_t(groups->size()), 1);
+    else if (blocks)
+        r.cmd.dispatch(std::uint32_t((blocks->size() + per_group - 1) / per_group), 1);
+    else
+        r.dispatch(r.in.window.width, r.in.window.height);
+    r.cmd.barrier_compute_to_compute();
+}
+
 void record_baked(PassRecorder& r) {
     AddState& s = r.state<AddState>();
     const std::array<std::vector<AddPair>, 2> groups = add_pairs(r.in, r.plan);
     for (std::size_t group = 0; group < groups.size(); ++group) {
         const std::vector<AddPair>& pairs = groups[group];
         if (pairs.empty()) continue;
-        std::optional<std::vector<std::uint32_t>> list;
         if (group == 1) {
-            list = mixed_add_groups(r, pairs[0].target);
+            const std::optional<std::vector<std::uint32_t>> list = mixed_add_groups(r, pairs[0].target);
             if (list && list->empty()) continue; // no mixed light reaches the window
+            record_add(r, pairs, list ? &*list : nullptr, nullptr, s.groups);
+            continue;
         }
-        if (list || !s.groups.buffer) {
-            const std::uint32_t stand_in = 0;
-            upload_array(r, s.groups, list ? std::span<const std::uint32_t>(*list) : std::span(&stand_in, 1), VK_FORMAT_UNDEFINED,
-                         "gi add workgroups");
-            r.cmd.barrier_transfer_to_compute();
+        // The baked light: its faces' pairs only in the blocks holding a wall texel, where
+        // partial recording is on and some block holds none (the renderer without it adds
+        // everywhere: the full dispatch the listed one is compared with).
+        const std::optional<std::vector<std::uint32_t>> blocks =
+            r.dirty_bins() && faces_add(pairs) ? wall_blocks(r.in, int(r.block_h()), 65535u * r.group_x() * r.group_y())
+                                               : std::nullopt;
+        if (!blocks) {
+            record_add(r, pairs, nullptr, nullptr, s.blocks);
+            continue;
         }
-        gpu::DescriptorWrites writes;
-        for (int k = 0; k < pairs_per_dispatch; ++k) {
-            // Unused slots are bound to the first pair's textures and never touched.
-            const AddPair& p = std::size_t(k) < pairs.size() ? pairs[std::size_t(k)] : pairs[0];
-            writes.uniform_texel_buffer(std::uint32_t(k), r.view(p.source));
-            writes.storage_buffer(std::uint32_t(pairs_per_dispatch + k), r.buffer(p.target));
-        }
-        for (int k = 0; k < scaled_pairs; ++k) {
-            const AddPair& p = std::size_t(k) < pairs.size() && pairs[std::size_t(k)].scaled ? pairs[std::size_t(k)] : pairs[0];
-            writes.uniform_texel_buffer(std::uint32_t(2 * pairs_per_dispatch + k), r.view(p.scaled.value_or(p.source)));
-        }
-        writes.storage_buffer(std::uint32_t(2 * pairs_per_dispatch + scaled_pairs), s.groups.buffer);
-        const std::uint32_t features = add_features(pairs) | (list ? feature_list : 0u);
-        r.cmd.bind(r.pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = features}));
-        r.cmd.push_descriptors(writes);
-        auto params = r.params<AddParams>(r.in.window.width, r.in.window.height);
-        params.pass.scale = r.in.baked_pulse;
-        params.pass.groups_x = std::int32_t(workgroup_grid(r, r.pitch(pairs[0].target), r.in.window.height).x);
-        r.cmd.push_constants(params);
-        if (list)
-            r.cmd.dispatch(std::uint32_t(list->size()), 1);
-        else
-            r.dispatch(r.in.window.width, r.in.window.height);
-        r.cmd.barrier_compute_to_compute();
+        record_add(r, std::span(pairs).first(1), nullptr, nullptr, s.blocks);
+        if (!blocks->empty()) record_add(r, std::span(pairs).subspan(1), nullptr, &*blocks, s.blocks);
     }
     // The other variants, before a frame needs them (creating one then stalls that frame: a
-    // mixed light coming into view, or the bake covering the window).
+    // mixed light coming into view, the bake covering the window, or walls coming into it).
     const std::array<std::vector<AddPair>, 2> all = add_pairs(r.in, r.plan, true);
     for (std::size_t group = 0; group < all.size(); ++group) {
         if (all[group].empty()) continue;
         r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group])});
         if (group == 1) // the mixed group's listed variant
             r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group]) | feature_list});
+        if (group == 0 && r.dirty_bins() && faces_add(all[group])) { // the ground alone, the faces by blocks
+            r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(std::span(all[group]).first(1))});
+            r.prefetch_pipeline<AddParams>(
+                "gi_add.comp",
+                {.proxies = false, .features = add_features(std::span(all[group]).subspan(1)) | feature_blocks});
+        }
     }
 }
 
