@@ -1,10 +1,18 @@
 // Wall indirect: each exposed face of a wall texel takes the indirect light of the texel
 // one world unit across that face (clamped to the window); ground texels stay zero.
-// No parameters of its own; the faces computed are FACES (a specialisation constant).
-// FEATURES bit 0: every block lies in one wall tile (window.hpp blocks_in_one_tile), whose
-// wall bit and exposed faces are looked up once per block instead of once per texel.
+// The faces computed are FACES (a specialisation constant). FEATURES bit 0: every block lies
+// in one wall tile (window.hpp blocks_in_one_tile), whose wall bit and exposed faces are
+// looked up once per block instead of once per texel. Bit 1: invocation i computes block
+// u_blocks.blocks[i] (x | y << 16, in blocks of 4 x BLOCK_H texels), i < `blocks`, and the
+// others keep what they hold (the blocks holding a wall texel, when the others hold the
+// zeros of an earlier run over the same window and walls: rows::wall_blocks).
 #version 450
 #extension GL_GOOGLE_include_directive : require
+struct WallIndirectParams {
+    int blocks; // BLOCKS: how many blocks are listed
+    int unused1, unused2, unused3, unused4, unused5, unused6, unused7;
+};
+#define GI_PASS_PARAMS WallIndirectParams
 #include "lantern/gi_common.glsl"
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
@@ -14,6 +22,7 @@ layout(std430, binding = 3) writeonly buffer FacePX { uvec2 texels[]; } o_face_p
 layout(std430, binding = 4) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
 layout(std430, binding = 5) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
 layout(std430, binding = 6) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
+layout(std430, binding = 7) readonly buffer Blocks { uint blocks[]; } u_blocks; // BLOCKS
 
 #include "lantern/gi_shadow.glsl"
 
@@ -29,9 +38,16 @@ vec4 face_value(int f, vec4 mask, vec2 p) {
 }
 
 const bool BLOCK_TILE = (FEATURES & 1u) != 0u;
+const bool BLOCKS = (FEATURES & 2u) != 0u;
 
 void main() {
     ivec2 o = block_origin();
+    if (BLOCKS) {
+        uint i = gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
+        if (i >= uint(pc.pass.blocks)) return;
+        uint b = u_blocks.blocks[i];
+        o = ivec2(int(b & 0xFFFFu) * int(BLOCK_W), int(b >> 16) * int(BLOCK_H));
+    }
     if (o.x >= pc.size.x) return;
     ivec2 block_cell = ivec2(floor(texel_center(o.x, o.y)));
     bool block_wall = BLOCK_TILE && is_wall(block_cell);

@@ -53,22 +53,24 @@ class DirtyBins : public lantern::test::GpuTest {
     // many of its tap masks' workgroups as `heat` says, the baked pass as many of its
     // mixed lights' adds as `mixed_add` says (the renderer without dirty bins adds them all),
     // and the baked sampling and AO rows as many workgroups as `sampled` and `ao` say (they
-    // scroll with the window).
+    // scroll with the window), and the wall indirect pass as many as `faces` says (the blocks
+    // holding a wall texel, while the window and the walls stay).
     void frame(const std::string& name, const FrameInputs& in, Expect direct, Expect mixed = Expect::any,
                Expect heat = Expect::any, Expect mixed_add = Expect::any, Expect sampled = Expect::any,
-               Expect ao = Expect::any) {
+               Expect ao = Expect::any, Expect faces = Expect::any) {
         PassPlan plan = plan_passes(in, true);
-        constexpr int n = 6;
-        constexpr Pass passes[n] = {Pass::direct, Pass::mixed, Pass::heat, Pass::baked, Pass::baked_sample, Pass::ao};
+        constexpr int n = 7;
+        constexpr Pass passes[n] = {Pass::direct,       Pass::mixed, Pass::heat,         Pass::baked,
+                                    Pass::baked_sample, Pass::ao,    Pass::wall_indirect};
         constexpr const char* names[n] = {": direct", ": mixed", ": heat's tap masks", ": the mixed lights' adds",
-                                          ": the baked sampling", ": AO"};
+                                          ": the baked sampling", ": AO", ": the wall indirect pass"};
         vk::Renderer::PartialWork before[n], after[n];
         for (int k = 0; k < n; ++k) before[k] = dirty_->partial_work(passes[k]);
         auto a = run_vulkan_frame(*dirty_, in, plan);
         auto b = run_vulkan_frame(*full_, in, plan);
         ASSERT_TRUE(a.ok() && b.ok()) << name;
         for (int k = 0; k < n; ++k) after[k] = dirty_->partial_work(passes[k]);
-        const Expect expect[n] = {direct, mixed, heat, mixed_add, sampled, ao};
+        const Expect expect[n] = {direct, mixed, heat, mixed_add, sampled, ao, faces};
         for (int k = 0; k < n; ++k) {
             const std::string what = name + names[k];
             const std::uint64_t workgroups = after[k].workgroups - before[k].workgroups,
@@ -296,4 +298,33 @@ TEST_F(DirtyBins, TheBakedSamplingAndAoScrollWithTheWindow) {
     s.gi.resolution = 3;
     step("resolution 3", {0.0f, 0.0f}, all);
     step("a step at resolution 3 (texel centres round)", {1.0f, 0.0f}, all);
+}
+
+// The wall indirect pass writes zeros off wall texels: once it has written the whole window,
+// it computes only the blocks holding a wall texel while the window and the walls stay and
+// it stays in every frame's plan. A mined wall, a window step, and a frame of another method
+// (the gather writes the same face textures, with alpha 1 off walls) make it write the whole
+// window again; every texture stays the same bit for bit as with everything computed.
+TEST_F(DirtyBins, TheWallIndirectPassComputesTheWallBlocksAlone) {
+    Scene s = lit_cave();
+    const auto faces = [&](const std::string& name, Expect expect) {
+        frame(name, inputs_of(s), Expect::any, Expect::any, Expect::any, Expect::any, Expect::any, Expect::any, expect);
+    };
+    ASSERT_TRUE(plan_passes(inputs_of(s), true).run.has(Pass::wall_indirect));
+    faces("the first frame", Expect::all);
+    s.point_lights[0].intensity *= 0.8f;
+    faces("a torch flickers", Expect::some);
+    s.walls.cells[std::size_t(15 * 40 + 20)] ^= 1;
+    faces("a wall is mined", Expect::all);
+    s.point_lights[1].intensity *= 1.1f;
+    faces("after it, a flicker", Expect::some);
+    std::get<lantern::scene::OrthoView>(s.view).center += glm::vec2(1.0f, 0.0f);
+    faces("the window steps", Expect::all);
+    faces("nothing changed", Expect::some);
+    s.gi.method = lantern::scene::GiMethod::gather;
+    ASSERT_FALSE(plan_passes(inputs_of(s), true).run.has(Pass::wall_indirect));
+    faces("a frame of the gather", Expect::any);
+    s.gi.method = lantern::scene::GiMethod::heat;
+    faces("the heat method again", Expect::all);
+    faces("and again", Expect::some);
 }

@@ -7,6 +7,9 @@
 #include "lantern/gi/vulkan/pass_recorder.hpp"
 
 #include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
 #include <utility>
 
 namespace lantern::gi::rows {
@@ -185,9 +188,48 @@ void reference_blur_row(ReferenceContext& c) {
 
 // ---- wall-face indirect
 
+// gi_wall_indirect.comp's parameters: with a list of blocks, its length.
+struct WallIndirectParams {
+    std::int32_t blocks = 0;
+    std::int32_t unused1 = 0, unused2 = 0, unused3 = 0, unused4 = 0, unused5 = 0, unused6 = 0, unused7 = 0;
+};
+
+// Off wall texels the pass writes zeros, and the baked row adds zeros there, so once the
+// whole window is written the blocks with no wall texel keep their zeros while the window,
+// the walls and the textures stay and the row stays in every frame's plan (out of it, other
+// rows may write the faces: the gather's alpha is 1 off walls). Then only the blocks holding
+// a wall texel (rows::wall_blocks) are computed again.
+struct WallIndirectState : vk::PassState {
+    std::uint64_t zeros_key = 0; // the window, walls and textures of the last run (0: none)
+    std::uint64_t plan = 0;      // the plan of the last run (PassRecorder::plan_serial)
+    UploadedArray blocks;        // the listed blocks, or a stand-in
+};
+
 void record_wall_indirect(PassRecorder& r) {
+    WallIndirectState& s = r.state<WallIndirectState>();
     const GiWindow& w = r.in.window;
     const std::uint32_t faces = computed_faces(r.in.settings);
+    // FEATURES bit 0: the block's tile looked up once; bit 1: the listed blocks alone.
+    const std::uint32_t block_tile = r.blocks_in_one_tile() ? 1u : 0u;
+    Hasher key;
+    add_window_and_walls(key, r.in).add(std::uint32_t(r.in.settings.method)).add(faces).add(r.block_h());
+    for (int f = 0; f < 4; ++f) {
+        const Tex t = Tex(int(Tex::wall_indirect_px) + f);
+        if (computes_face(faces, f)) key.add(r.serial(t)).add(r.pitch(t)).add(r.buffer(t).size());
+    }
+    const std::uint64_t zeros_key = key.value() | 1;
+    const std::uint32_t per_group = r.group_x() * r.group_y();
+    std::optional<std::vector<std::uint32_t>> blocks;
+    if (r.dirty_bins() && s.zeros_key == zeros_key && r.planned_since(s.plan))
+        blocks = wall_blocks(r.in, int(r.block_h()), 65535ull * per_group);
+    s.zeros_key = zeros_key;
+    s.plan = r.plan_serial();
+    if (blocks || !s.blocks.buffer) {
+        const std::uint32_t stand_in = 0;
+        upload_array(r, s.blocks, blocks ? std::span<const std::uint32_t>(*blocks) : std::span(&stand_in, 1),
+                     VK_FORMAT_UNDEFINED, "gi wall indirect blocks");
+        r.cmd.barrier_transfer_to_compute();
+    }
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_texel_buffer(2, r.view(Tex::indirect));
     // A face not computed is bound to the first computed face's buffer and never written.
@@ -198,16 +240,27 @@ void record_wall_indirect(PassRecorder& r) {
         const Tex t = Tex(int(Tex::wall_indirect_px) + f);
         writes.storage_buffer(std::uint32_t(3 + f), r.buffer(computes_face(faces, f) ? t : first));
     }
-    // FEATURES bit 0: the block's tile looked up once.
-    const std::uint32_t block_tile = r.blocks_in_one_tile() ? 1u : 0u;
-    r.cmd.bind(r.pipeline("gi_wall_indirect.comp", {.proxies = false, .features = block_tile, .faces = faces}));
-    // A window snapped to texels may move off the blocks' alignment (or onto it): the other
-    // variant, before a frame needs it.
-    if (r.in.settings.window_snap == scene::WindowSnap::texel)
-        r.prefetch_pipeline("gi_wall_indirect.comp", {.proxies = false, .features = block_tile ^ 1u, .faces = faces});
+    writes.storage_buffer(7, s.blocks.buffer);
+    const std::uint32_t features = block_tile | (blocks ? 2u : 0u);
+    r.cmd.bind(r.pipeline<WallIndirectParams>("gi_wall_indirect.comp", {.proxies = false, .features = features, .faces = faces}));
+    // The other variants, before a frame needs them: a window snapped to texels may move off
+    // the blocks' alignment (or onto it), and the first frame after a step lists its blocks.
+    for (std::uint32_t v = 0; v < 4; ++v)
+        if (v != features && ((v & 1u) == block_tile || r.in.settings.window_snap == scene::WindowSnap::texel))
+            r.prefetch_pipeline<WallIndirectParams>("gi_wall_indirect.comp", {.proxies = false, .features = v, .faces = faces});
     r.cmd.push_descriptors(writes);
-    r.cmd.push_constants(r.params(w.width, w.height));
-    r.dispatch(w.width, w.height);
+    auto params = r.params<WallIndirectParams>(w.width, w.height);
+    params.pass.blocks = blocks ? std::int32_t(blocks->size()) : 0;
+    r.cmd.push_constants(params);
+    const std::uint64_t all = r.dispatch_groups(w.width, w.height);
+    if (!blocks) {
+        r.dispatch(w.width, w.height);
+        r.count_workgroups(all, all);
+    } else {
+        const std::uint64_t groups = (blocks->size() + per_group - 1) / per_group;
+        if (groups > 0) r.cmd.dispatch(std::uint32_t(groups), 1);
+        r.count_workgroups(all, groups);
+    }
     r.cmd.barrier_compute_to_compute();
 }
 

@@ -121,6 +121,14 @@ void dispatch_scrolled(vk::PassRecorder& r, WindowScroll& s, bool scrolls, glm::
     r.count_workgroups(all, recorded);
 }
 
+// The blocks of the window's texels (4 x block_h, as x | y << 16, row-major) that hold a
+// wall texel, or nullopt when every block does or there are more than `most`. A wall face's
+// light is zero elsewhere: the passes that write face textures write zeros off wall texels.
+// A texel's tile is its centre's (GiWindow::texel_center, texel_center in gi_common.glsl); a
+// block is listed when any tile within 1e-3 of its texels' centres is a wall, so that a centre
+// rounded differently on a GPU lists a block too many, never too few.
+std::optional<std::vector<std::uint32_t>> wall_blocks(const FrameInputs& in, int block_h, std::uint64_t most);
+
 // A host-built table in a texel buffer (or with VK_FORMAT_UNDEFINED a storage buffer), grown
 // as needed.
 struct UploadedArray {

@@ -1,11 +1,12 @@
 // Scrolling a window-keyed row's outputs at a window step (rows.hpp WindowScroll; docs/gi.md,
-// "Scrolling at a window step").
+// "Scrolling at a window step"), and the window's blocks that hold a wall texel (wall_blocks).
 #include "rows/rows.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <vector>
 
 namespace lantern::gi::rows {
@@ -110,5 +111,33 @@ void shift_outputs(PassRecorder& r, WindowScroll& s, std::span<const Tex> output
     }
     r.cmd.barrier_transfer_to_compute();
 }
+
+std::optional<std::vector<std::uint32_t>> wall_blocks(const FrameInputs& in, int block_h, std::uint64_t most) {
+    const GiWindow& w = in.window;
+    const int blocks_x = (w.width + 3) / 4, blocks_y = (w.height + block_h - 1) / block_h;
+    if (blocks_x > 65536 || blocks_y > 65536) return std::nullopt;
+    constexpr float margin = 1e-3f;
+    auto cells = [&](int first, int last, int axis) {
+        const float lo = axis == 0 ? w.texel_center(first, 0).x : w.texel_center(0, first).y;
+        const float hi = axis == 0 ? w.texel_center(last, 0).x : w.texel_center(0, last).y;
+        return glm::ivec2(int(std::floor(lo - margin)), int(std::floor(hi + margin)));
+    };
+    std::vector<glm::ivec2> columns(static_cast<std::size_t>(blocks_x)), rows_z(static_cast<std::size_t>(blocks_y));
+    for (int bx = 0; bx < blocks_x; ++bx) columns[std::size_t(bx)] = cells(4 * bx, std::min(4 * bx + 3, w.width - 1), 0);
+    for (int by = 0; by < blocks_y; ++by)
+        rows_z[std::size_t(by)] = cells(by * block_h, std::min(by * block_h + block_h - 1, w.height - 1), 1);
+    std::vector<std::uint32_t> list;
+    for (int by = 0; by < blocks_y; ++by)
+        for (int bx = 0; bx < blocks_x; ++bx) {
+            const glm::ivec2 cx = columns[std::size_t(bx)], cz = rows_z[std::size_t(by)];
+            bool wall = false;
+            for (int z = cz.x; z <= cz.y && !wall; ++z)
+                for (int x = cx.x; x <= cx.y && !wall; ++x) wall = in.walls.is_wall(x, z);
+            if (wall) list.push_back(std::uint32_t(bx) | std::uint32_t(by) << 16);
+        }
+    if (list.size() == std::size_t(blocks_x) * std::size_t(blocks_y) || list.size() > most) return std::nullopt;
+    return list;
+}
+
 
 } // namespace lantern::gi::rows

@@ -272,6 +272,9 @@ void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const P
 }
 
 void Renderer::record_plan(gpu::CommandList& cmd, const FrameInputs& in, const PassPlan& plan, PassSet subset) {
+    ++plans_;
+    for (std::size_t p = 0; p < std::size_t(pass_count); ++p)
+        if (!plan.run.has(Pass(p))) unplanned_[p] = plans_;
     for (const PassRow* row : method(in.settings.method).rows)
         if (plan.run.has(row->pass) && subset.has(row->pass)) record(cmd, row->pass, in, plan);
 }

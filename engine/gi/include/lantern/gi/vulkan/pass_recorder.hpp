@@ -61,6 +61,11 @@ class PassRecorder {
     // allocated again) holds nothing of what was written before.
     std::uint64_t serial(Tex t) const { return texture(t).serial; }
     const PassRow& row() const { return row_; }
+    // The plans record_plan has recorded, this frame's included (0 before the first), and
+    // whether this row was in every one after plan `serial` (a row out of the plan leaves
+    // its outputs to whatever else writes them then: another method's rows, the baked row).
+    std::uint64_t plan_serial() const { return r_.plans_; }
+    bool planned_since(std::uint64_t serial) const { return r_.unplanned_[std::size_t(row_.pass)] <= serial; }
     // RendererOptions::dirty_bins.
     bool dirty_bins() const { return r_.dirty_bins_; }
     // This pass recorded `recorded` of its `workgroups` (Renderer::partial_work).

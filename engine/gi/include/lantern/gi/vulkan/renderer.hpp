@@ -187,6 +187,9 @@ class Renderer {
     std::uint64_t wall_bytes_uploaded_ = 0;
     std::uint64_t texture_serial_ = 0;
     std::array<PartialWork, pass_count> partial_work_{};
+    // record_plan's count of plans, and per pass the last plan it was not in (PassRecorder::planned_since).
+    std::uint64_t plans_ = 0;
+    std::array<std::uint64_t, pass_count> unplanned_{};
     bool dirty_bins_ = true;
     gpu::Buffer lights_, proxies_, suns_; // uniform buffers, written with update_buffer
     // Each row's own GPU state, one object per row and state type (a row may keep several:
