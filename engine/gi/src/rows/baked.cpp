@@ -358,7 +358,9 @@ struct AddParams {
 // the listed one is compared with); none when no mixed light reaches the window.
 struct AddState : vk::PassState {
     UploadedArray groups; // the list (a storage buffer), or a stand-in bound when the dispatch is full
-    UploadedArray blocks; // the baked faces' blocks (wall_blocks), or a stand-in
+    UploadedArray blocks;        // the baked light's stand-in (its ground's dispatch lists nothing)
+    UploadedArray blocks_second; // the baked faces' blocks (rows::wall_blocks)
+    UploadedArray mixed_blocks;  // the mixed faces' blocks: wall blocks of the listed workgroups
 };
 
 // gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies, bit 15
@@ -437,24 +439,35 @@ void record_baked(PassRecorder& r) {
     for (std::size_t group = 0; group < groups.size(); ++group) {
         const std::vector<AddPair>& pairs = groups[group];
         if (pairs.empty()) continue;
+        // The mixed lights' group: the workgroups they reach (or all of them).
+        std::optional<std::vector<std::uint32_t>> list;
         if (group == 1) {
-            const std::optional<std::vector<std::uint32_t>> list = mixed_add_groups(r, pairs[0].target);
+            list = mixed_add_groups(r, pairs[0].target);
             if (list && list->empty()) continue; // no mixed light reaches the window
-            record_add(r, pairs, list ? &*list : nullptr, nullptr, s.groups);
-            continue;
         }
-        // The baked light: its faces' pairs only in the blocks holding a wall texel, where
-        // partial recording is on and some block holds none (the renderer without it adds
-        // everywhere: the full dispatch the listed one is compared with).
-        const std::optional<std::vector<std::uint32_t>> blocks =
+        UploadedArray& list_buffer = group == 0 ? s.blocks : s.groups;
+        // The faces' pairs only in the blocks holding a wall texel (of the listed workgroups),
+        // where partial recording is on and some block holds none (the renderer without it
+        // adds everywhere: the full dispatch the listed one is compared with).
+        std::optional<std::vector<std::uint32_t>> blocks =
             r.dirty_bins() && faces_add(pairs) ? wall_blocks(r.in, int(r.block_h()), 65535u * r.group_x() * r.group_y())
                                                : std::nullopt;
         if (!blocks) {
-            record_add(r, pairs, nullptr, nullptr, s.blocks);
+            record_add(r, pairs, list ? &*list : nullptr, nullptr, list_buffer);
             continue;
         }
-        record_add(r, std::span(pairs).first(1), nullptr, nullptr, s.blocks);
-        if (!blocks->empty()) record_add(r, std::span(pairs).subspan(1), nullptr, &*blocks, s.blocks);
+        if (list) {
+            const WorkgroupGrid grid = workgroup_grid(r, r.pitch(pairs[0].target), r.in.window.height);
+            std::vector<bool> listed(std::size_t(grid.x) * grid.y);
+            for (const std::uint32_t g : *list) listed[g] = true;
+            std::erase_if(*blocks, [&](std::uint32_t b) {
+                const std::uint32_t gx = (b & 0xFFFFu) / r.group_x(), gy = (b >> 16) / r.group_y();
+                return !listed[std::size_t(gy) * grid.x + gx];
+            });
+        }
+        record_add(r, std::span(pairs).first(1), list ? &*list : nullptr, nullptr, list_buffer);
+        if (!blocks->empty())
+            record_add(r, std::span(pairs).subspan(1), nullptr, &*blocks, group == 0 ? s.blocks_second : s.mixed_blocks);
     }
     // The other variants, before a frame needs them (creating one then stalls that frame: a
     // mixed light coming into view, the bake covering the window, or walls coming into it).
@@ -462,10 +475,12 @@ void record_baked(PassRecorder& r) {
     for (std::size_t group = 0; group < all.size(); ++group) {
         if (all[group].empty()) continue;
         r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group])});
-        if (group == 1) // the mixed group's listed variant
-            r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group]) | feature_list});
-        if (group == 0 && r.dirty_bins() && faces_add(all[group])) { // the ground alone, the faces by blocks
-            r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(std::span(all[group]).first(1))});
+        const std::uint32_t listed = group == 1 ? feature_list : 0u; // the mixed group's listed variants
+        if (listed) r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group]) | listed});
+        if (r.dirty_bins() && faces_add(all[group])) { // the ground alone, the faces by blocks
+            const std::uint32_t ground = add_features(std::span(all[group]).first(1));
+            r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = ground});
+            if (listed) r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = ground | listed});
             r.prefetch_pipeline<AddParams>(
                 "gi_add.comp",
                 {.proxies = false, .features = add_features(std::span(all[group]).subspan(1)) | feature_blocks});
