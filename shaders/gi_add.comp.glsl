@@ -74,10 +74,9 @@ void main() {
         o = ivec2((group * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy) * uvec2(BLOCK_W, BLOCK_H));
     }
     if (BLOCKS) {
-        uint i = gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
+        uint i = listed_block_index();
         if (i >= uint(pc.pass.blocks)) return;
-        uint b = u_groups.groups[i];
-        o = ivec2(int(b & 0xFFFFu) * int(BLOCK_W), int(b >> 16) * int(BLOCK_H));
+        o = listed_block_origin(u_groups.groups[i]);
     }
     if (o.x >= pc.size.x) return;
     for (uint r = 0; r < BLOCK_H; ++r) {

@@ -43,10 +43,9 @@ const bool BLOCKS = (FEATURES & 2u) != 0u;
 void main() {
     ivec2 o = block_origin();
     if (BLOCKS) {
-        uint i = gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
+        uint i = listed_block_index();
         if (i >= uint(pc.pass.blocks)) return;
-        uint b = u_blocks.blocks[i];
-        o = ivec2(int(b & 0xFFFFu) * int(BLOCK_W), int(b >> 16) * int(BLOCK_H));
+        o = listed_block_origin(u_blocks.blocks[i]);
     }
     if (o.x >= pc.size.x) return;
     ivec2 block_cell = ivec2(floor(texel_center(o.x, o.y)));

@@ -43,6 +43,10 @@ layout(push_constant) uniform GiPassParams {
 
 // The block this invocation owns: x0 is a multiple of 4.
 ivec2 block_origin() { return ivec2(gl_GlobalInvocationID.x * BLOCK_W, gl_GlobalInvocationID.y * BLOCK_H); }
+// Dispatches over a host-built list of blocks (rows::wall_blocks: x | y << 16, in blocks), one
+// dimension of workgroups: this invocation's entry, and an entry's block origin in texels.
+uint listed_block_index() { return gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex; }
+ivec2 listed_block_origin(uint b) { return ivec2(int(b & 0xFFFFu) * int(BLOCK_W), int(b >> 16) * int(BLOCK_H)); }
 
 int texel_index(int x, int y) { return y * pc.size.z + x; }
 

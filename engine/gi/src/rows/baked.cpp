@@ -396,13 +396,7 @@ bool faces_add(std::span<const AddPair> pairs) {
 // the blocks in `blocks` (BLOCKS), the list uploaded into `list_buffer`.
 void record_add(PassRecorder& r, std::span<const AddPair> pairs, const std::vector<std::uint32_t>* groups,
                 const std::vector<std::uint32_t>* blocks, UploadedArray& list_buffer) {
-    const std::vector<std::uint32_t>* list = groups ? groups : blocks;
-    if (list || !list_buffer.buffer) {
-        const std::uint32_t stand_in = 0;
-        upload_array(r, list_buffer, list ? std::span<const std::uint32_t>(*list) : std::span(&stand_in, 1),
-                     VK_FORMAT_UNDEFINED, "gi add workgroups");
-        r.cmd.barrier_transfer_to_compute();
-    }
+    upload_list(r, list_buffer, groups ? groups : blocks, "gi add workgroups");
     gpu::DescriptorWrites writes;
     for (int k = 0; k < pairs_per_dispatch; ++k) {
         // Unused slots are bound to the first pair's textures and never touched.
@@ -423,11 +417,10 @@ void record_add(PassRecorder& r, std::span<const AddPair> pairs, const std::vect
     params.pass.groups_x = std::int32_t(workgroup_grid(r, r.pitch(pairs[0].target), r.in.window.height).x);
     params.pass.blocks = blocks ? std::int32_t(blocks->size()) : 0;
     r.cmd.push_constants(params);
-    const std::uint32_t per_group = r.group_x() * r.group_y();
     if (groups)
         r.cmd.dispatch(std::uint32_t(groups->size()), 1);
     else if (blocks)
-        r.cmd.dispatch(std::uint32_t((blocks->size() + per_group - 1) / per_group), 1);
+        dispatch_listed_blocks(r, blocks->size());
     else
         r.dispatch(r.in.window.width, r.in.window.height);
     r.cmd.barrier_compute_to_compute();

@@ -218,18 +218,12 @@ void record_wall_indirect(PassRecorder& r) {
         if (computes_face(faces, f)) key.add(r.serial(t)).add(r.pitch(t)).add(r.buffer(t).size());
     }
     const std::uint64_t zeros_key = key.value() | 1;
-    const std::uint32_t per_group = r.group_x() * r.group_y();
     std::optional<std::vector<std::uint32_t>> blocks;
     if (r.dirty_bins() && s.zeros_key == zeros_key && r.planned_since(s.plan))
-        blocks = wall_blocks(r.in, int(r.block_h()), 65535ull * per_group);
+        blocks = wall_blocks(r.in, int(r.block_h()), 65535ull * r.group_x() * r.group_y());
     s.zeros_key = zeros_key;
     s.plan = r.plan_serial();
-    if (blocks || !s.blocks.buffer) {
-        const std::uint32_t stand_in = 0;
-        upload_array(r, s.blocks, blocks ? std::span<const std::uint32_t>(*blocks) : std::span(&stand_in, 1),
-                     VK_FORMAT_UNDEFINED, "gi wall indirect blocks");
-        r.cmd.barrier_transfer_to_compute();
-    }
+    upload_list(r, s.blocks, blocks ? &*blocks : nullptr, "gi wall indirect blocks");
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_texel_buffer(2, r.view(Tex::indirect));
     // A face not computed is bound to the first computed face's buffer and never written.
@@ -257,9 +251,7 @@ void record_wall_indirect(PassRecorder& r) {
         r.dispatch(w.width, w.height);
         r.count_workgroups(all, all);
     } else {
-        const std::uint64_t groups = (blocks->size() + per_group - 1) / per_group;
-        if (groups > 0) r.cmd.dispatch(std::uint32_t(groups), 1);
-        r.count_workgroups(all, groups);
+        r.count_workgroups(all, dispatch_listed_blocks(r, blocks->size()));
     }
     r.cmd.barrier_compute_to_compute();
 }

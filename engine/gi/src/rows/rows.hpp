@@ -150,4 +150,22 @@ void upload_array(vk::PassRecorder& r, UploadedArray& a, std::span<const T> data
     r.cmd.upload(a.buffer, 0, std::as_bytes(data));
 }
 
+// Uploads a list of workgroups or blocks into `a` (a storage buffer), or, without one, a
+// stand-in to bind where the shader reads none, unless `a` already holds a buffer.
+inline void upload_list(vk::PassRecorder& r, UploadedArray& a, const std::vector<std::uint32_t>* list, const char* name) {
+    if (!list && a.buffer) return;
+    const std::uint32_t stand_in = 0;
+    upload_array(r, a, list ? std::span<const std::uint32_t>(*list) : std::span(&stand_in, 1), VK_FORMAT_UNDEFINED, name);
+    r.cmd.barrier_transfer_to_compute();
+}
+
+// Dispatches one invocation per entry of a list of `blocks` blocks (wall_blocks; the
+// shaders' listed_block_index), in one dimension of whole workgroups; returns how many.
+inline std::uint64_t dispatch_listed_blocks(vk::PassRecorder& r, std::size_t blocks) {
+    const std::uint64_t per_group = std::uint64_t(r.group_x()) * r.group_y();
+    const std::uint64_t groups = (std::uint64_t(blocks) + per_group - 1) / per_group;
+    if (groups > 0) r.cmd.dispatch(std::uint32_t(groups), 1);
+    return groups;
+}
+
 } // namespace lantern::gi::rows
