@@ -321,15 +321,24 @@ void GiFrame::add_systems() {
             Streaming& streaming = w.resource<Streaming>();
             const gi::WallUpdate walls{streaming.resized(), streaming.dirty()};
             if (warm_up_shaders_) {
-                // A frame not shown (GiFrameOptions::warm_up_shaders). It holds a proxy where
-                // this frame may hold none, or other proxies, so the direct row's kept light
-                // bins do not outlive it (their context hashes the proxies); this frame runs
-                // every pass it plans (its cache is empty).
+                // Two frames not shown (GiFrameOptions::warm_up_shaders): without shadow
+                // proxies, then with one, since the passes that shade proxies (the sun's, the
+                // direct pass's) compile them out when none is in view: a variant each. The
+                // last holds a proxy where this frame may hold none, or other proxies, so the
+                // direct row's kept light bins do not outlive it (their context hashes the
+                // proxies); this frame runs every pass it plans (its cache is empty).
                 warm_up_shaders_ = false;
                 const gi::FrameInputs warm = gi::warm_up_inputs(f.inputs);
-                const gi::PassPlan plan = gi::plan_passes(warm, w.resource<GiConfig>().lit_image);
-                if (auto warmed = backend_->execute(frame_, warm, plan, plan.run, walls); !warmed)
-                    LANTERN_LOG_WARN("GI shader warm-up: %s", warmed.error().message.c_str());
+                gi::FrameInputs bare = warm;
+                bare.proxies.clear();
+                bare.proxy_ids.clear();
+                for (const gi::FrameInputs* in : {static_cast<const gi::FrameInputs*>(&bare), &warm}) {
+                    const gi::PassPlan plan = gi::plan_passes(*in, w.resource<GiConfig>().lit_image);
+                    if (auto warmed = backend_->execute(frame_, *in, plan, plan.run, walls); !warmed) {
+                        LANTERN_LOG_WARN("GI shader warm-up: %s", warmed.error().message.c_str());
+                        break;
+                    }
+                }
             }
             auto ok = backend_->execute(frame_, f.inputs, f.plan, f.run, walls);
             const ecs::Entity cam = camera();

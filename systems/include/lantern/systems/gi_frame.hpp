@@ -123,8 +123,9 @@ struct GiFrameOptions {
     // seen by this frame's GI.
     // They reach the walls through the world resource Streaming (declared as any resource).
     std::function<void(ecs::Schedule&)> add_game_systems;
-    // Before the first frame's passes, records a frame not shown (gi::warm_up_inputs: a
-    // shadow proxy among what it adds) so that the shader variants a sunrise, a mixed light or a proxy will need
+    // Before the first frame's passes, records two frames not shown (gi::warm_up_inputs, with
+    // its shadow proxies left out and then with them) so that the shader variants a sunrise,
+    // a mixed light, a proxy or a sun with no proxy in view will need
     // have their code before play: llvmpipe generates it at a pipeline's
     // first dispatch, and on a machine whose shader cache has not seen it that took 400-900 ms
     // in the middle of a frame (docs/performance.md, "Hitches on a fresh machine"). The first
