@@ -2,6 +2,7 @@
 
 #include "lantern/bake/bake.hpp"
 #include "lantern/game/baking.hpp"
+#include "lantern/game/settings.hpp"
 #include "lantern/core/cli.hpp"
 #include "lantern/core/file.hpp"
 #include "lantern/core/text.hpp"
@@ -41,9 +42,10 @@ cli::Parser::Check size_option(glm::ivec2& out, int min, int max) {
 
 scene::GiSettings default_game_gi() {
     scene::GiSettings gi;
-    // docs/game.md "Performance": what keeps the whole frame within 33 ms at p95 on lavapipe.
-    gi.resolution = 4;
-    gi.heat_scale = scene::HeatScale::half;
+    // The seed's look (docs/game.md, "Performance": the whole frame within 33 ms at p95 on a
+    // 2-core machine's lavapipe); `--quality medium` halves the resolution, for slower machines.
+    gi.resolution = 8;
+    gi.heat_scale = scene::HeatScale::quarter;
     gi.heat_rounds = 20; // the seed's
     gi.padding = 1.25f;
     gi.max_lights = 256; // light caps are what users of 2D lighting hit first
@@ -180,6 +182,22 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
             return std::nullopt;
         },
         true);
+    p.custom("--quality", "low|medium|high",
+             "the GI quality preset (default high: the seed's look, 30 fps at p95 on a 2-core CPU's lavapipe;\n"
+             "medium: half its resolution, for slower machines); like --set, a later option wins",
+             [&](std::string_view v) -> std::optional<std::string> {
+                 for (int k = 1; k < gi_preset_count; ++k)
+                     if (v == gi_preset_names[k]) {
+                         for (const std::string& kv : gi_preset_overrides(GiPreset(k))) {
+                             if (auto ok = scene::apply_override(overrides, kv); !ok) return ok.error().message;
+                             o.gi_overrides.push_back(kv);
+                         }
+                         o.given.gi = true;
+                         return std::nullopt;
+                     }
+                 return "must be low, medium or high, got '" + printable(v) + "'";
+             },
+             true);
     p.flag("--no-player-light", "the player carries no light", [&] { o.player_light = false; });
     p.number("--time-of-day", "T",
              "the time of day a new game starts at: 0 midnight, 0.25 sunrise, 0.5 noon, 0.75 sunset\n"

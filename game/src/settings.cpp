@@ -50,25 +50,38 @@ void bind(KeyBindings& keys, Action action, Key key) {
     slot = key;
 }
 
+namespace {
+
+struct Quality {
+    int resolution;
+    scene::HeatScale heat_scale;
+    const char* heat_scale_name; // as scene files spell it
+    int heat_rounds;
+    int max_lights;
+};
+// In GiPreset order after `world` (which changes nothing).
+constexpr Quality quality_presets[] = {
+    {2, scene::HeatScale::half, "half", 12, 64},        // low
+    {4, scene::HeatScale::half, "half", 20, 256},       // medium: the game's defaults until 2026-12-01
+    {8, scene::HeatScale::quarter, "quarter", 20, 256}, // high: the seed's look, the game's defaults (default_game_gi)
+};
+
+} // namespace
+
 void apply_gi_preset(GiPreset preset, scene::GiSettings& gi) {
-    struct Quality {
-        int resolution;
-        scene::HeatScale heat_scale;
-        int heat_rounds;
-        int max_lights;
-    };
-    // In GiPreset order after `world` (which changes nothing).
-    constexpr Quality presets[] = {
-        {2, scene::HeatScale::half, 12, 64},     // low
-        {4, scene::HeatScale::half, 20, 256},    // medium: the game's defaults (default_game_gi)
-        {8, scene::HeatScale::quarter, 20, 256}, // high: the seed's look
-    };
     if (preset == GiPreset::world) return;
-    const Quality& q = presets[int(preset) - 1];
+    const Quality& q = quality_presets[int(preset) - 1];
     gi.resolution = q.resolution;
     gi.heat_scale = q.heat_scale;
     gi.heat_rounds = q.heat_rounds;
     gi.max_lights = q.max_lights;
+}
+
+std::vector<std::string> gi_preset_overrides(GiPreset preset) {
+    if (preset == GiPreset::world) return {};
+    const Quality& q = quality_presets[int(preset) - 1];
+    return {"gi.resolution=" + std::to_string(q.resolution), std::string("gi.heat_scale=") + q.heat_scale_name,
+            "gi.heat_rounds=" + std::to_string(q.heat_rounds), "gi.max_lights=" + std::to_string(q.max_lights)};
 }
 
 std::string format_settings(const PlayerSettings& s) {

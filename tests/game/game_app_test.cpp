@@ -1050,6 +1050,26 @@ TEST(GameHeadless, DemoRunsTheRadiosityMethodWithAGiView) {
     EXPECT_FALSE(names.count("heat"));
 }
 
+// --quality sets the GI preset's knobs (docs/game.md, "Pause menu and settings"); a --set
+// after it wins, as between two --set.
+TEST(GameHeadless, QualityPresetsSetTheGiAndALaterSetWins) {
+    test::TempDir dir;
+    const std::string out = dir.file("demo");
+    const int status = run_game({"--headless", "--frames", "3", "--screenshots", "0", "--out", out, "--quality", "low",
+                                 "--set", "gi.heat_rounds=16"},
+                                dir.file("log.txt"));
+    const std::string log = test::read_file(dir.file("log.txt"));
+    if (status == 1 && log.find("no usable Vulkan device") != std::string::npos) LANTERN_SKIP_NO_GPU(log);
+    ASSERT_EQ(status, 0) << log;
+    auto timings = json::parse(test::read_file(out + "/timings.json"), "timings.json");
+    ASSERT_TRUE(timings) << timings.error().message;
+    const json::Value* gi = timings->find("gi");
+    ASSERT_NE(gi, nullptr);
+    EXPECT_EQ(gi->find("resolution")->as_number(), 2.0); // low
+    EXPECT_EQ(gi->find("max_lights")->as_number(), 64.0);
+    EXPECT_EQ(gi->find("heat_rounds")->as_number(), 16.0); // the --set after it
+}
+
 // The soak in short (docs/performance.md, "Soak"): over the last quarter of the demo (from
 // sunrise, the last feature to appear) the resident set may step where something is used for
 // the first time (a chunk streamed in, a shader variant lavapipe compiles: up to ~11 MiB
@@ -1142,6 +1162,7 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--frames", "0"}, "--frames: must be an integer in [1, 10000000], got '0'"},
         {{"--set", "gi.resolution=99"}, "gi.resolution"},
         {{"--palette", "neon"}, "unknown palette 'neon'"},
+        {{"--quality", "best"}, "--quality: must be low, medium or high, got 'best'"},
         {{"--gi-view", "heatmap"}, "--gi-view: must be one of lit, direct, indirect, light_image, radiosity, distance, "
                                    "direction, jump_flood, baked, bricks, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},

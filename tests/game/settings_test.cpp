@@ -136,21 +136,24 @@ TEST(Settings, MalformedFilesAreRejectedWithPositions) {
     }
 }
 
-TEST(Settings, GiPresetsSetTheQualityKnobsAndMediumIsTheGamesDefault) {
+TEST(Settings, GiPresetsSetTheQualityKnobsAndHighIsTheGamesDefault) {
     const scene::GiSettings game = default_game_gi();
+    EXPECT_EQ(game.resolution, 8); // the seed's look
+    EXPECT_EQ(game.heat_scale, scene::HeatScale::quarter);
+    EXPECT_EQ(game.heat_rounds, 20);
     scene::GiSettings g = game;
     apply_gi_preset(GiPreset::world, g);
     EXPECT_EQ(g.resolution, game.resolution);
     apply_gi_preset(GiPreset::medium, g);
+    EXPECT_EQ(g.resolution, 4);
+    EXPECT_EQ(g.heat_scale, scene::HeatScale::half);
+    apply_gi_preset(GiPreset::low, g);
+    EXPECT_LT(g.resolution, 4);
+    apply_gi_preset(GiPreset::high, g);
     EXPECT_EQ(g.resolution, game.resolution);
     EXPECT_EQ(g.heat_scale, game.heat_scale);
     EXPECT_EQ(g.heat_rounds, game.heat_rounds);
     EXPECT_EQ(g.max_lights, game.max_lights);
-    apply_gi_preset(GiPreset::low, g);
-    EXPECT_LT(g.resolution, game.resolution);
-    apply_gi_preset(GiPreset::high, g);
-    EXPECT_EQ(g.resolution, 8); // the seed's look
-    EXPECT_EQ(g.heat_scale, scene::HeatScale::quarter);
     EXPECT_EQ(g.emission_strength, game.emission_strength) << "a preset leaves the rest alone";
 }
 

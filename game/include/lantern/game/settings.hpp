@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 #include <string_view>
 
 namespace lantern::game {
@@ -57,9 +58,12 @@ enum class GiPreset : std::uint8_t { world, low, medium, high };
 inline constexpr const char* gi_preset_names[] = {"world", "low", "medium", "high"};
 inline constexpr int gi_preset_count = 4;
 // `world`: the world's own settings, unchanged. low: GI resolution 2, heat at half, 12 rounds,
-// 64 lights; medium: the game's defaults (resolution 4, half, 20 rounds, 256 lights); high: the
-// seed's look (resolution 8, heat at quarter, 20 rounds, 256 lights).
+// 64 lights; medium: resolution 4, half, 20 rounds, 256 lights (for machines slower than the
+// 2-core one the defaults are measured on); high: the seed's look and the game's defaults
+// (resolution 8, heat at quarter, 20 rounds, 256 lights).
 void apply_gi_preset(GiPreset preset, scene::GiSettings& gi);
+// The same preset as scene-file overrides ("gi.KEY=VALUE", what --set takes); none for `world`.
+std::vector<std::string> gi_preset_overrides(GiPreset preset);
 
 // The built-in palette swaps, by index (game_render's builtin_palettes() has their colours):
 // 0 "off" keeps the colours.
