@@ -198,6 +198,10 @@ std::optional<int> parse_options(int argc, const char* const* argv, GameOptions&
                  return "must be low, medium or high, got '" + printable(v) + "'";
              },
              true);
+    p.integer("--min-fps", "N",
+              "in a window, on the game's own GI settings: a frame rate clearly below N at p95 lowers the GI\n"
+              "quality a step, saved in the settings file (default 30; 0: never)",
+              o.min_fps, 0, 1000);
     p.flag("--no-player-light", "the player carries no light", [&] { o.player_light = false; });
     p.number("--time-of-day", "T",
              "the time of day a new game starts at: 0 midnight, 0.25 sunrise, 0.5 noon, 0.75 sunset\n"

@@ -801,6 +801,33 @@ TEST(GameWindow, SceneEditorEditsTheRunningWorldAndWritesTheFile) {
     }));
 }
 
+// The automatic GI quality (--min-fps, docs/game.md "Performance"): on the game's own GI
+// settings, a frame rate clearly below --min-fps at p95 lowers the preset a step at a time,
+// the seed's look (resolution 8) to medium (4) to low (2), writes it to the settings file and
+// says so; at low it stops. A frame rate no machine reaches stands in for a slow machine.
+// Every step waits on the status file.
+TEST(GameWindow, AFrameRateBelowMinFpsLowersTheGiQualityAStepAtATime) {
+    LANTERN_REQUIRE_XVFB();
+    test::TempDir dir;
+    const std::string status = dir.file("status.json"), settings = dir.file("settings.json");
+    GameProcess game({"--window", "--caves", "7", "--size", "480x270", "--no-hud", "--no-bake", "--no-sound", "--min-fps",
+                      "1000", "--save-file", dir.file("save.json"), "--status-file", status, "--autosave", "0",
+                      "--settings", settings},
+                     dir.file("game.log"));
+    ASSERT_TRUE(game.started());
+    const auto window = find_window(game);
+    ASSERT_TRUE(window) << "no game window; log:\n" << game.log();
+    MenuDriver menu{game, *window, status};
+    ASSERT_TRUE(menu.until("the seed's look", [](const MenuStatus& st) { return st.gi_resolution == 8; }));
+    ASSERT_TRUE(menu.until("GI resolution 4 (medium)", [](const MenuStatus& st) { return st.gi_resolution == 4; }));
+    ASSERT_TRUE(menu.until("GI resolution 2 (low)", [](const MenuStatus& st) { return st.gi_resolution == 2; }));
+    auto saved = game::read_settings(settings);
+    ASSERT_TRUE(saved) << saved.error().message;
+    EXPECT_EQ(saved->gi_preset, game::GiPreset::low);
+    for (const char* step : {"GI quality lowered to medium: the frame took ", "GI quality lowered to low: the frame took "})
+        EXPECT_NE(game.log().find(step), std::string::npos) << game.log();
+}
+
 // Issue 20: --watch with --tables reloads the game's tables in a running caves world (no
 // scene): an edit relights every torch in place, 20 random
 // corrupting edits in a row are reported and counted while the last good tables stay, and a

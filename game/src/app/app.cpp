@@ -300,6 +300,8 @@ int Game::run() {
         settings_ = *settings;
         if (!options_.given.vsync) options_.vsync = settings_.vsync;
         apply_settings(nullptr, false);
+        auto_quality_ = options_.min_fps > 0 && settings_.gi_preset == GiPreset::world && !options_.given.gi &&
+                        options_.world.kind != WorldKind::scene;
     }
     if (auto ok = init(windowed); !ok) {
         std::fprintf(stderr, "%s\n", ok.error().message.c_str());

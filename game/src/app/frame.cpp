@@ -281,6 +281,7 @@ void Game::render_system(Session& s) {
         mi.message = message_;
         menu = menu_.draw(mi);
         if (settings_ != before) {
+            if (settings_.gi_preset != before.gi_preset) auto_quality_ = false; // the player's choice stands
             apply_settings(&s, settings_.gi_preset != before.gi_preset);
             settings_dirty_ = true;
         }

@@ -235,6 +235,14 @@ class Game {
     int reloads_ = 0, reload_errors_ = 0;       // --watch (--status-file reports them)
     std::string message_;
     std::uint64_t raster_serials_[2] = {0, 0};
+    // The automatic GI quality (--min-fps): on while the GI is the game's own (the settings'
+    // `world` preset, no --set or --quality, not a scene's) and the player has not picked a
+    // preset; the frames measured since the last start or change.
+    bool auto_quality_ = false;
+    std::int64_t rate_last_ns_ = 0;
+    int rate_skipped_ = 0;
+    std::vector<double> rate_frames_;
+    void watch_frame_rate(Session& s);
 };
 
 } // namespace lantern::game::app

@@ -3,6 +3,8 @@
 
 #include "lantern/core/json_writer.hpp"
 
+#include <utility>
+
 namespace lantern::game::app {
 namespace {
 
@@ -15,6 +17,41 @@ void report_refused(const systems::FrameReport& report) {
 }
 
 } // namespace
+
+// The automatic GI quality (--min-fps, docs/game.md "Performance"). The defaults are the
+// seed's look, measured at 30 fps at p95 on a 2-core machine's lavapipe; on a slower one the
+// game measures its first frames of play and, when their p95 is clearly over the budget
+// (by 15 %: with vsync a frame lasts whole refresh intervals), lowers the preset a step
+// (high, then medium, then low), saves it in the settings file, says so, and measures again.
+// A measurement within the budget ends it for the run; so does a preset the player picks.
+void Game::watch_frame_rate(Session& s) {
+    constexpr int skipped = 60;   // after a start or a change: pipelines, streaming, the bake
+    constexpr std::size_t measured = 180;
+    const std::int64_t now = now_ns();
+    const std::int64_t last = std::exchange(rate_last_ns_, now);
+    if (!auto_quality_) return;
+    if (last == 0 || menu_.is_open() || ++rate_skipped_ <= skipped) return; // paused frames are not play
+    rate_frames_.push_back(double(now - last) * 1e-6);
+    if (rate_frames_.size() < measured) return;
+    const double p95 = profile::percentiles(rate_frames_).p95, budget = 1000.0 / double(options_.min_fps);
+    rate_frames_.clear();
+    rate_skipped_ = 0;
+    const GiPreset now_preset = settings_.gi_preset == GiPreset::world ? GiPreset::high : settings_.gi_preset;
+    if (p95 <= budget * 1.15 || now_preset == GiPreset::low) {
+        if (p95 > budget * 1.15)
+            LANTERN_LOG_INFO("frame %.1f ms at p95 at the lowest GI quality (--min-fps %d asks %.1f)", p95, options_.min_fps, budget);
+        auto_quality_ = false;
+        return;
+    }
+    settings_.gi_preset = GiPreset(int(now_preset) - 1);
+    apply_settings(&s, true);
+    settings_dirty_ = true;
+    write_settings_file();
+    message_ = std::string("GI quality lowered to ") + gi_preset_names[int(settings_.gi_preset)] + ": the frame took " +
+               std::to_string(int(p95 + 0.5)) + " ms at p95 (--min-fps " + std::to_string(options_.min_fps) +
+               "); the pause menu's Settings can raise it";
+    LANTERN_LOG_INFO("%s", message_.c_str());
+}
 
 int Game::run_window() {
     while (!quit_) {
@@ -34,6 +71,7 @@ int Game::run_window() {
         report_refused(session_->frame->step());
         profile::end_frame();
         ++window_frames_;
+        watch_frame_rate(*session_);
         if (save_slot_requested_) {
             const int slot = save_slot_requested_;
             save_slot_requested_ = 0;

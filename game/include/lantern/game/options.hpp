@@ -28,6 +28,9 @@ struct GameOptions {
     std::string schedule_dot;        // --schedule FILE.dot: the frame schedule as Graphviz DOT
     std::string tables_file;         // --tables FILE: the game's materials and lights (tables.hpp)
     bool watch = false;              // --watch: reload the --scene file (and --tables) when it changes
+    // --min-fps N: in a window on the game's own GI settings, a frame rate clearly below N at
+    // p95 lowers the GI preset a step (docs/game.md, "Performance"); 0: never.
+    int min_fps = 30;
 
     // Headless demo.
     int frames = 900;                // --frames N
