@@ -1190,6 +1190,7 @@ TEST(GameHeadless, BadInputGivesOneMessageAndWritesNothing) {
         {{"--set", "gi.resolution=99"}, "gi.resolution"},
         {{"--palette", "neon"}, "unknown palette 'neon'"},
         {{"--quality", "best"}, "--quality: must be low, medium or high, got 'best'"},
+        {{"--min-fps", "-1"}, "--min-fps: must be an integer in [0, 1000], got '-1'"},
         {{"--gi-view", "heatmap"}, "--gi-view: must be one of lit, direct, indirect, light_image, radiosity, distance, "
                                    "direction, jump_flood, baked, bricks, got 'heatmap'"},
         {{"--bogus"}, "unknown option '--bogus'"},
