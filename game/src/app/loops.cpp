@@ -62,6 +62,7 @@ int Game::run_window() {
             window_->poll_wait(0.25);
             ++hidden_waits_;
             last_frame_ns_ = 0; // the first frame back steps 1/60 s, not the time away
+            rate_last_ns_ = 0;  // and is not measured (watch_frame_rate)
             if (window_->should_close()) quit_or_ask(*session_); // the question shows once it is back
             if (!options_.status_file.empty()) write_status(*session_);
             continue;
