@@ -1,8 +1,8 @@
 // Directional lights (sun, moon): traversal towards the light with the wall-height test,
 // into the direct colour and wall faces; writes shadow map G (max visibility). The
-// directional row lights the realtime suns into their own textures (nothing read: the
-// direct pass adds them); the mixed row the mixed suns, added in place to its own textures
-// (FEATURES & 64).
+// directional row lights the realtime suns into their own textures (the direct pass adds
+// them); the mixed row the mixed suns into theirs (FEATURES & 64; the baked pass adds them).
+// Nothing is read: every output starts from zero.
 // Each workgroup visits only the proxies whose shadow from the sun can reach it (a mask per
 // sun and workgroup, built on the host: record_directional's sun_proxy_bins).
 // Parameters: DirectionalParams.
@@ -20,41 +20,27 @@ struct DirectionalParams {
 
 const bool UPPER = (FEATURES & 1u) != 0u;   // unfolded proxy shadows: the upper-face textures
 const bool SUN_MAP = (FEATURES & 2u) != 0u; // the suns' grid shadows by their shadow map
-// The mixed suns (the mixed row: in place on its textures), else the realtime ones
-// (frame_inputs.hpp is_mixed_sun: bounce.y != 0).
+// The mixed suns (the mixed row), else the realtime ones (frame_inputs.hpp is_mixed_sun:
+// bounce.y != 0).
 const bool MIXED_SUNS = (FEATURES & 64u) != 0u;
-
-// An input texel: what the mixed suns add to; the realtime suns start from zero (their
-// inputs are bound to their outputs and never read).
-vec4 input_texel(samplerBuffer t, int index) { return MIXED_SUNS ? texelFetch(t, index) : vec4(0.0); }
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
 layout(std140, binding = 2) uniform SunBlock { GpuDirectionalLight suns[8]; } u_suns;
-layout(binding = 3) uniform samplerBuffer u_direct_in; // rgba16f views of the outputs
-layout(binding = 4) uniform samplerBuffer u_shadow_in; // rg8 unorm
-layout(binding = 5) uniform samplerBuffer u_face_px_in;
-layout(binding = 6) uniform samplerBuffer u_face_nx_in;
-layout(binding = 7) uniform samplerBuffer u_face_pz_in;
-layout(binding = 8) uniform samplerBuffer u_face_nz_in;
-layout(std430, binding = 9) writeonly buffer DirectOut { uvec2 texels[]; } o_direct;
-layout(std430, binding = 10) writeonly buffer ShadowOut { uvec2 texels[]; } o_shadow;
-layout(std430, binding = 11) writeonly buffer FacePX { uvec2 texels[]; } o_face_px;
-layout(std430, binding = 12) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
-layout(std430, binding = 13) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
-layout(std430, binding = 14) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
-layout(binding = 15) uniform samplerBuffer u_sun_headers; // gi_sun_map.glsl
-layout(binding = 16) uniform usamplerBuffer u_sun_first;
-layout(binding = 17) uniform samplerBuffer u_sun_entries;
-layout(binding = 18) uniform samplerBuffer u_upper_px_in; // the point lights' upper faces
-layout(binding = 19) uniform samplerBuffer u_upper_nx_in;
-layout(binding = 20) uniform samplerBuffer u_upper_pz_in;
-layout(binding = 21) uniform samplerBuffer u_upper_nz_in;
-layout(std430, binding = 22) writeonly buffer UpperPX { uvec2 texels[]; } o_upper_px;
-layout(std430, binding = 23) writeonly buffer UpperNX { uvec2 texels[]; } o_upper_nx;
-layout(std430, binding = 24) writeonly buffer UpperPZ { uvec2 texels[]; } o_upper_pz;
-layout(std430, binding = 25) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
-layout(std430, binding = 26) readonly buffer SunProxyBins { uint masks[]; } u_sun_proxy_bins;
+layout(std430, binding = 3) writeonly buffer DirectOut { uvec2 texels[]; } o_direct;
+layout(std430, binding = 4) writeonly buffer ShadowOut { uvec2 texels[]; } o_shadow;
+layout(std430, binding = 5) writeonly buffer FacePX { uvec2 texels[]; } o_face_px;
+layout(std430, binding = 6) writeonly buffer FaceNX { uvec2 texels[]; } o_face_nx;
+layout(std430, binding = 7) writeonly buffer FacePZ { uvec2 texels[]; } o_face_pz;
+layout(std430, binding = 8) writeonly buffer FaceNZ { uvec2 texels[]; } o_face_nz;
+layout(binding = 9) uniform samplerBuffer u_sun_headers; // gi_sun_map.glsl
+layout(binding = 10) uniform usamplerBuffer u_sun_first;
+layout(binding = 11) uniform samplerBuffer u_sun_entries;
+layout(std430, binding = 12) writeonly buffer UpperPX { uvec2 texels[]; } o_upper_px;
+layout(std430, binding = 13) writeonly buffer UpperNX { uvec2 texels[]; } o_upper_nx;
+layout(std430, binding = 14) writeonly buffer UpperPZ { uvec2 texels[]; } o_upper_pz;
+layout(std430, binding = 15) writeonly buffer UpperNZ { uvec2 texels[]; } o_upper_nz;
+layout(std430, binding = 16) readonly buffer SunProxyBins { uint masks[]; } u_sun_proxy_bins;
 
 // The proxies the current sun's mask lists for this workgroup (gi_shadow.glsl's loops).
 int g_bin, g_bins_total, g_proxy_base, g_proxy_words;
@@ -121,26 +107,13 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     }
 }
 
-// Adds the suns' upper-face light to the input's and merges the edges, each weighted by the
-// light its shadows take (reference_passes.cpp reference_directional).
-void merge_upper(inout TexelLight t, uint faces, int index) {
-    vec4 low[4] = vec4[4](input_texel(u_face_px_in, index), input_texel(u_face_nx_in, index),
-                          input_texel(u_face_pz_in, index), input_texel(u_face_nz_in, index));
-    vec4 up[4] = vec4[4](input_texel(u_upper_px_in, index), input_texel(u_upper_nx_in, index),
-                         input_texel(u_upper_pz_in, index), input_texel(u_upper_nz_in, index));
-    vec4 out_upper[4];
-    for (int f = 0; f < 4; ++f) {
-        float taken = (up[f].r - low[f].r) + (up[f].g - low[f].g) + (up[f].b - low[f].b);
-        if (taken > 0.0) {
-            t.edge_sum[f] += taken * up[f].a;
-            t.edge_weight[f] += taken;
-        }
-        out_upper[f] = vec4(up[f].rgb + t.upper[f], face_edge(t, f));
-    }
-    if (computes_face(faces, 0)) o_upper_px.texels[index] = pack_rgba16f(out_upper[0]);
-    if (computes_face(faces, 1)) o_upper_nx.texels[index] = pack_rgba16f(out_upper[1]);
-    if (computes_face(faces, 2)) o_upper_pz.texels[index] = pack_rgba16f(out_upper[2]);
-    if (computes_face(faces, 3)) o_upper_nz.texels[index] = pack_rgba16f(out_upper[3]);
+// The suns' upper-face light and the height where their proxies' shadows end
+// (reference_passes.cpp reference_directional, onto zero textures).
+void write_upper(inout TexelLight t, uint faces, int index) {
+    if (computes_face(faces, 0)) o_upper_px.texels[index] = pack_rgba16f(vec4(t.upper[0], face_edge(t, 0)));
+    if (computes_face(faces, 1)) o_upper_nx.texels[index] = pack_rgba16f(vec4(t.upper[1], face_edge(t, 1)));
+    if (computes_face(faces, 2)) o_upper_pz.texels[index] = pack_rgba16f(vec4(t.upper[2], face_edge(t, 2)));
+    if (computes_face(faces, 3)) o_upper_nz.texels[index] = pack_rgba16f(vec4(t.upper[3], face_edge(t, 3)));
 }
 
 void main() {
@@ -164,22 +137,17 @@ void main() {
                 wall = HAS_WALLS && is_wall(cell);
                 sun_texel(wall, cell, p, t);
             }
-            vec4 direct = input_texel(u_direct_in, index);
-            o_direct.texels[index] = pack_rgba16f(vec4(direct.rgb + t.color, direct.a));
+            o_direct.texels[index] = pack_rgba16f(vec4(t.color, 0.0));
             if (HAS_WALLS) {
                 float has_faces = wall ? 1.0 : 0.0; // alpha flags texels holding face light
                 uint faces = FACES;         // a face not computed has no texture
-                if (UPPER) merge_upper(t, faces, index);
-                if (computes_face(faces, 0))
-                    o_face_px.texels[index] = pack_rgba16f(vec4(input_texel(u_face_px_in, index).rgb + t.face[0], has_faces));
-                if (computes_face(faces, 1))
-                    o_face_nx.texels[index] = pack_rgba16f(vec4(input_texel(u_face_nx_in, index).rgb + t.face[1], has_faces));
-                if (computes_face(faces, 2))
-                    o_face_pz.texels[index] = pack_rgba16f(vec4(input_texel(u_face_pz_in, index).rgb + t.face[2], has_faces));
-                if (computes_face(faces, 3))
-                    o_face_nz.texels[index] = pack_rgba16f(vec4(input_texel(u_face_nz_in, index).rgb + t.face[3], has_faces));
+                if (UPPER) write_upper(t, faces, index);
+                if (computes_face(faces, 0)) o_face_px.texels[index] = pack_rgba16f(vec4(t.face[0], has_faces));
+                if (computes_face(faces, 1)) o_face_nx.texels[index] = pack_rgba16f(vec4(t.face[1], has_faces));
+                if (computes_face(faces, 2)) o_face_pz.texels[index] = pack_rgba16f(vec4(t.face[2], has_faces));
+                if (computes_face(faces, 3)) o_face_nz.texels[index] = pack_rgba16f(vec4(t.face[3], has_faces));
             }
-            shadow[k] = vec2(input_texel(u_shadow_in, index).r, wall ? 0.0 : t.shadow);
+            shadow[k] = vec2(0.0, wall ? 0.0 : t.shadow);
         }
         o_shadow.texels[texel_index(o.x, y) / 4] = uvec2(pack_rg8x2(shadow[0], shadow[1]), pack_rg8x2(shadow[2], shadow[3]));
     }

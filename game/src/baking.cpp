@@ -48,7 +48,7 @@ bake::CircularHarmonics BakedChunks::probes_at(glm::vec2 p) const {
         if (!b.pulses() && !keyed) return &b.probes[k];
         bake::CircularHarmonics& h = summed[std::size_t(used++)];
         h = b.probes[k];
-        if (b.pulses()) h += b.pulse_probes[k] * pulse;
+        if (b.pulses()) h += b.pulse.probes[k] * pulse;
         if (keyed) { // per channel: the sun's colour x the two keys blended (gi::BakedLight::light)
             const bake::CircularHarmonics& below = b.sun_keys[std::size_t(sun.key)].probes[k];
             const bake::CircularHarmonics& above = b.sun_keys[std::size_t(sun.key) + 1].probes[k];

@@ -1075,8 +1075,8 @@ TEST(Bake, APulsingGlowIsBakedApartAndAddsUpToTheSteadyBake) {
             pulse2 += double(pulse[i]) * pulse[i];
         }
     };
-    sum_check(a.ground, p.ground, p.pulse_ground);
-    for (int f = 0; f < 4; ++f) sum_check(a.faces[std::size_t(f)], p.faces[std::size_t(f)], p.pulse_faces[std::size_t(f)]);
+    sum_check(a.ground, p.ground, p.pulse.ground);
+    for (int f = 0; f < 4; ++f) sum_check(a.faces[std::size_t(f)], p.faces[std::size_t(f)], p.pulse.faces[std::size_t(f)]);
     std::printf("steady + pulsing against the steady bake: relative RMS %.2e; the pulsing part holds %.1f %% of the light\n",
                 std::sqrt(err2 / ref2), 100.0 * std::sqrt(pulse2 / ref2));
     EXPECT_LT(std::sqrt(err2 / ref2), 1e-5);
@@ -1085,7 +1085,7 @@ TEST(Bake, APulsingGlowIsBakedApartAndAddsUpToTheSteadyBake) {
     for (std::size_t k = 0; k < a.probes.size(); ++k)
         for (std::size_t h = 0; h < a.probes[k].c.size(); ++h)
             for (int c = 0; c < 3; ++c)
-                EXPECT_NEAR(p.probes[k].c[h][c] + p.pulse_probes[k].c[h][c], a.probes[k].c[h][c],
+                EXPECT_NEAR(p.probes[k].c[h][c] + p.pulse.probes[k].c[h][c], a.probes[k].c[h][c],
                             1e-5f + 1e-5f * std::abs(a.probes[k].c[h][c]));
     // A chunk the glow does not reach has no pulsing part.
     EXPECT_FALSE(bake::bake_chunk(pulsing, {2, 1}, b).pulses());
@@ -1095,9 +1095,9 @@ TEST(Bake, APulsingGlowIsBakedApartAndAddsUpToTheSteadyBake) {
     auto back = bake::load_chunk(dir.path().string(), {0, 0}, p.key);
     ASSERT_TRUE(back);
     ASSERT_TRUE(back->pulses());
-    for (std::size_t i = 0; i < p.pulse_ground.size(); ++i)
-        ASSERT_NEAR(back->pulse_ground[i], p.pulse_ground[i], 1e-3f * p.pulse_ground[i] + 1e-6f);
-    EXPECT_EQ(back->pulse_probes, p.pulse_probes);
+    for (std::size_t i = 0; i < p.pulse.ground.size(); ++i)
+        ASSERT_NEAR(back->pulse.ground[i], p.pulse.ground[i], 1e-3f * p.pulse.ground[i] + 1e-6f);
+    EXPECT_EQ(back->pulse.probes, p.pulse.probes);
     EXPECT_EQ(back->probes, p.probes);
     auto bytes = bytes_of((dir.path() / bake::chunk_file_name({0, 0})).string());
     bytes.resize(bytes.size() - 1);

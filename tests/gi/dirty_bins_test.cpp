@@ -181,7 +181,7 @@ TEST_F(DirtyBins, ASunComingAndGoingRecordsEverything) {
 // textures in place, after the bounce passes read them, and only in the workgroups a mixed
 // light reaches (the mixed set holds zeros elsewhere), so the direct pass records those bins
 // again the next frame and keeps the others. The mixed pass keeps its own bins while
-// realtime lights change.
+// realtime lights or a mixed sun change.
 TEST_F(DirtyBins, MixedLightsKeepTheirOwnBins) {
     Scene s = lit_cave();
     s.point_lights[3].mode = lantern::scene::LightMode::mixed;
@@ -215,6 +215,24 @@ TEST_F(DirtyBins, MixedLightsKeepTheirOwnBins) {
     frame("the mixed light leaves (nothing is added in place)", inputs(), Expect::all, Expect::any);
     s.point_lights[0].intensity *= 1.2f;
     frame("a realtime torch flickers again", inputs(), Expect::some, Expect::any);
+    // A mixed sun has textures of its own (the mixed row writes them, the baked row adds them
+    // everywhere): the mixed lights keep their bins while it rises and moves, and their adds
+    // stay in the bins they reach. The realtime direct pass records every bin after each add
+    // everywhere.
+    s.point_lights[3].position = {20.5f, 14.5f};
+    frame("the mixed light is back (its set was cleared)", inputs(), Expect::any, Expect::all, Expect::any, Expect::some);
+    lantern::scene::DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.3f));
+    sun.intensity = 0.4f;
+    sun.mode = lantern::scene::LightMode::mixed;
+    s.directional_lights.push_back(sun);
+    frame("a mixed sun rises", inputs(), Expect::some, Expect::none, Expect::any, Expect::some);
+    s.directional_lights[0].direction = glm::normalize(glm::vec3(0.5f, -0.8f, -0.3f));
+    frame("the mixed sun moves", inputs(), Expect::all, Expect::none, Expect::any, Expect::some);
+    s.point_lights[3].intensity *= 0.9f;
+    frame("the mixed light changes under the mixed sun", inputs(), Expect::all, Expect::some, Expect::any, Expect::some);
+    s.directional_lights.clear();
+    frame("the mixed sun sets", inputs(), Expect::all, Expect::none, Expect::any, Expect::some);
 }
 
 // The heat pass reruns whenever the direct light changes (every frame a torch flickers), but

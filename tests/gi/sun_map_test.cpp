@@ -129,3 +129,35 @@ TEST(SunMap, EqualsTheDdaOnRealMaps) {
     EXPECT_EQ(t.different, 0);
     EXPECT_LT(double(t.handed), 0.05 * double(t.asked));
 }
+
+// The directional and mixed rows each map only the suns they light (build_sun_maps' kinds):
+// a sun of the other kind gets a stand-in with no tiles, and each map keeps its sun's index.
+TEST(SunMap, EachPassMapsOnlyTheSunsItLights) {
+    scene::Scene s = gi_test::open_scene({20, 15}, {40, 30}, 4);
+    s.walls = gi_test::cave(40, 30, 7, 0.42f);
+    s.directional_lights = {suns(4)[1], suns(4)[6]};
+    auto window = compute_window(s.view, s.gi);
+    ASSERT_TRUE(window);
+    FrameInputs in = gather_frame_inputs(s, *window);
+    ASSERT_EQ(in.directional_lights.size(), 2u);
+    in.directional_lights[1].bounce.y = 1.0f; // mixed (is_mixed_sun), as split_for_bake marks it
+    ASSERT_TRUE(!is_mixed_sun(in.directional_lights[0]) && is_mixed_sun(in.directional_lights[1]));
+    const std::vector<SunMap> all = build_sun_maps(in);
+    ASSERT_EQ(all.size(), 2u);
+    ASSERT_FALSE(all[0].entries.empty() || all[1].entries.empty()) << "both suns cast grid shadows here";
+    auto same = [](const SunMap& a, const SunMap& b) {
+        return a.lit_everywhere == b.lit_everywhere && a.bins == b.bins && a.v0 == b.v0 && a.reach == b.reach &&
+               a.first == b.first && a.entries == b.entries;
+    };
+    for (const SunKinds kinds : {SunKinds::realtime, SunKinds::mixed}) {
+        const std::vector<SunMap> maps = build_sun_maps(in, kinds);
+        ASSERT_EQ(maps.size(), 2u);
+        const std::size_t lit = kinds == SunKinds::mixed ? 1 : 0, other = 1 - lit;
+        EXPECT_TRUE(same(maps[lit], all[lit]));
+        EXPECT_TRUE(maps[other].lit_everywhere);
+        EXPECT_TRUE(maps[other].entries.empty());
+        EXPECT_EQ(maps[other].first.size(), 1u);
+        const PackedSunMaps packed = pack_sun_maps(maps);
+        EXPECT_EQ(packed.headers.size(), 4u); // two texels a sun, in the frame's order
+    }
+}

@@ -470,7 +470,7 @@ ChunkBake bake_chunk(const scene::Scene& s, ChunkId c, const BakeSettings& world
     solve(p.bounce, b.ambient, out.ground, out.faces, out.probes, single_sources(p.direct), bounce, true);
     // Seed 004's pulsing emission: the pulsing glow's light alone, scaled at run time (no
     // ambient fill: the steady part holds it once).
-    if (pulse) solve(*p.pulse, 0.0f, out.pulse_ground, out.pulse_faces, out.pulse_probes, {}, true, false);
+    if (pulse) solve(*p.pulse, 0.0f, out.pulse.ground, out.pulse.faces, out.pulse.probes, {}, true, false);
     // Seed 004's moving sun: its bounce at each key, scaled and blended at run time.
     out.sun_keys.resize(p.sun_keys.size());
     for (std::size_t k = 0; k < p.sun_keys.size(); ++k) {

@@ -92,7 +92,8 @@ std::vector<std::byte> encode_chunk(const ChunkBake& b) {
         };
         part(b.ground, b.faces, b.probes);
         for (std::uint8_t valid : b.probe_valid) put(payload, valid);
-        if (b.pulses()) part(b.pulse_ground, b.pulse_faces, b.pulse_probes);
+        // The parts apart from the steady one: the pulsing glow's, then each sun key's.
+        if (b.pulses()) part(b.pulse.ground, b.pulse.faces, b.pulse.probes);
         for (const LightPart& key : b.sun_keys) part(key.ground, key.faces, key.probes);
     }
     // Deflated: zero texels in rock and halves with low bits zero compress 5-17x.
@@ -195,7 +196,7 @@ Result<ChunkBake> decode_chunk(std::span<const std::uint8_t> bytes) {
     }
     const std::uint8_t* next = payload + part + probe_count;
     if (pulse) {
-        if (auto bad = read_part(next, b.pulse_ground, b.pulse_faces, b.pulse_probes)) return make_error("pulsing part " + *bad);
+        if (auto bad = read_part(next, b.pulse.ground, b.pulse.faces, b.pulse.probes)) return make_error("pulsing part " + *bad);
         next += part;
     }
     b.sun_keys.resize(sun_keys);

@@ -154,17 +154,9 @@ bool holds_light(const gi::WallView& walls, int layer, glm::ivec2 tile) {
 // face f; the chunk must have the part).
 const float* texel_of(const ChunkBake& c, int part, int layer, int x, int y) {
     const std::size_t i = (std::size_t(y) * std::size_t(c.side()) + std::size_t(x)) * 3;
-    const std::vector<float>* ground = &c.ground;
-    const std::array<std::vector<float>, 4>* faces = &c.faces;
-    if (part == pulsing_part) {
-        ground = &c.pulse_ground;
-        faces = &c.pulse_faces;
-    } else if (part >= first_sun_key_part) {
-        const LightPart& key = c.sun_keys[std::size_t(part - first_sun_key_part)];
-        ground = &key.ground;
-        faces = &key.faces;
-    }
-    const std::vector<float>& v = layer == 0 ? *ground : (*faces)[std::size_t(layer - 1)];
+    if (part == steady_part) return (layer == 0 ? c.ground : c.faces[std::size_t(layer - 1)]).data() + i;
+    const LightPart& p = part == pulsing_part ? c.pulse : c.sun_keys[std::size_t(part - first_sun_key_part)];
+    const std::vector<float>& v = layer == 0 ? p.ground : p.faces[std::size_t(layer - 1)];
     return v.data() + i;
 }
 

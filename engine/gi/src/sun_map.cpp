@@ -143,14 +143,22 @@ SunMap build_sun_map(const WallView& walls, glm::vec2 lo, glm::vec2 hi, const Gp
     return m;
 }
 
-std::vector<SunMap> build_sun_maps(const FrameInputs& in) {
+std::vector<SunMap> build_sun_maps(const FrameInputs& in, SunKinds kinds) {
     const GiWindow& w = in.window;
     // Start points: texel centres and points 1e-3 outside wall faces, all within 0.01.
     const glm::vec2 lo(w.view.min_x - 0.01f, w.view.min_z - 0.01f);
     const glm::vec2 hi(w.view.min_x + w.view.width + 0.01f, w.view.min_z + w.view.height + 0.01f);
     std::vector<SunMap> maps;
-    for (const GpuDirectionalLight& sun : in.directional_lights)
+    for (const GpuDirectionalLight& sun : in.directional_lights) {
+        if (kinds != SunKinds::all && is_mixed_sun(sun) != (kinds == SunKinds::mixed)) {
+            SunMap stand_in;
+            stand_in.lit_everywhere = true;
+            stand_in.first.assign(1, 0);
+            maps.push_back(std::move(stand_in));
+            continue;
+        }
         maps.push_back(build_sun_map(in.walls, lo, hi, sun, in.wall_height));
+    }
     return maps;
 }
 

@@ -6,7 +6,7 @@
 //                 with a pulsing part, that part apart (baked_pulse_*). Cached: it reruns
 //                 only when the bake, the window, the walls or a keyed sun change.
 //   baked         adds them to the frame's indirect textures (the pulsing part scaled by
-//                 this frame's pulse), and the mixed lights' direct
+//                 this frame's pulse), and the mixed lights' and mixed suns' direct
 //                 light (the mixed row's textures) to the direct ones: a plain add each frame
 //                 the method rewrites those. In place: it reads what the earlier rows wrote
 //                 and adds to it, so they rerun when it changes (derive_keys: later rows that
@@ -62,6 +62,14 @@ constexpr Tex mixed_targets[] = {Tex::direct,         Tex::wall_direct_px, Tex::
 constexpr Tex mixed_sources[] = {Tex::direct_mixed,         Tex::wall_direct_mixed_px, Tex::wall_direct_mixed_nx,
                                  Tex::wall_direct_mixed_pz, Tex::wall_direct_mixed_nz, Tex::wall_upper_mixed_px,
                                  Tex::wall_upper_mixed_nx,  Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz};
+constexpr Tex mixed_sun_sources[] = {Tex::direct_mixed_sun,         Tex::wall_direct_mixed_sun_px,
+                                     Tex::wall_direct_mixed_sun_nx, Tex::wall_direct_mixed_sun_pz,
+                                     Tex::wall_direct_mixed_sun_nz, Tex::wall_upper_mixed_sun_px,
+                                     Tex::wall_upper_mixed_sun_nx,  Tex::wall_upper_mixed_sun_pz,
+                                     Tex::wall_upper_mixed_sun_nz};
+
+// The mixed point and emissive lights (the mixed sun aside).
+bool has_mixed_lights(const FrameInputs& in) { return !in.mixed_lights.empty() || !in.mixed_emissives.empty(); }
 
 // Which of mixed_targets the frame has: direct, the computed faces, their uppers when the
 // proxies' shadows are unfolded (what the direct pass writes).
@@ -91,11 +99,12 @@ struct AddPair {
 // Whether the frame's bake has a pulsing part (the sampling row keeps it apart).
 bool pulses(const FrameInputs& in) { return in.baked && in.baked->pulsing; }
 
-// What the baked row does this frame, in two groups (one dispatch each): the baked light,
-// and the mixed lights' direct light (with `all`, both as if present: the variants a later
-// frame may need).
-std::array<std::vector<AddPair>, 2> add_pairs(const FrameInputs& in, const PassPlan& plan, bool all = false) {
-    std::array<std::vector<AddPair>, 2> out;
+// What the baked row does this frame, in three groups (one dispatch each): the baked light,
+// the mixed lights' direct light and the mixed suns' (with `all`, each as if present: the
+// variants a later frame may need). The mixed row is planned whenever a bake is in use.
+constexpr std::size_t baked_group = 0, mixed_lights_group = 1, mixed_suns_group = 2;
+std::array<std::vector<AddPair>, 3> add_pairs(const FrameInputs& in, const PassPlan& plan, bool all = false) {
+    std::array<std::vector<AddPair>, 3> out;
     if (all || samples_bake(in)) {
         const bool pulsing = all || pulses(in);
         const auto scaled = [&](int layer) { return pulsing ? std::optional(pulse_tex(layer)) : std::nullopt; };
@@ -105,9 +114,12 @@ std::array<std::vector<AddPair>, 2> add_pairs(const FrameInputs& in, const PassP
             if (computes_face(faces, f))
                 out[0].push_back({baked_face_tex(f), face_tex(f), !written_earlier(in, plan, face_tex(f)), scaled(1 + f)});
     }
-    if (all || (has_mixed(in) && plan.run.has(Pass::mixed)))
-        for (int k = 0; k < 9; ++k)
-            if (mixed_target(in, k)) out[1].push_back({mixed_sources[k], mixed_targets[k], false});
+    const bool mixed_row = all || plan.run.has(Pass::mixed);
+    for (int k = 0; k < 9; ++k)
+        if (mixed_target(in, k)) {
+            if (mixed_row && (all || has_mixed_lights(in))) out[mixed_lights_group].push_back({mixed_sources[k], mixed_targets[k]});
+            if (mixed_row && (all || has_mixed_suns(in))) out[mixed_suns_group].push_back({mixed_sun_sources[k], mixed_targets[k]});
+        }
     return out;
 }
 
@@ -351,16 +363,19 @@ struct AddParams {
     std::int32_t unused2 = 0, unused3 = 0, unused4 = 0, unused5 = 0, unused6 = 0;
 };
 
-// The workgroups the mixed group's adds record: those a mixed point light or emissive can
-// reach (bin_lights, the mixed row's own bins), where the mixed set is not all zeros. The
-// others would add zeros, which leave every texel as it is (x + 0 = x, the alpha kept). All
-// of them with a mixed sun (it lights every texel) or without dirty bins (the full dispatch
-// the listed one is compared with); none when no mixed light reaches the window.
+// The workgroups the mixed lights' group records: those a mixed point light or emissive can
+// reach (bin_lights, the mixed row's own bins), where their set is not all zeros. The others
+// would add zeros, which leave every texel as it is (x + 0 = x, the alpha kept). All of them
+// without dirty bins (the full dispatch the listed one is compared with); none when no mixed
+// light reaches the window. The mixed suns' group records every workgroup (a sun lights
+// every texel). Each group its own lists: the uploads of one command buffer.
 struct AddState : vk::PassState {
     UploadedArray groups; // the list (a storage buffer), or a stand-in bound when the dispatch is full
     UploadedArray blocks;        // the baked light's stand-in (its ground's dispatch lists nothing)
     UploadedArray blocks_second; // the baked faces' blocks (rows::wall_blocks)
     UploadedArray mixed_blocks;  // the mixed faces' blocks: wall blocks of the listed workgroups
+    UploadedArray sun_groups;    // the mixed suns' stand-in
+    UploadedArray sun_blocks;    // their faces' blocks
 };
 
 // gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies, bit 15
@@ -377,10 +392,14 @@ std::uint32_t add_features(std::span<const AddPair> pairs) {
     return features;
 }
 
-// The listed workgroups of the mixed group's adds (AddState), or nullopt for all of them.
+// The workgroups the mixed lights (not the suns) reach, or nullopt for all of them
+// (mixed_add_bins without the suns).
+std::optional<std::vector<std::uint32_t>> mixed_light_bins(const PassRecorder& r, WorkgroupGrid grid);
+
+// The listed workgroups of the mixed lights' group's adds (AddState), or nullopt for all of them.
 std::optional<std::vector<std::uint32_t>> mixed_add_groups(PassRecorder& r, Tex target) {
     const WorkgroupGrid grid = workgroup_grid(r, r.pitch(target), r.in.window.height);
-    std::optional<std::vector<std::uint32_t>> list = mixed_add_bins(r, grid);
+    std::optional<std::vector<std::uint32_t>> list = mixed_light_bins(r, grid);
     r.count_workgroups(grid.x * grid.y, list ? list->size() : grid.x * grid.y);
     return list;
 }
@@ -428,17 +447,19 @@ void record_add(PassRecorder& r, std::span<const AddPair> pairs, const std::vect
 
 void record_baked(PassRecorder& r) {
     AddState& s = r.state<AddState>();
-    const std::array<std::vector<AddPair>, 2> groups = add_pairs(r.in, r.plan);
+    const std::array<std::vector<AddPair>, 3> groups = add_pairs(r.in, r.plan);
     for (std::size_t group = 0; group < groups.size(); ++group) {
         const std::vector<AddPair>& pairs = groups[group];
         if (pairs.empty()) continue;
         // The mixed lights' group: the workgroups they reach (or all of them).
         std::optional<std::vector<std::uint32_t>> list;
-        if (group == 1) {
+        if (group == mixed_lights_group) {
             list = mixed_add_groups(r, pairs[0].target);
             if (list && list->empty()) continue; // no mixed light reaches the window
         }
-        UploadedArray& list_buffer = group == 0 ? s.blocks : s.groups;
+        UploadedArray& list_buffer = group == baked_group ? s.blocks : group == mixed_lights_group ? s.groups : s.sun_groups;
+        UploadedArray& block_buffer =
+            group == baked_group ? s.blocks_second : group == mixed_lights_group ? s.mixed_blocks : s.sun_blocks;
         // The faces' pairs only in the blocks holding a wall texel (of the listed workgroups),
         // where partial recording is on and some block holds none (the renderer without it
         // adds everywhere: the full dispatch the listed one is compared with).
@@ -460,15 +481,15 @@ void record_baked(PassRecorder& r) {
         }
         record_add(r, std::span(pairs).first(1), list ? &*list : nullptr, nullptr, list_buffer);
         if (!blocks->empty())
-            record_add(r, std::span(pairs).subspan(1), nullptr, &*blocks, group == 0 ? s.blocks_second : s.mixed_blocks);
+            record_add(r, std::span(pairs).subspan(1), nullptr, &*blocks, block_buffer);
     }
     // The other variants, before a frame needs them (creating one then stalls that frame: a
     // mixed light coming into view, the bake covering the window, or walls coming into it).
-    const std::array<std::vector<AddPair>, 2> all = add_pairs(r.in, r.plan, true);
+    const std::array<std::vector<AddPair>, 3> all = add_pairs(r.in, r.plan, true);
     for (std::size_t group = 0; group < all.size(); ++group) {
         if (all[group].empty()) continue;
         r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group])});
-        const std::uint32_t listed = group == 1 ? feature_list : 0u; // the mixed group's listed variants
+        const std::uint32_t listed = group == mixed_lights_group ? feature_list : 0u; // its listed variants
         if (listed) r.prefetch_pipeline<AddParams>("gi_add.comp", {.proxies = false, .features = add_features(all[group]) | listed});
         if (r.dirty_bins() && faces_add(all[group])) { // the ground alone, the faces by blocks
             const std::uint32_t ground = add_features(std::span(all[group]).first(1));
@@ -521,7 +542,10 @@ constexpr Tex baked_reads[] = {Tex::indirect,          Tex::wall_indirect_px,   
                                Tex::wall_upper_pz,     Tex::wall_upper_nz,        Tex::direct_mixed,
                                Tex::wall_direct_mixed_px, Tex::wall_direct_mixed_nx, Tex::wall_direct_mixed_pz,
                                Tex::wall_direct_mixed_nz, Tex::wall_upper_mixed_px,  Tex::wall_upper_mixed_nx,
-                               Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz,  Tex::baked_ground,
+                               Tex::wall_upper_mixed_pz,  Tex::wall_upper_mixed_nz,  Tex::direct_mixed_sun,
+                               Tex::wall_direct_mixed_sun_px, Tex::wall_direct_mixed_sun_nx, Tex::wall_direct_mixed_sun_pz,
+                               Tex::wall_direct_mixed_sun_nz, Tex::wall_upper_mixed_sun_px,  Tex::wall_upper_mixed_sun_nx,
+                               Tex::wall_upper_mixed_sun_pz,  Tex::wall_upper_mixed_sun_nz,  Tex::baked_ground,
                                Tex::baked_face_px,        Tex::baked_face_nx,        Tex::baked_face_pz,
                                Tex::baked_face_nz,        Tex::baked_pulse_ground,   Tex::baked_pulse_face_px,
                                Tex::baked_pulse_face_nx,  Tex::baked_pulse_face_pz,  Tex::baked_pulse_face_nz};
@@ -535,7 +559,12 @@ constexpr std::string_view baked_settings[] = {"wall_lighting", "wall_faces.px",
 } // namespace
 
 std::optional<std::vector<std::uint32_t>> mixed_add_bins(const PassRecorder& r, WorkgroupGrid grid) {
-    if (!r.dirty_bins() || has_mixed_suns(r.in)) return std::nullopt;
+    return has_mixed_suns(r.in) ? std::nullopt : mixed_light_bins(r, grid);
+}
+
+namespace {
+std::optional<std::vector<std::uint32_t>> mixed_light_bins(const PassRecorder& r, WorkgroupGrid grid) {
+    if (!r.dirty_bins()) return std::nullopt;
     const std::uint32_t count = grid.x * grid.y;
     const std::vector<std::uint64_t> bins = bin_lights(r.in.mixed_lights, r.in.mixed_emissives, r.in.window, grid.x, grid.y,
                                                        float(4 * r.group_x()), float(r.block_h() * r.group_y()));
@@ -545,6 +574,7 @@ std::optional<std::vector<std::uint32_t>> mixed_add_bins(const PassRecorder& r, 
     if (list.size() == count || list.size() > 65535) return std::nullopt;
     return list;
 }
+} // namespace
 
 constinit const PassRow baked_sample{
     .pass = Pass::baked_sample,

@@ -38,10 +38,18 @@ constexpr Tex mixed_set[] = {Tex::direct_mixed,         Tex::shadow_mixed,      
                              Tex::wall_direct_mixed_nx, Tex::wall_direct_mixed_pz, Tex::wall_direct_mixed_nz};
 constexpr Tex upper_mixed_set[] = {Tex::wall_upper_mixed_px, Tex::wall_upper_mixed_nx, Tex::wall_upper_mixed_pz,
                                    Tex::wall_upper_mixed_nz};
+// The mixed suns alone: written by the mixed pass beside the mixed lights' set, added by the
+// baked pass after it.
+constexpr Tex mixed_sun_set[] = {Tex::direct_mixed_sun,         Tex::shadow_mixed_sun,
+                                 Tex::wall_direct_mixed_sun_px, Tex::wall_direct_mixed_sun_nx,
+                                 Tex::wall_direct_mixed_sun_pz, Tex::wall_direct_mixed_sun_nz};
+constexpr Tex upper_mixed_sun_set[] = {Tex::wall_upper_mixed_sun_px, Tex::wall_upper_mixed_sun_nx,
+                                       Tex::wall_upper_mixed_sun_pz, Tex::wall_upper_mixed_sun_nz};
 
 // The upper-face textures that go with a set (unfolded proxy shadows).
 std::span<const Tex> upper_outputs(std::span<const Tex> ids) {
     if (ids.data() == sun_set) return upper_sun_set;
+    if (ids.data() == mixed_sun_set) return upper_mixed_sun_set;
     return ids.data() == mixed_set ? std::span<const Tex>(upper_mixed_set) : std::span<const Tex>(upper_set);
 }
 
@@ -427,12 +435,11 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const std::uint64_t context = direct_context(r, out, base_features | (want_map ? feature_point_map : 0u), proxy_per_light);
     std::vector<std::uint64_t> hashes =
         bin_lights(lights.point_lights, lights.emissive_lights, w, bins_x, bins_y, float(4 * r.group_x()), float(r.block_h() * r.group_y()));
-    // The mixed suns are added onto the mixed set in place (record_mixed): no bin is kept then.
     // The baked row adds the mixed set into the direct textures in place, after the bounce
     // passes read them, in the bins mixed_add_bins lists: those then hold more than this
     // pass's light, and are recorded again the next time. Another row writing them later
     // keeps no bin.
-    bool overwritten = !r.dirty_bins() || (out.data() == mixed_set && has_mixed_suns(r.in));
+    bool overwritten = !r.dirty_bins();
     const std::vector<std::uint8_t> added_before = std::move(s.added);
     s.added.clear();
     if (!overwritten && written_later(r, face_set(out, in))) {
@@ -630,7 +637,12 @@ FrameInputs mixed_inputs(const FrameInputs& in) {
     return m;
 }
 
-TexSet mixed_writes(const FrameInputs& in) { return face_set(mixed_set, in); }
+// The mixed lights' set, and with mixed suns theirs.
+TexSet mixed_writes(const FrameInputs& in) {
+    TexSet set = face_set(mixed_set, in);
+    if (has_mixed_suns(in)) set |= face_set(mixed_sun_set, in);
+    return set;
+}
 
 // Planned whenever a bake is used, with or without mixed lights in reach (then its textures
 // are cleared once and kept): its textures stay allocated while mixed lights come and go.
@@ -638,16 +650,18 @@ const char* mixed_not_needed(const FrameInputs& in, bool, bool) { return in.bake
 
 void record_suns(PassRecorder& r, bool mixed);
 
-// The mixed point and emissive lights, then the mixed suns added in place.
+DirectTextures reference_suns_alone(const FrameInputs& in, bool mixed, const RefOptions& options);
+
+// The mixed point and emissive lights (their bins kept while only the suns change), then the
+// mixed suns into their own set.
 void record_mixed(PassRecorder& r) {
     record_direct_lights(r, mixed_inputs(r.in), mixed_set);
     if (has_mixed_suns(r.in)) record_suns(r, true);
 }
 
 void reference_mixed_row(ReferenceContext& c) {
-    DirectTextures d = reference_direct(mixed_inputs(c.in), c.options);
-    if (has_mixed_suns(c.in)) reference_directional(with_suns(c.in, true), d, c.options);
-    put_direct(c.store, mixed_set, std::move(d));
+    put_direct(c.store, mixed_set, reference_direct(mixed_inputs(c.in), c.options));
+    if (has_mixed_suns(c.in)) put_direct(c.store, mixed_sun_set, reference_suns_alone(c.in, true, c.options));
 }
 
 // ---- directional lights
@@ -665,7 +679,8 @@ struct SunMapState : vk::PassState {
 // tops of those faces): gi_shadow.glsl's proxy_occlusion is 0 beyond `along` in
 // (0, max length + penumbra length] and a perpendicular distance of the proxy's width plus
 // its penumbra width, so the others are skipped without changing a result. Boxes, padded.
-std::vector<std::uint32_t> sun_proxy_bins(const PassRecorder& r) {
+// Only the suns the pass lights (`mixed`: the mixed ones, else the realtime ones) have masks.
+std::vector<std::uint32_t> sun_proxy_bins(const PassRecorder& r, bool mixed) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
     const WorkgroupGrid grid = workgroup_grid(r, r.pitch(direct_set[0]), w.height);
@@ -688,6 +703,7 @@ std::vector<std::uint32_t> sun_proxy_bins(const PassRecorder& r) {
         return std::pair{std::clamp(a / size, 0, count), b < 0 ? -1 : std::min(b / size, count - 1)};
     };
     for (std::size_t sun = 0; sun < in.directional_lights.size(); ++sun) {
+        if (is_mixed_sun(in.directional_lights[sun]) != mixed) continue; // the shader skips it
         const glm::vec3 dir = glm::vec3(in.directional_lights[sun].direction_base);
         const float xz = std::sqrt(dir.x * dir.x + dir.z * dir.z);
         if (!(xz >= 1e-4f)) continue; // straight down: the shader tests no proxy
@@ -713,10 +729,13 @@ std::vector<std::uint32_t> sun_proxy_bins(const PassRecorder& r) {
     return masks;
 }
 
-// Uploads this frame's maps; false (use the DDA) when they exceed what a texel buffer holds.
-bool upload_sun_maps(PassRecorder& r, bool wanted) {
+// Uploads this frame's maps of the suns the pass lights (the mixed ones or the realtime
+// ones; the others' are stand-ins); false (use the DDA) when they exceed what a texel buffer
+// holds.
+bool upload_sun_maps(PassRecorder& r, bool wanted, bool mixed) {
     SunMapState& s = r.state<SunMapState>();
-    PackedSunMaps packed = pack_sun_maps(wanted ? build_sun_maps(r.in) : std::vector<SunMap>{});
+    PackedSunMaps packed =
+        pack_sun_maps(wanted ? build_sun_maps(r.in, mixed ? SunKinds::mixed : SunKinds::realtime) : std::vector<SunMap>{});
     const std::uint32_t limit = r.device().capabilities().max_texel_buffer_elements;
     if (packed.entries.size() > limit || packed.first.size() > limit) {
         packed = pack_sun_maps({});
@@ -730,25 +749,22 @@ bool upload_sun_maps(PassRecorder& r, bool wanted) {
     return wanted;
 }
 
-// The suns' pass: the realtime suns write their own textures (sun_set; the direct pass adds
-// them); the mixed suns (`mixed`, the mixed row) add to the mixed set in place (each texel
-// reads and writes only its own texels). The shader lights the suns of its kind
-// (is_mixed_sun) from the frame's sun list, so their shadow maps and proxy bins keep their
-// indices.
+// The suns' pass: the realtime suns into their own textures (sun_set; the direct pass adds
+// them), or the mixed suns (`mixed`, the mixed row) into theirs (mixed_sun_set; the baked pass
+// adds them). The shader lights the suns of its kind (is_mixed_sun) from the frame's sun
+// list and reads no texture, so their shadow maps and proxy bins keep their indices.
 void record_suns(PassRecorder& r, bool mixed) {
     const FrameInputs& in = r.in;
     const GiWindow& w = in.window;
-    const bool sun_map = upload_sun_maps(r, in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map);
+    const bool sun_map = upload_sun_maps(r, in.settings.sun_shadow_method == scene::SunShadowMethod::shadow_map, mixed);
     SunMapState& maps = r.state<SunMapState>();
     const std::uint32_t faces = computed_faces(in.settings);
-    upload_array(r, maps.proxy_bins, std::span<const std::uint32_t>(sun_proxy_bins(r)), VK_FORMAT_UNDEFINED,
+    upload_array(r, maps.proxy_bins, std::span<const std::uint32_t>(sun_proxy_bins(r, mixed)), VK_FORMAT_UNDEFINED,
                  "sun proxy bins");
     r.cmd.barrier_transfer_to_compute();
-    // The shader's inputs are bound to its outputs: the mixed suns add in place, the realtime
-    // suns read nothing.
-    const std::span<const Tex> outs = mixed ? std::span<const Tex>(mixed_set) : std::span<const Tex>(sun_set);
+    const std::span<const Tex> outs = mixed ? std::span<const Tex>(mixed_sun_set) : std::span<const Tex>(sun_set);
     const std::span<const Tex> upper_outs = upper_outputs(outs);
-    if (!mixed && !r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
+    if (!r.plan.has_walls_in_window && faces != 0) { // the shader skips the faces: they stay zero
         for (std::size_t f = 0; f < 4; ++f)
             for (Tex t : {outs[2 + f], upper_outs[f]})
                 if (r.has(t)) r.clear(t);
@@ -761,16 +777,14 @@ void record_suns(PassRecorder& r, bool mixed) {
                                               .faces = faces}));
     gpu::DescriptorWrites writes;
     writes.uniform_texel_buffer(0, r.walls()).uniform_buffer(1, r.proxies()).uniform_buffer(2, r.suns());
-    // Faces not computed: bound to the colour's buffers, neither read nor written.
-    for (std::uint32_t i = 0; i < 6; ++i) writes.uniform_texel_buffer(3 + i, r.view(r.has(outs[i]) ? outs[i] : outs[0]));
-    for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(9 + i, r.buffer(r.has(outs[i]) ? outs[i] : outs[0]));
-    writes.uniform_texel_buffer(15, maps.headers.view).uniform_texel_buffer(16, maps.first.view).uniform_texel_buffer(17, maps.entries.view);
+    // Faces not computed: bound to the colour's buffers, never written.
+    for (std::uint32_t i = 0; i < 6; ++i) writes.storage_buffer(3 + i, r.buffer(r.has(outs[i]) ? outs[i] : outs[0]));
+    writes.uniform_texel_buffer(9, maps.headers.view).uniform_texel_buffer(10, maps.first.view).uniform_texel_buffer(11, maps.entries.view);
     for (std::uint32_t f = 0; f < 4; ++f) {
         const Tex out_upper = upper_outs[f];
-        writes.uniform_texel_buffer(18 + f, r.view(r.has(out_upper) ? out_upper : outs[0]));
-        writes.storage_buffer(22 + f, r.buffer(r.has(out_upper) ? out_upper : outs[0]));
+        writes.storage_buffer(12 + f, r.buffer(r.has(out_upper) ? out_upper : outs[0]));
     }
-    writes.storage_buffer(26, maps.proxy_bins.buffer);
+    writes.storage_buffer(16, maps.proxy_bins.buffer);
     r.cmd.push_descriptors(writes);
     auto p = r.params<DirectionalParams>(w.width, w.height);
     p.pass = {.wall_height = in.wall_height,
@@ -784,15 +798,18 @@ void record_suns(PassRecorder& r, bool mixed) {
 
 void record_directional(PassRecorder& r) { record_suns(r, false); }
 
-// The realtime suns onto zero textures (what the direct pass writes without lights).
-void reference_directional_row(ReferenceContext& c) {
-    FrameInputs suns = with_suns(c.in, false);
+// The realtime suns (or the mixed ones) onto zero textures (what the direct pass writes
+// without lights).
+DirectTextures reference_suns_alone(const FrameInputs& in, bool mixed, const RefOptions& options) {
+    FrameInputs suns = with_suns(in, mixed);
     suns.point_lights.clear();
     suns.emissive_lights.clear();
-    DirectTextures d = reference_direct(suns, c.options);
-    reference_directional(suns, d, c.options);
-    put_direct(c.store, sun_set, std::move(d));
+    DirectTextures d = reference_direct(suns, options);
+    reference_directional(suns, d, options);
+    return d;
 }
+
+void reference_directional_row(ReferenceContext& c) { put_direct(c.store, sun_set, reference_suns_alone(c.in, false, c.options)); }
 
 // The direct pass reads the suns' own textures when realtime suns light the frame.
 constexpr Tex direct_reads[] = {Tex::direct_sun,        Tex::shadow_sun,        Tex::wall_direct_sun_px,

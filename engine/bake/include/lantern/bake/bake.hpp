@@ -130,18 +130,16 @@ struct ChunkBake {
     std::vector<CircularHarmonics> probes;
     std::vector<std::uint8_t> probe_valid;
     // Seed 004's pulsing emission: the light of the pulsing materials' glow alone, at full
-    // emission (ground, faces and probes as above; the steady part above leaves it out).
-    // Empty when no pulsing glow reaches the chunk. The run time adds it scaled by
-    // scene::pulse_factor: a colour-only update, not a re-bake.
-    std::vector<float> pulse_ground;
-    std::array<std::vector<float>, 4> pulse_faces;
-    std::vector<CircularHarmonics> pulse_probes;
+    // emission (the steady part above leaves it out). Empty when no pulsing glow reaches the
+    // chunk. The run time adds it scaled by scene::pulse_factor: a colour-only update, not a
+    // re-bake.
+    LightPart pulse;
     // The moving sun's keys (BakeSettings::sun_keys; empty without): key k holds the mixed
     // sun's bounce at scene::sun_key_time(k, keys), colour 1, intensity 1 (x its `indirect`).
     std::vector<LightPart> sun_keys;
 
     int side() const { return chunk_tiles * resolution; }
-    bool pulses() const { return !pulse_ground.empty(); }
+    bool pulses() const { return !pulse.ground.empty(); }
     friend bool operator==(const ChunkBake&, const ChunkBake&) = default;
 };
 

@@ -106,6 +106,18 @@ enum class Tex : std::uint8_t {
     wall_upper_mixed_nx,
     wall_upper_mixed_pz,
     wall_upper_mixed_nz,
+    // The mixed suns' part alone (the mixed row writes it beside the mixed lights' set, so a
+    // moving mixed sun leaves the mixed lights' bins be; the baked pass adds both; internal).
+    direct_mixed_sun,
+    shadow_mixed_sun,
+    wall_direct_mixed_sun_px,
+    wall_direct_mixed_sun_nx,
+    wall_direct_mixed_sun_pz,
+    wall_direct_mixed_sun_nz,
+    wall_upper_mixed_sun_px,
+    wall_upper_mixed_sun_nx,
+    wall_upper_mixed_sun_pz,
+    wall_upper_mixed_sun_nz,
     // What the baked pass added, for the HUD's views (docs/baked.md): rgb the baked light
     // alone (open ground: the ground's; a wall texel: its exposed faces'), a the level + 1 of
     // the brick it came from (0: none).

@@ -53,8 +53,12 @@ struct SunMap {
 // points just outside its wall faces.
 SunMap build_sun_map(const WallView& walls, glm::vec2 lo, glm::vec2 hi, const GpuDirectionalLight& sun,
                      float wall_height);
-// The maps of every sun of the frame, for the window's start points.
-std::vector<SunMap> build_sun_maps(const FrameInputs& in);
+// Which suns build_sun_maps maps (is_mixed_sun).
+enum class SunKinds : std::uint8_t { all, realtime, mixed };
+// The maps of the frame's suns of `kinds`, for the window's start points, one per sun of the
+// frame: a sun of another kind gets a stand-in (lit everywhere, no bins, no tiles), so each
+// map keeps its sun's index (the directional shader lights one kind and skips the other).
+std::vector<SunMap> build_sun_maps(const FrameInputs& in, SunKinds kinds = SunKinds::all);
 
 // The grid visibility of the sun from `pixel` by the map: 0 blocked, 1 lit. Same meaning as
 // directional_shadow_dda(walls, pixel, sun direction, max distance, wall height), which
