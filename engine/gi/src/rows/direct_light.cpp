@@ -127,7 +127,7 @@ constexpr std::uint32_t feature_point_map = 4; // gi.shadow_method shadow_map
 constexpr std::uint32_t feature_linear_falloff = 8; // gi.light_softness 1: no pow (gi_direct.comp)
 constexpr std::uint32_t feature_list = 16; // gi_direct.comp: one workgroup per listed bin (dirty light bins)
 constexpr std::uint32_t feature_no_lights = 32; // gi_direct.comp: bins no light reaches (the light loops left out)
-constexpr std::uint32_t feature_mixed_suns = 64; // gi_directional.comp: the mixed suns, in place (else the realtime ones)
+constexpr std::uint32_t feature_mixed_suns = 64; // gi_directional.comp: the mixed suns (else the realtime ones)
 constexpr std::uint32_t feature_suns = 128; // gi_direct.comp: adds the realtime suns' own textures (sun_set)
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
