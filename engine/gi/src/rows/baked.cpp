@@ -52,7 +52,9 @@ bool samples_bake(const FrameInputs& in) {
            w.view.min_z + w.view.height > z0;
 }
 
-bool has_mixed(const FrameInputs& in) { return !in.mixed_lights.empty() || !in.mixed_emissives.empty() || has_mixed_suns(in); }
+// The mixed point and emissive lights (the mixed suns aside).
+bool has_mixed_lights(const FrameInputs& in) { return !in.mixed_lights.empty() || !in.mixed_emissives.empty(); }
+bool has_mixed(const FrameInputs& in) { return has_mixed_lights(in) || has_mixed_suns(in); }
 
 // The direct textures the mixed lights' light goes into, and the mixed row's textures it
 // comes from: direct, the faces (wall_direct_*), the upper faces (wall_upper_*).
@@ -67,9 +69,6 @@ constexpr Tex mixed_sun_sources[] = {Tex::direct_mixed_sun,         Tex::wall_di
                                      Tex::wall_direct_mixed_sun_nz, Tex::wall_upper_mixed_sun_px,
                                      Tex::wall_upper_mixed_sun_nx,  Tex::wall_upper_mixed_sun_pz,
                                      Tex::wall_upper_mixed_sun_nz};
-
-// The mixed point and emissive lights (the mixed sun aside).
-bool has_mixed_lights(const FrameInputs& in) { return !in.mixed_lights.empty() || !in.mixed_emissives.empty(); }
 
 // Which of mixed_targets the frame has: direct, the computed faces, their uppers when the
 // proxies' shadows are unfolded (what the direct pass writes).
@@ -108,11 +107,11 @@ std::array<std::vector<AddPair>, 3> add_pairs(const FrameInputs& in, const PassP
     if (all || samples_bake(in)) {
         const bool pulsing = all || pulses(in);
         const auto scaled = [&](int layer) { return pulsing ? std::optional(pulse_tex(layer)) : std::nullopt; };
-        out[0].push_back({Tex::baked_ground, Tex::indirect, !written_earlier(in, plan, Tex::indirect), scaled(0)});
+        out[baked_group].push_back({Tex::baked_ground, Tex::indirect, !written_earlier(in, plan, Tex::indirect), scaled(0)});
         const std::uint32_t faces = baked_faces(in);
         for (int f = 0; f < 4; ++f)
             if (computes_face(faces, f))
-                out[0].push_back({baked_face_tex(f), face_tex(f), !written_earlier(in, plan, face_tex(f)), scaled(1 + f)});
+                out[baked_group].push_back({baked_face_tex(f), face_tex(f), !written_earlier(in, plan, face_tex(f)), scaled(1 + f)});
     }
     const bool mixed_row = all || plan.run.has(Pass::mixed);
     for (int k = 0; k < 9; ++k)
@@ -370,12 +369,10 @@ struct AddParams {
 // light reaches the window. The mixed suns' group records every workgroup (a sun lights
 // every texel). Each group its own lists: the uploads of one command buffer.
 struct AddState : vk::PassState {
-    UploadedArray groups; // the list (a storage buffer), or a stand-in bound when the dispatch is full
-    UploadedArray blocks;        // the baked light's stand-in (its ground's dispatch lists nothing)
-    UploadedArray blocks_second; // the baked faces' blocks (rows::wall_blocks)
-    UploadedArray mixed_blocks;  // the mixed faces' blocks: wall blocks of the listed workgroups
-    UploadedArray sun_groups;    // the mixed suns' stand-in
-    UploadedArray sun_blocks;    // their faces' blocks
+    // Per group (add_pairs' order): the ground pair's list of workgroups (the mixed lights'),
+    // or a stand-in bound when its dispatch is full; the face pairs' blocks (rows::wall_blocks,
+    // of the listed workgroups).
+    std::array<UploadedArray, 3> groups, blocks;
 };
 
 // gi_add.comp's FEATURES for a group: bit k pair k used, bit 16 + k pair k copies, bit 15
@@ -457,9 +454,8 @@ void record_baked(PassRecorder& r) {
             list = mixed_add_groups(r, pairs[0].target);
             if (list && list->empty()) continue; // no mixed light reaches the window
         }
-        UploadedArray& list_buffer = group == baked_group ? s.blocks : group == mixed_lights_group ? s.groups : s.sun_groups;
-        UploadedArray& block_buffer =
-            group == baked_group ? s.blocks_second : group == mixed_lights_group ? s.mixed_blocks : s.sun_blocks;
+        UploadedArray& list_buffer = s.groups[group];
+        UploadedArray& block_buffer = s.blocks[group];
         // The faces' pairs only in the blocks holding a wall texel (of the listed workgroups),
         // where partial recording is on and some block holds none (the renderer without it
         // adds everywhere: the full dispatch the listed one is compared with).
