@@ -230,6 +230,10 @@ float add_suns(inout TexelLight t, uint faces, int index) {
     return texelFetch(u_sun_shadow, index).g;
 }
 
+// The shadow map R and G of the workgroup's texels (rg8, 16 bits each), repacked from the
+// lanes' texels into each invocation's 4 x BLOCK_H block.
+shared uint s_shadow[gl_WorkGroupSize.x * gl_WorkGroupSize.y * BLOCK_W * BLOCK_H];
+
 void main() {
     uvec2 group = gl_WorkGroupID.xy, groups = gl_NumWorkGroups.xy;
     if (LIST) {
@@ -237,8 +241,15 @@ void main() {
         uint bin = u_dirty.bins[pc.pass.list_first + int(gl_WorkGroupID.x)];
         group = uvec2(bin % groups.x, bin / groups.x);
     }
-    ivec2 o = ivec2((group * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy) * uvec2(BLOCK_W, BLOCK_H));
-    if (o.x >= pc.size.x) return;
+    // Lanes hold neighbouring texels: invocation x of a workgroup row computes texels x,
+    // x + size_x, x + 2 size_x, x + 3 size_x of its block rows, so the 8 lanes llvmpipe runs
+    // as one vector are 8 adjacent texels (one tile's row at giRes 8, when aligned) rather
+    // than 32 across four tiles: the per-light loops (a wall's two targets, the DDA's close
+    // calls, the reach) then run only as long as those texels need. The shadow texture's
+    // rows of 4 texels are repacked through shared memory.
+    const int row_w = int(gl_WorkGroupSize.x * BLOCK_W);
+    ivec2 group_o = ivec2(group * gl_WorkGroupSize.xy * uvec2(BLOCK_W, BLOCK_H));
+    ivec2 o = group_o + ivec2(int(gl_LocalInvocationID.x), int(gl_LocalInvocationID.y * BLOCK_H));
     g_bin = int(group.y * groups.x + group.x);
     g_bin_words = (pc.counts.x + pc.counts.y + 31) >> 5;
     g_bin_base = g_bin * g_bin_words;
@@ -247,10 +258,10 @@ void main() {
     g_proxy_base = g_bin * g_proxy_words;
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);
-        if (y >= pc.size.y) return;
-        vec2 shadow[4];
-        for (int k = 0; k < 4; ++k) {
-            int x = o.x + k;
+        for (int k = 0; k < int(BLOCK_W); ++k) {
+            int x = o.x + k * int(gl_WorkGroupSize.x);
+            // Texels up to the pitch (the width rounded up to 4) are written, as every pass.
+            if (y >= pc.size.y || (x & ~3) >= pc.size.x) continue;
             TexelLight t = no_texel_light();
             bool wall = false;
             if (x < pc.size.x) {
@@ -277,8 +288,19 @@ void main() {
                     if (computes_face(faces, 3)) o_upper_nz.texels[index] = pack_rgba16f(vec4(t.upper[3], face_edge(t, 3)));
                 }
             }
-            shadow[k] = vec2(wall ? 0.0 : t.shadow, sun_shadow);
+            s_shadow[(int(gl_LocalInvocationID.y * BLOCK_H) + int(r)) * row_w + (x - group_o.x)] =
+                unorm8(wall ? 0.0 : t.shadow) | (unorm8(sun_shadow) << 8);
         }
-        o_shadow.texels[texel_index(o.x, y) / 4] = uvec2(pack_rg8x2(shadow[0], shadow[1]), pack_rg8x2(shadow[2], shadow[3]));
+    }
+    barrier();
+    // Each invocation writes the shadow texels of its own block: 4 x BLOCK_H from x0.
+    int x0 = group_o.x + int(gl_LocalInvocationID.x * BLOCK_W);
+    if (x0 >= pc.size.x) return;
+    for (uint r = 0; r < BLOCK_H; ++r) {
+        int y = o.y + int(r);
+        if (y >= pc.size.y) return;
+        int at = (int(gl_LocalInvocationID.y * BLOCK_H) + int(r)) * row_w + (x0 - group_o.x);
+        o_shadow.texels[texel_index(x0, y) / 4] =
+            uvec2(s_shadow[at] | (s_shadow[at + 1] << 16), s_shadow[at + 2] | (s_shadow[at + 3] << 16));
     }
 }

@@ -147,6 +147,10 @@ bool has_mixed_suns(const FrameInputs& in) {
                        [](const GpuDirectionalLight& s) { return is_mixed_sun(s); });
 }
 
+bool penumbras_linear(const FrameInputs& in) {
+    return std::all_of(in.proxies.begin(), in.proxies.end(), [](const GpuShadowProxy& p) { return p.modes.x == 1.0f; });
+}
+
 FrameInputs with_suns(const FrameInputs& in, bool mixed) {
     FrameInputs out = in;
     std::erase_if(out.directional_lights, [mixed](const GpuDirectionalLight& s) { return is_mixed_sun(s) != mixed; });

@@ -18,6 +18,10 @@ layout(constant_id = 3) const bool HAS_PROXIES = true; // false: proxy loops com
 layout(constant_id = 5) const bool HAS_WALLS = true;   // false: no wall tile in the window
 layout(constant_id = 8) const uint FEATURES = 0u;      // the pass's own switches (PipelineSpec::features)
 layout(constant_id = 9) const uint FACES = 15u;        // computed_faces: bit f = wall face f is computed
+// Every shadow proxy's penumbra power is 1 (the default): penumbra_factor skips its pow, which
+// lavapipe evaluates as exp2(log2) per (texel, light, proxy): a fifth of the direct pass on
+// the seed table's scene. pow(t, 1) is t, as the reference's std::pow.
+layout(constant_id = 11) const bool LINEAR_PENUMBRA = false;
 
 const uint BLOCK_W = 4;
 

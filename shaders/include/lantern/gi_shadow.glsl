@@ -149,7 +149,7 @@ float penumbra_factor(float dist, float edge, float width, float power, int mode
     if (!(width > 0.0)) return dist <= edge ? 1.0 : 0.0;
     float lo = mode == 0 ? edge - width : (mode == 1 ? edge : edge - 0.5 * width);
     float t = saturate((lo + width - dist) / width);
-    return pow(t, power);
+    return LINEAR_PENUMBRA ? t : pow(t, power);
 }
 
 float proxy_width(GpuShadowProxy p, vec2 perp) {

@@ -126,6 +126,9 @@ struct FrameInputs {
 // Whether the frame has suns the `directional` row lights (realtime ones), and mixed ones.
 bool has_live_suns(const FrameInputs& in);
 bool has_mixed_suns(const FrameInputs& in);
+// Whether every proxy's penumbra power is exactly 1 (the shaders' LINEAR_PENUMBRA; true
+// without proxies).
+bool penumbras_linear(const FrameInputs& in);
 // The frame with only its realtime suns (mixed = false) or only its mixed ones.
 FrameInputs with_suns(const FrameInputs& in, bool mixed);
 

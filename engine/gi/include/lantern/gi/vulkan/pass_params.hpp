@@ -70,6 +70,7 @@ enum SpecId : unsigned {
     spec_features = 8, // a pass's own compile-time switches (FEATURES in gi_common.glsl)
     spec_faces = 9,    // computed_faces (FACES)
     spec_exact_rounding = 10, // gi_exact.glsl EXACT_ROUNDING: 0 the driver's own, 1 Dekker, 2 fused fma
+    spec_linear_penumbra = 11, // gi_common.glsl LINEAR_PENUMBRA: every proxy's penumbra power is 1
 };
 
 inline constexpr int max_gpu_lights = 2048;   // point lights + emissives: one 64 KiB UBO

@@ -36,6 +36,9 @@ struct PipelineSpec {
     // push-constant word that decides a branch, so lean shaders also keep those variants small.
     std::uint32_t features = 0;
     std::uint32_t faces = 15; // computed_faces (FACES): constant for a configuration, so compiled in
+    // Every proxy's penumbra power is 1 (LINEAR_PENUMBRA): the penumbras' pow compiled out.
+    // PassRecorder sets it from the frame wherever `proxies` is set.
+    bool linear_penumbra = false;
 };
 
 class PassRecorder {
@@ -91,14 +94,19 @@ class PassRecorder {
     template <typename P = NoParams>
     const gpu::ComputePipeline& pipeline(const char* shader, const PipelineSpec& spec = {}) {
         const std::array<gpu::ScalarKind, 8> kinds = field_kinds<P>();
-        return r_.pipeline(row_.shaders, shader, spec, kinds);
+        return r_.pipeline(row_.shaders, shader, frame_spec(spec), kinds);
     }
     // Starts creating that pipeline on a background thread (a variant a later frame may need:
     // creating it then would stall that frame).
     template <typename P = NoParams>
     void prefetch_pipeline(const char* shader, const PipelineSpec& spec = {}) {
         const std::array<gpu::ScalarKind, 8> kinds = field_kinds<P>();
-        r_.prefetch_pipeline(row_.shaders, shader, spec, kinds);
+        r_.prefetch_pipeline(row_.shaders, shader, frame_spec(spec), kinds);
+    }
+    // `spec` with what the frame decides filled in (linear_penumbra).
+    PipelineSpec frame_spec(PipelineSpec spec) const {
+        spec.linear_penumbra = spec.proxies && penumbras_linear(in);
+        return spec;
     }
     // The push constants of a width x height texture: the shared fields (window, grid,
     // counts) filled, `pass` for the caller.
