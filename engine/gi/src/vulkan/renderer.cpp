@@ -95,6 +95,15 @@ Result<std::unique_ptr<Renderer>> Renderer::create(gpu::Device& device, const Re
     r->group_x_ = options.group_x ? options.group_x : (cpu ? 8u : 16u);
     r->group_y_ = options.group_y ? options.group_y : (cpu ? 8u : 8u);
     r->dirty_bins_ = options.dirty_bins;
+    // The direct pass repacks its workgroup's shadow texels through shared memory (4 bytes a
+    // texel): keep it within the 16 KiB every Vulkan device offers.
+    const std::uint64_t shared_bytes = std::uint64_t(r->group_x_) * r->group_y_ * 4u * r->block_h_ * 4u;
+    if (shared_bytes > 16384)
+        return make_error("GI backend: a workgroup of " + std::to_string(r->group_x_) + " x " +
+                              std::to_string(r->group_y_) + " blocks of 4 x " + std::to_string(r->block_h_) +
+                              " texels is too large (the direct pass needs " + std::to_string(shared_bytes) +
+                              " bytes of shared memory; at most 16384, 4096 texels)",
+                          1);
     // gi_exact.glsl: CPU drivers divide and take roots with the processor's IEEE
     // instructions; GPUs' may err by ULPs, corrected with fma residuals where it is fused.
     r->pipelines_->exact_rounding = cpu ? 0u : (driver_fuses_fma(device) ? 2u : 1u);
