@@ -24,8 +24,9 @@ class GiGpuCompare : public lantern::test::GpuTest {
     // With `reference_by_dda`, the reference traces point lights' shadows by the DDA (the
     // specification) whatever gi.shadow_method says.
     // With `proxy_strength` below 1, every other shadow proxy fades to it (the cap's fade).
+    // `renderer`: another than the shared one (other block and workgroup sizes).
     void compare_scene(const NamedScene& named, Pass through, bool lit, bool reference_by_dda = false,
-                       float proxy_strength = 1.0f) {
+                       float proxy_strength = 1.0f, vk::Renderer* renderer = nullptr) {
         const lantern::scene::Scene& s = named.scene;
         std::string why;
         auto window = compute_window(s.view, s.gi, &why);
@@ -33,7 +34,7 @@ class GiGpuCompare : public lantern::test::GpuTest {
         FrameInputs in = gather_frame_inputs(s, *window);
         for (std::size_t k = 0; k < in.proxies.size(); k += 2) in.proxies[k].fade.x = proxy_strength;
         PassPlan plan = plan_passes(in, lit, through);
-        auto gpu = run_vulkan_frame(gi_test::shared_renderer(device()), in, plan);
+        auto gpu = run_vulkan_frame(renderer ? *renderer : gi_test::shared_renderer(device()), in, plan);
         ASSERT_TRUE(gpu.ok()) << gpu.error().message;
         FrameInputs ref_in = in;
         if (reference_by_dda) ref_in.settings.shadow_method = lantern::scene::ShadowMethod::dda;
@@ -89,6 +90,34 @@ TEST_F(GiGpuCompare, FadingProxiesMatchReference) {
         compare_scene(named, Pass::lit, true, false, 0.35f);
     }
     EXPECT_EQ(scenes, 2) << "two comparison scenes with shadow proxies";
+}
+
+// The direct pass's lanes take every workgroup width's stride (invocation x computes texels
+// x + k * width) and repack the shadow texture's rows through shared memory: the GPU's
+// default shape (16 x 8 blocks of 4 x 1) and a narrow one on lavapipe equal the reference on
+// the scenes with proxies and walls; a workgroup needing more shared memory than every
+// device offers is refused with a message.
+TEST_F(GiGpuCompare, OtherWorkgroupShapesMatchReference) {
+    struct Shape { std::uint32_t block_h, gx, gy; };
+    for (const Shape shape : {Shape{1, 16, 8}, Shape{2, 4, 4}}) {
+        vk::RendererOptions options;
+        options.block_h = shape.block_h;
+        options.group_x = shape.gx;
+        options.group_y = shape.gy;
+        auto renderer = vk::Renderer::create(device(), options);
+        ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+        for (const char* name : {"proxies", "sun_and_walls"}) {
+            SCOPED_TRACE(std::string(name) + ", block_h " + std::to_string(shape.block_h) + ", group " +
+                         std::to_string(shape.gx) + " x " + std::to_string(shape.gy));
+            compare_scene(gi_test::comparison_scene(name), Pass::direct, false, false, 1.0f, renderer.value().get());
+        }
+    }
+    vk::RendererOptions large;
+    large.group_x = large.group_y = 32;
+    large.block_h = 4;
+    auto refused = vk::Renderer::create(device(), large);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("shared memory"), std::string::npos) << refused.error().message;
 }
 
 // The sun's pass visits only the proxies whose shadow can reach each workgroup (masks built
