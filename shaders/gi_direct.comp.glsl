@@ -67,6 +67,7 @@ layout(binding = 26) uniform samplerBuffer u_sun_upper_nz;
 int g_proxy_base;
 int g_proxy_words;
 int g_bin, g_bins_total;
+int g_sub; // the texel's sub-bin: its column k of the invocation's BLOCK_W (gi_light_bins)
 #define GI_PROXY_MASK(w) u_proxy_bins.masks[g_proxy_base + (w)]
 #define GI_PROXY_WORDS g_proxy_words
 
@@ -122,7 +123,7 @@ uint light_word_mask(int w, int first, int end) {
 void point_light(int i, const bool deferred, uint only, bool wall, ivec2 cell, vec2 p, vec4 mask, float softness,
                  inout TexelLight t, inout uint later) {
     if (pc.pass.proxy_per_light != 0) // this light's proxies in this bin (gi_light_bins)
-        g_proxy_base = (g_bins_total + g_bin * pc.counts.x + i) * g_proxy_words;
+        g_proxy_base = (g_bins_total + (g_bin * pc.counts.x + i) * int(BLOCK_W) + g_sub) * g_proxy_words;
     GpuPointLight l = u_lights.lights[i];
     vec2 pos = l.position_radius.xy;
     float radius = l.position_radius.z;
@@ -260,6 +261,7 @@ void main() {
         int y = o.y + int(r);
         for (int k = 0; k < int(BLOCK_W); ++k) {
             int x = o.x + k * int(gl_WorkGroupSize.x);
+            g_sub = k;
             // Texels up to the pitch (the width rounded up to 4) are written, as every pass.
             if (y >= pc.size.y || (x & ~3) >= pc.size.x) continue;
             TexelLight t = no_texel_light();

@@ -5,10 +5,14 @@
 // bit j of a bin's proxy mask is set when shadow proxy j can occlude a point the bin's
 // texels ask about (texel centres, face points, and with unfolded proxy shadows points up
 // to a wall height beyond them: `proxy_pad`); the others occlude nothing there. With
-// `per_light`, each point light in a bin also gets its own proxy mask: a proxy at distance
-// D from the light shades only points farther than sqrt(D^2 - reach^2) from it (its shadow
-// lies within `reach` of it, behind it as seen from the light), so a bin nearer than that
-// keeps none of its shadow.
+// `per_light`, each point light in a bin also gets proxy masks of its own, one for each of
+// the bin's BLOCK_W sub-bins (its texel columns [k * group_x, (k + 1) * group_x): the
+// direct pass's invocation x computes columns x + k * group_x, so 8 neighbouring lanes ask
+// about one sub-bin). A proxy at distance D from the light shades only points farther than
+// sqrt(D^2 - reach^2) from it (its shadow lies within `reach` of it, behind it as seen from
+// the light), and only points inside a wedge round its direction from the light
+// (`outside_shadow_wedge`); a sub-bin wholly nearer, or wholly outside the wedge, or beyond
+// the proxy's reach, keeps none of its shadow.
 // One invocation per bin. size = texture (w, h, -, res); parameters: LightBinParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -24,12 +28,69 @@ struct LightBinParams {
 #include "lantern/gi_common.glsl"
 
 layout(constant_id = 4) const int MAX_LIGHTS = 2048;
+// A bin's sub-bins: the direct pass's texel columns per invocation (gi_common.glsl BLOCK_W).
+const int LIGHT_SUBS = int(BLOCK_W);
 
 layout(std140, binding = 0) uniform LightBlock { GpuPointLight lights[MAX_LIGHTS]; } u_lights;
 layout(std430, binding = 1) buffer Out { uint masks[]; } o_bins;
 uint o_bins_read(int at) { return o_bins.masks[at]; }
 layout(std140, binding = 2) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
 layout(std430, binding = 3) buffer ProxyOut { uint masks[]; } o_proxy_bins; // bins' masks, then (bin, light)'s
+
+// The widest perp distance from proxy p's shadow axis at which it occludes anything
+// (proxy_occlusion: its widest half width, proxy_width, plus its penumbra width), with a
+// margin for the float error of the passes that compute the occlusion and of this culling
+// (outside_shadow_wedge), also at far coordinates.
+float proxy_wedge_width(GpuShadowProxy p) {
+    float w = abs(p.position_size.z) + abs(p.position_size.w) + max(p.lengths.z, 0.0);
+    return w * 1.001 + 1e-3 + 1e-6 * (abs(p.position_size.x) + abs(p.position_size.y));
+}
+
+// A lower bound on rmin^2, the squared distance from a point light to any point that proxy
+// p, at q = P - light (squared length d2), can occlude: an occluded point lies within the
+// proxy's reach of P and beyond P along its shadow's axis, so farther than
+// sqrt(d2 - reach^2) from the light (the horizon test in main). Bounds reach^2 from above
+// without a root: along^2 + w^2 is its square (proxy_reach before its margin).
+float proxy_horizon2(GpuShadowProxy p, float d2, float w) {
+    float along = max(p.lengths.x + p.lengths.w, 0.0);
+    return d2 * 0.999 - ((along * along + w * w) * 1.001 + 1e-3);
+}
+
+// Whether the box [lo, hi] (relative to point light L) lies outside every point that proxy
+// p, at q = P - L from L (squared length dist2), can occlude for L. Such a point x = L + r d
+// has perp distance below w (proxy_wedge_width) from the proxy's shadow axis, which runs
+// through P along a direction s between d and a = q / |q| (point_shadow_axis: the end-cap
+// blend of the two). With phi the angle between d and a, that perp distance is
+// r sin(angle(d, s)) + |q| sin(angle(s, a)), concave in the split, so at least
+// min(r, |q|) sin(phi) while phi is below 90 degrees (`along` > 0 and `ahead` > 0 hold only
+// when both parts are below 90 degrees, so beyond it at least min(r, |q|)); and both r and
+// |q| exceed rmin = sqrt(proxy_horizon2). So x lies within the wedge of half-angle
+// asin(w / rmin) round a. That wedge is the cone of its two edge rays (the half-angle is
+// below 90 degrees), tested against the box on the cone's two edge normals and the box's two
+// axes (separating axes), the box's side given a margin for the float error.
+bool outside_shadow_wedge(GpuShadowProxy p, vec2 q, float dist2, vec2 lo, vec2 hi) {
+    float w = proxy_wedge_width(p);
+    float rmin2 = proxy_horizon2(p, dist2, w);
+    if (!(rmin2 > 0.0)) return false;
+    float s2 = w * w / rmin2; // sin^2 of the half-angle
+    if (!(s2 < 0.9)) return false;
+    float s = sqrt(s2), c = sqrt(1.0 - s2);
+    vec2 a = q / sqrt(dist2);
+    vec2 e1 = vec2(c * a.x + s * a.y, c * a.y - s * a.x); // a turned by -half-angle
+    vec2 e2 = vec2(c * a.x - s * a.y, c * a.y + s * a.x); // and by +half-angle
+    // The cone: cross(e1, v) >= 0 and cross(v, e2) >= 0, i.e. n1.v >= 0 and n2.v >= 0.
+    vec2 n1 = vec2(-e1.y, e1.x), n2 = vec2(e2.y, -e2.x);
+    float slack = 1e-4 * (1.0 + max(max(abs(lo.x), abs(lo.y)), max(abs(hi.x), abs(hi.y))));
+    float m1 = max(n1.x * lo.x, n1.x * hi.x) + max(n1.y * lo.y, n1.y * hi.y);
+    float m2 = max(n2.x * lo.x, n2.x * hi.x) + max(n2.y * lo.y, n2.y * hi.y);
+    if (m1 < -slack || m2 < -slack) return true;
+    // The cone's extent on each axis: one side of the apex when both edges point to it.
+    if (e1.x >= 0.0 && e2.x >= 0.0 && hi.x < -slack) return true;
+    if (e1.x <= 0.0 && e2.x <= 0.0 && lo.x > slack) return true;
+    if (e1.y >= 0.0 && e2.y >= 0.0 && hi.y < -slack) return true;
+    if (e1.y <= 0.0 && e2.y <= 0.0 && lo.y > slack) return true;
+    return false;
+}
 
 void main() {
     ivec2 bin = ivec2(gl_GlobalInvocationID.xy);
@@ -68,26 +129,39 @@ void main() {
         o_proxy_bins.masks[proxy_base + w] = bits;
     }
     if (pc.pass.per_light == 0) return;
+    // Per (bin, point light, sub-bin k): the columns [k * sub_w, (k + 1) * sub_w), sub_w the
+    // direct pass's group_x; a sub-bin past the window's edge has no texel and an empty mask.
     int points = pc.counts.x;
     int bins_total = bins.x * bins.y;
+    int sub_w = bin_size.x / LIGHT_SUBS;
     for (int i = 0; i < points; ++i) {
         if ((o_bins_read(base + (i >> 5)) & (1u << uint(i & 31))) == 0u) continue;
         vec2 l = u_lights.lights[i].position_radius.xy;
-        vec2 far_d = max(abs(plo - l), abs(phi - l));
-        float far2 = far_d.x * far_d.x + far_d.y * far_d.y;
-        int out_base = (bins_total + (bin.y * bins.x + bin.x) * points + i) * pc.pass.proxy_words;
-        for (int w = 0; w < pc.pass.proxy_words; ++w) {
-            uint bits = o_proxy_bins.masks[proxy_base + w], kept = 0u;
-            for (; bits != 0u; bits &= bits - 1u) {
-                int j = w * 32 + findLSB(bits);
-                GpuShadowProxy p = u_proxies.proxies[j];
-                vec2 q = p.position_size.xy - l;
-                float reach = proxy_reach(p);
-                float horizon2 = q.x * q.x + q.y * q.y - reach * reach;
-                bool shades = !(far2 < horizon2 * 0.9999 - 1e-3);
-                kept |= shades ? (1u << uint(j & 31)) : 0u;
+        for (int k = 0; k < LIGHT_SUBS; ++k) {
+            int x0 = first.x + k * sub_w, x1 = min(x0 + sub_w, pc.size.x) - 1;
+            vec2 slo = texel_center(x0, first.y) - pc.pass.proxy_pad;
+            vec2 shi = texel_center(max(x1, x0), max(last.y, first.y)) + pc.pass.proxy_pad;
+            vec2 far_d = max(abs(slo - l), abs(shi - l));
+            float far2 = far_d.x * far_d.x + far_d.y * far_d.y;
+            int out_base = (bins_total + ((bin.y * bins.x + bin.x) * points + i) * LIGHT_SUBS + k) * pc.pass.proxy_words;
+            for (int w = 0; w < pc.pass.proxy_words; ++w) {
+                uint bits = x0 > last.x ? 0u : o_proxy_bins.masks[proxy_base + w], kept = 0u;
+                for (; bits != 0u; bits &= bits - 1u) {
+                    int j = w * 32 + findLSB(bits);
+                    GpuShadowProxy p = u_proxies.proxies[j];
+                    vec2 q = p.position_size.xy - l;
+                    float reach = proxy_reach(p);
+                    float dist2 = q.x * q.x + q.y * q.y;
+                    float horizon2 = dist2 - reach * reach;
+                    bool shades = !(far2 < horizon2 * 0.9999 - 1e-3) &&
+                                  !outside_shadow_wedge(p, q, dist2, slo - l, shi - l);
+                    // Within the sub-bin's own reach of the proxy, as the bin's mask is.
+                    vec2 d = max(max(slo - p.position_size.xy, p.position_size.xy - shi), vec2(0.0));
+                    shades = shades && !(sqrt(d.x * d.x + d.y * d.y) > reach);
+                    kept |= shades ? (1u << uint(j & 31)) : 0u;
+                }
+                o_proxy_bins.masks[out_base + w] = kept;
             }
-            o_proxy_bins.masks[out_base + w] = kept;
         }
     }
 }

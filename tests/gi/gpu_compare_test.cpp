@@ -120,6 +120,33 @@ TEST_F(GiGpuCompare, OtherWorkgroupShapesMatchReference) {
     EXPECT_NE(refused.error().message.find("shared memory"), std::string::npos) << refused.error().message;
 }
 
+// gi_light_bins keeps for each (bin, point light, sub-bin of 8 neighbouring lanes' texel
+// columns) only the proxies whose shadow from that light can reach the sub-bin: beyond its
+// horizon, within its reach, and inside the wedge round the proxy's direction from the light
+// (half-angle asin(w / rmin)); the reference visits every proxy. The proxies scene at giRes 8
+// over a cave, with lights far from the proxies (so the wedges are narrow) and long shadows,
+// folded and unfolded, on the default workgroup and on a narrower one.
+TEST_F(GiGpuCompare, PointLightsSkipOnlyProxiesOutsideTheirShadowWedges) {
+    NamedScene named = gi_test::comparison_scene("proxies");
+    named.scene.gi.resolution = 8;
+    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f);
+    named.scene.wall_height = 2.5f;
+    for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
+    named.scene.point_lights.clear();
+    for (glm::vec2 at : {glm::vec2(1.5f, 1.5f), glm::vec2(18.5f, 2.5f), glm::vec2(17.5f, 18.5f), glm::vec2(2.5f, 16.5f)})
+        named.scene.point_lights.push_back(gi_test::point(at, {1.0f, 0.8f, 0.6f}, 1.5f, 18.0f));
+    vk::RendererOptions narrow;
+    narrow.group_x = narrow.group_y = 4;
+    auto renderer = vk::Renderer::create(device(), narrow);
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    for (auto unfold : {lantern::scene::ProxyWallShadows::full, lantern::scene::ProxyWallShadows::unfold}) {
+        named.scene.gi.proxy_wall_shadows = unfold;
+        SCOPED_TRACE(unfold == lantern::scene::ProxyWallShadows::unfold ? "unfolded" : "folded");
+        compare_scene(named, Pass::direct, false);
+        compare_scene(named, Pass::direct, false, false, 1.0f, renderer.value().get());
+    }
+}
+
 // The sun's pass visits only the proxies whose shadow can reach each workgroup (masks built
 // on the host, record_directional's sun_proxy_bins); the reference visits every proxy. The
 // proxies scene (every shape, width mode, penumbra mode and end-cap blend) over a cave at

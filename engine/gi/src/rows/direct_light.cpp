@@ -423,7 +423,8 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const std::uint32_t proxy_words = std::uint32_t((in.proxies.size() + 31) / 32);
     // Proxy masks per bin, then (when they fit in 16 MiB) per bin and point light.
     const VkDeviceSize per_bin = VkDeviceSize(bins_x) * bins_y * proxy_words * 4;
-    const VkDeviceSize per_light = per_bin * lights.point_lights.size();
+    // Per (bin, point light) a mask for each of the invocations' 4 texel columns (sub-bins).
+    const VkDeviceSize per_light = per_bin * lights.point_lights.size() * 4;
     const bool proxy_per_light = proxy_words > 0 && per_light <= (VkDeviceSize(16) << 20);
     const std::uint32_t base_features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
                                         (in.settings.light_softness == 1.0f ? feature_linear_falloff : 0u) |
