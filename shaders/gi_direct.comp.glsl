@@ -12,7 +12,7 @@ struct DirectParams {
     float face_exponent;  // gi.wall_face_exponent
     int pad_f;            // (the faces computed are FACES, a specialisation constant)
     float wall_height;    // unfolded proxy shadows: the face's height
-    int proxy_per_light;  // 1: gi_light_bins wrote a proxy mask per (bin, point light)
+    int proxy_per_light;  // B > 0: gi_light_bins wrote proxy masks per (bin, point light, band of B, strip)
     int bins_x, bins_y;   // the workgroup grid (LIST: the bins, one workgroup per listed bin)
     int list_first;       // LIST: workgroup i computes bin u_dirty.bins[list_first + i]
 };
@@ -67,7 +67,8 @@ layout(binding = 26) uniform samplerBuffer u_sun_upper_nz;
 int g_proxy_base;
 int g_proxy_words;
 int g_bin, g_bins_total;
-int g_sub; // the texel's sub-bin: its column k of the invocation's BLOCK_W (gi_light_bins)
+int g_sub;  // the texel's strip: its column k of the invocation's BLOCK_W (gi_light_bins)
+int g_band; // the invocation row's band of the bin's proxy_per_light bands (gi_light_bins)
 #define GI_PROXY_MASK(w) u_proxy_bins.masks[g_proxy_base + (w)]
 #define GI_PROXY_WORDS g_proxy_words
 
@@ -122,8 +123,9 @@ uint light_word_mask(int w, int first, int end) {
 // s); the caller calls again with `deferred` and those bits in `only`, and the DDA decides.
 void point_light(int i, const bool deferred, uint only, bool wall, ivec2 cell, vec2 p, vec4 mask, float softness,
                  inout TexelLight t, inout uint later) {
-    if (pc.pass.proxy_per_light != 0) // this light's proxies in this bin (gi_light_bins)
-        g_proxy_base = (g_bins_total + (g_bin * pc.counts.x + i) * int(BLOCK_W) + g_sub) * g_proxy_words;
+    if (pc.pass.proxy_per_light != 0) // this light's proxies in this texel's sub-bin (gi_light_bins)
+        g_proxy_base = (g_bins_total + ((g_bin * pc.counts.x + i) * pc.pass.proxy_per_light + g_band) * int(BLOCK_W) + g_sub) *
+                       g_proxy_words;
     GpuPointLight l = u_lights.lights[i];
     vec2 pos = l.position_radius.xy;
     float radius = l.position_radius.z;
@@ -257,6 +259,7 @@ void main() {
     g_proxy_words = (pc.counts.w + 31) >> 5;
     g_bins_total = int(groups.x * groups.y);
     g_proxy_base = g_bin * g_proxy_words;
+    g_band = int(gl_LocalInvocationID.y) * max(pc.pass.proxy_per_light, 1) / int(gl_WorkGroupSize.y);
     for (uint r = 0; r < BLOCK_H; ++r) {
         int y = o.y + int(r);
         for (int k = 0; k < int(BLOCK_W); ++k) {

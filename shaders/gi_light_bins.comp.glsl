@@ -5,15 +5,18 @@
 // bit j of a bin's proxy mask is set when shadow proxy j can occlude a point the bin's
 // texels ask about (texel centres, face points, and with unfolded proxy shadows points up
 // to a wall height beyond them: `proxy_pad`); the others occlude nothing there. With
-// `per_light`, each point light in a bin also gets proxy masks of its own, one for each of
-// the bin's BLOCK_W sub-bins (its texel columns [k * group_x, (k + 1) * group_x): the
-// direct pass's invocation x computes columns x + k * group_x, so 8 neighbouring lanes ask
-// about one sub-bin). A proxy at distance D from the light shades only points farther than
-// sqrt(D^2 - reach^2) from it (its shadow lies within `reach` of it, behind it as seen from
-// the light), and only points inside a wedge round its direction from the light
-// (`outside_shadow_wedge`); a sub-bin wholly nearer, or wholly outside the wedge, or beyond
-// the proxy's reach, keeps none of its shadow.
-// One invocation per bin. size = texture (w, h, -, res); parameters: LightBinParams.
+// `per_light` = B > 0, each point light in a bin also gets proxy masks of its own, one for
+// each of the bin's B x BLOCK_W sub-bins: B bands of its rows by BLOCK_W strips of its
+// columns [k * group_x, (k + 1) * group_x). The direct pass's invocation x computes columns
+// x + k * group_x, so 8 neighbouring lanes ask about one strip, and one workgroup row about
+// one band when B is its group_y. A proxy at distance D from the light shades only points
+// farther than sqrt(D^2 - reach^2) from it (its shadow lies within `reach` of it, behind it
+// as seen from the light), and only points inside a wedge round its direction from the
+// light (`outside_shadow_wedge`); a sub-bin wholly nearer, or wholly outside the wedge, or
+// beyond the proxy's reach, keeps none of its shadow.
+// One workgroup per bin, BLOCK_W x some rows of invocations: the bin's masks first, shared,
+// then invocation (k, b) the per-light masks of strip k in bands b, b + rows, ...
+// size = texture (w, h, -, res); parameters: LightBinParams.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 struct LightBinParams {
@@ -22,7 +25,7 @@ struct LightBinParams {
     int bin_w, bin_h;   // a bin's size in texels
     int proxy_words;    // 32-bit proxy-mask words per bin
     float proxy_pad;    // how far beyond its texel centres a bin's proxy queries reach
-    int per_light;      // 1: masks per (bin, point light) follow the bins' own
+    int per_light;      // B > 0: masks per (bin, point light, band of B, strip) follow the bins' own
 };
 #define GI_PASS_PARAMS LightBinParams
 #include "lantern/gi_common.glsl"
@@ -33,7 +36,6 @@ const int LIGHT_SUBS = int(BLOCK_W);
 
 layout(std140, binding = 0) uniform LightBlock { GpuPointLight lights[MAX_LIGHTS]; } u_lights;
 layout(std430, binding = 1) buffer Out { uint masks[]; } o_bins;
-uint o_bins_read(int at) { return o_bins.masks[at]; }
 layout(std140, binding = 2) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
 layout(std430, binding = 3) buffer ProxyOut { uint masks[]; } o_proxy_bins; // bins' masks, then (bin, light)'s
 
@@ -92,10 +94,13 @@ bool outside_shadow_wedge(GpuShadowProxy p, vec2 q, float dist2, vec2 lo, vec2 h
     return false;
 }
 
+// The bin's masks, shared by its invocations' per-light lists.
+shared uint s_lights[MAX_LIGHTS / 32];
+shared uint s_proxies[8]; // 256 proxies
+
 void main() {
-    ivec2 bin = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 bin = ivec2(gl_WorkGroupID.xy);
     ivec2 bins = ivec2(pc.pass.bins_x, pc.pass.bins_y);
-    if (bin.x >= bins.x || bin.y >= bins.y) return;
     int words = pc.pass.words;
     ivec2 bin_size = ivec2(pc.pass.bin_w, pc.pass.bin_h);
     ivec2 first = bin * bin_size;
@@ -103,7 +108,10 @@ void main() {
     vec2 lo = texel_center(first.x, first.y), hi = texel_center(max(last.x, first.x), max(last.y, first.y));
     int n = pc.counts.x + pc.counts.y;
     int base = (bin.y * bins.x + bin.x) * words;
-    for (int w = 0; w < words; ++w) {
+    const int threads = int(gl_WorkGroupSize.x * gl_WorkGroupSize.y);
+    int t = int(gl_LocalInvocationIndex);
+    // The bin's light mask, a word per invocation in turn.
+    for (int w = t; w < words; w += threads) {
         uint bits = 0u;
         for (int b = 0; b < 32; ++b) {
             int i = w * 32 + b;
@@ -114,10 +122,11 @@ void main() {
             if (sqrt(d.x * d.x + d.y * d.y) <= l.z * 1.0001 + 1e-4) bits |= 1u << uint(b);
         }
         o_bins.masks[base + w] = bits;
+        s_lights[w] = bits;
     }
     int proxy_base = (bin.y * bins.x + bin.x) * pc.pass.proxy_words;
     vec2 plo = lo - pc.pass.proxy_pad, phi = hi + pc.pass.proxy_pad;
-    for (int w = 0; w < pc.pass.proxy_words; ++w) {
+    for (int w = t; w < pc.pass.proxy_words; w += threads) {
         uint bits = 0u;
         for (int b = 0; b < 32; ++b) {
             int i = w * 32 + b;
@@ -127,26 +136,37 @@ void main() {
             if (sqrt(d.x * d.x + d.y * d.y) <= proxy_reach(p)) bits |= 1u << uint(b);
         }
         o_proxy_bins.masks[proxy_base + w] = bits;
+        s_proxies[w] = bits;
     }
-    if (pc.pass.per_light == 0) return;
-    // Per (bin, point light, sub-bin k): the columns [k * sub_w, (k + 1) * sub_w), sub_w the
-    // direct pass's group_x; a sub-bin past the window's edge has no texel and an empty mask.
+    int bands = pc.pass.per_light;
+    if (bands == 0) return;
+    barrier();
+    // Per (bin, point light, band, column strip): invocation (k, b) takes strip k and bands
+    // b, b + group_y, ... Band `band` holds the bin's texel rows
+    // [band * bin_h / bands, (band + 1) * bin_h / bands) (the direct pass's invocation rows
+    // [band * gy / bands, ...)), strip k its columns [k * sub_w, (k + 1) * sub_w); a sub-bin
+    // past the window's edge has no texel and empty masks. Every invocation of the workgroup
+    // walks the same lights and proxies (the bin's masks).
     int points = pc.counts.x;
     int bins_total = bins.x * bins.y;
-    int sub_w = bin_size.x / LIGHT_SUBS;
-    for (int i = 0; i < points; ++i) {
-        if ((o_bins_read(base + (i >> 5)) & (1u << uint(i & 31))) == 0u) continue;
-        vec2 l = u_lights.lights[i].position_radius.xy;
-        for (int k = 0; k < LIGHT_SUBS; ++k) {
-            int x0 = first.x + k * sub_w, x1 = min(x0 + sub_w, pc.size.x) - 1;
-            vec2 slo = texel_center(x0, first.y) - pc.pass.proxy_pad;
-            vec2 shi = texel_center(max(x1, x0), max(last.y, first.y)) + pc.pass.proxy_pad;
+    int sub_w = bin_size.x / LIGHT_SUBS, sub_h = bin_size.y / bands;
+    int k = int(gl_LocalInvocationID.x);
+    for (int band = int(gl_LocalInvocationID.y); band < bands; band += int(gl_WorkGroupSize.y)) {
+        int x0 = first.x + k * sub_w, x1 = min(x0 + sub_w, pc.size.x) - 1;
+        int y0 = first.y + band * sub_h, y1 = min(y0 + sub_h, pc.size.y) - 1;
+        bool empty = x0 > last.x || y0 > last.y;
+        vec2 slo = texel_center(x0, y0) - pc.pass.proxy_pad;
+        vec2 shi = texel_center(max(x1, x0), max(y1, y0)) + pc.pass.proxy_pad;
+        for (int i = 0; i < points; ++i) {
+            if ((s_lights[i >> 5] & (1u << uint(i & 31))) == 0u) continue;
+            vec2 l = u_lights.lights[i].position_radius.xy;
             vec2 far_d = max(abs(slo - l), abs(shi - l));
             float far2 = far_d.x * far_d.x + far_d.y * far_d.y;
-            int out_base = (bins_total + ((bin.y * bins.x + bin.x) * points + i) * LIGHT_SUBS + k) * pc.pass.proxy_words;
+            int out_base = (bins_total + (((bin.y * bins.x + bin.x) * points + i) * bands + band) * LIGHT_SUBS + k) *
+                           pc.pass.proxy_words;
             for (int w = 0; w < pc.pass.proxy_words; ++w) {
-                uint bits = x0 > last.x ? 0u : o_proxy_bins.masks[proxy_base + w], kept = 0u;
-                for (; bits != 0u; bits &= bits - 1u) {
+                uint kept = 0u;
+                for (uint bits = s_proxies[w]; bits != 0u; bits &= bits - 1u) {
                     int j = w * 32 + findLSB(bits);
                     GpuShadowProxy p = u_proxies.proxies[j];
                     vec2 q = p.position_size.xy - l;
@@ -158,7 +178,7 @@ void main() {
                     // Within the sub-bin's own reach of the proxy, as the bin's mask is.
                     vec2 d = max(max(slo - p.position_size.xy, p.position_size.xy - shi), vec2(0.0));
                     shades = shades && !(sqrt(d.x * d.x + d.y * d.y) > reach);
-                    kept |= shades ? (1u << uint(j & 31)) : 0u;
+                    kept |= shades && !empty ? (1u << uint(j & 31)) : 0u;
                 }
                 o_proxy_bins.masks[out_base + w] = kept;
             }

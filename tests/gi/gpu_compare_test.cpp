@@ -120,10 +120,10 @@ TEST_F(GiGpuCompare, OtherWorkgroupShapesMatchReference) {
     EXPECT_NE(refused.error().message.find("shared memory"), std::string::npos) << refused.error().message;
 }
 
-// gi_light_bins keeps for each (bin, point light, sub-bin of 8 neighbouring lanes' texel
-// columns) only the proxies whose shadow from that light can reach the sub-bin: beyond its
-// horizon, within its reach, and inside the wedge round the proxy's direction from the light
-// (half-angle asin(w / rmin)); the reference visits every proxy. The proxies scene at giRes 8
+// gi_light_bins keeps for each (bin, point light, sub-bin: a band of its rows by a strip of
+// 8 neighbouring lanes' columns) only the proxies whose shadow from that light can reach the
+// sub-bin: beyond its horizon, within its reach, and inside the wedge round the proxy's
+// direction from the light (half-angle asin(w / rmin)); the reference visits every proxy. The proxies scene at giRes 8
 // over a cave, with lights far from the proxies (so the wedges are narrow) and long shadows,
 // folded and unfolded, on the default workgroup and on a narrower one.
 TEST_F(GiGpuCompare, PointLightsSkipOnlyProxiesOutsideTheirShadowWedges) {
@@ -144,6 +144,60 @@ TEST_F(GiGpuCompare, PointLightsSkipOnlyProxiesOutsideTheirShadowWedges) {
         SCOPED_TRACE(unfold == lantern::scene::ProxyWallShadows::unfold ? "unfolded" : "folded");
         compare_scene(named, Pass::direct, false);
         compare_scene(named, Pass::direct, false, false, 1.0f, renderer.value().get());
+    }
+}
+
+// The per-light proxy lists come in grains: a workgroup's rows in B bands (B dividing its
+// rows) by its 4 strips, the finest whose lists fit RendererOptions::proxy_list_bytes, down
+// to one list per workgroup when none fits. Every grain equals the reference: the scene of
+// the test above, folded (its lists are the shortest), on an 8 x 8 workgroup of 4-row blocks, with the budget set to
+// exactly what 8 bands need (compared with the reference), then 4, 2 and 1 band and just
+// below 1 (each compared with the first, bit for bit: a proxy left out of a list occludes
+// nothing there, so the sums are the same).
+TEST_F(GiGpuCompare, PointLightProxyListsOfEveryGrainEqualTheReference) {
+    NamedScene named = gi_test::comparison_scene("proxies");
+    named.scene.gi.resolution = 8;
+    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f);
+    named.scene.wall_height = 2.5f;
+    named.scene.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::full;
+    for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
+    named.scene.point_lights.clear();
+    for (glm::vec2 at : {glm::vec2(1.5f, 1.5f), glm::vec2(18.5f, 2.5f), glm::vec2(17.5f, 18.5f), glm::vec2(2.5f, 16.5f)})
+        named.scene.point_lights.push_back(gi_test::point(at, {1.0f, 0.8f, 0.6f}, 1.5f, 18.0f));
+    auto window = compute_window(named.scene.view, named.scene.gi);
+    ASSERT_TRUE(window);
+    const FrameInputs in = gather_frame_inputs(named.scene, *window);
+    const PassPlan plan = plan_passes(in, false, Pass::direct);
+    const std::uint64_t pitch = (std::uint64_t(window->width) + 3) / 4 * 4;
+    const std::uint64_t bins = (pitch / 4 + 7) / 8 * ((std::uint64_t(window->height) + 31) / 32);
+    const std::uint64_t words = (in.proxies.size() + 31) / 32;
+    const std::uint64_t per_band = bins * words * 4 * in.point_lights.size() * 4;
+    vk::RendererOptions options;
+    options.block_h = 4;
+    options.group_x = options.group_y = 8;
+    options.proxy_list_bytes = 8 * per_band;
+    auto renderer = vk::Renderer::create(device(), options);
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    compare_scene(named, Pass::direct, false, false, 1.0f, renderer.value().get());
+    auto finest = run_vulkan_frame(*renderer.value(), in, plan);
+    ASSERT_TRUE(finest.ok()) << finest.error().message;
+    const FrameResult& first = finest.value();
+    for (std::uint64_t budget : {4 * per_band, 3 * per_band, per_band, per_band - 1}) {
+        SCOPED_TRACE("proxy_list_bytes " + std::to_string(budget) + " (" + std::to_string(budget / per_band) + " bands)");
+        renderer.value()->set_proxy_list_bytes(budget);
+        auto gpu = run_vulkan_frame(*renderer.value(), in, plan);
+        ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+        ASSERT_EQ(gpu->textures.size(), first.textures.size());
+        for (const auto& [name, texture] : first.textures) {
+            auto it = gpu->textures.find(name);
+            ASSERT_NE(it, gpu->textures.end()) << name;
+            ASSERT_TRUE(it->second.width == texture.width && it->second.height == texture.height) << name;
+            std::size_t differ = 0;
+            for (int y = 0; y < texture.height; ++y)
+                for (int x = 0; x < texture.width; ++x)
+                    for (int c = 0; c < texture.channels(); ++c) differ += it->second.at(x, y)[c] != texture.at(x, y)[c];
+            EXPECT_EQ(differ, 0u) << name << ": values unlike the finest grain's";
+        }
     }
 }
 

@@ -242,12 +242,12 @@ struct DirectState : vk::PassState {
 // Everything the outputs depend on but the lights: with the suns' textures added
 // (feature_suns), also what those depend on besides the walls, proxies and window hashed
 // already (the suns and the suns' settings), so a bin is kept only over the same sunlight.
-std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uint32_t features, bool proxy_per_light) {
+std::uint64_t direct_context(PassRecorder& r, std::span<const Tex> out, std::uint32_t features, std::uint32_t proxy_bands) {
     const FrameInputs& in = r.in;
     Hasher h;
     add_window_and_walls(h, in).add_span(std::span(in.proxies)).add(in.wall_height).add(r.plan.has_walls_in_window);
     h.add(in.settings.light_softness).add(in.settings.wall_face_exponent).add(computed_faces(in.settings));
-    h.add(features).add(proxy_per_light).add(r.block_h()).add(r.group_x()).add(r.group_y());
+    h.add(features).add(proxy_bands).add(r.block_h()).add(r.group_x()).add(r.group_y());
     h.add(reinterpret_cast<std::uintptr_t>(out.data()));
     for (const Tex t : out) h.add(r.has(t) ? r.serial(t) : 0);
     for (const Tex t : upper_outputs(out)) h.add(r.has(t) ? r.serial(t) : 0);
@@ -421,11 +421,16 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const std::uint32_t words = std::uint32_t((lights.point_lights.size() + lights.emissive_lights.size() + 31) / 32);
     const VkDeviceSize bin_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(bins_x) * bins_y * std::max(words, 1u) * 4);
     const std::uint32_t proxy_words = std::uint32_t((in.proxies.size() + 31) / 32);
-    // Proxy masks per bin, then (when they fit in 16 MiB) per bin and point light.
+    // Proxy masks per bin, then per (bin, point light, band, strip): the bin's rows in
+    // `bands` bands (one per workgroup row at most) by the invocations' 4 texel columns,
+    // the finest whose masks fit in RendererOptions::proxy_list_bytes (0 bands: none fit).
     const VkDeviceSize per_bin = VkDeviceSize(bins_x) * bins_y * proxy_words * 4;
-    // Per (bin, point light) a mask for each of the invocations' 4 texel columns (sub-bins).
-    const VkDeviceSize per_light = per_bin * lights.point_lights.size() * 4;
-    const bool proxy_per_light = proxy_words > 0 && per_light <= (VkDeviceSize(16) << 20);
+    const VkDeviceSize per_band = per_bin * lights.point_lights.size() * 4;
+    std::uint32_t bands = 0;
+    if (proxy_words > 0 && per_band > 0)
+        for (std::uint32_t b = r.group_y(); b >= 1 && bands == 0; --b)
+            if (r.group_y() % b == 0 && per_band * b <= r.proxy_list_bytes()) bands = b;
+    const VkDeviceSize per_light = per_band * bands;
     const std::uint32_t base_features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
                                         (in.settings.light_softness == 1.0f ? feature_linear_falloff : 0u) |
                                         (suns ? feature_suns : 0u);
@@ -433,7 +438,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     // Dirty light bins: the bins to record, all of them unless only lights changed. Of those,
     // the bins no light reaches take the light-free variant.
     const std::uint32_t bin_count = bins_x * bins_y;
-    const std::uint64_t context = direct_context(r, out, base_features | (want_map ? feature_point_map : 0u), proxy_per_light);
+    const std::uint64_t context = direct_context(r, out, base_features | (want_map ? feature_point_map : 0u), bands);
     std::vector<std::uint64_t> hashes =
         bin_lights(lights.point_lights, lights.emissive_lights, w, bins_x, bins_y, float(4 * r.group_x()), float(r.block_h() * r.group_y()));
     // The baked row adds the mixed set into the direct textures in place, after the bounce
@@ -498,7 +503,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
         list.insert(list.end(), plain.begin(), plain.end());
         list.insert(list.end(), dark.begin(), dark.end());
     }
-    const VkDeviceSize proxy_bytes = std::max<VkDeviceSize>(16, per_bin + (proxy_per_light ? per_light : 0));
+    const VkDeviceSize proxy_bytes = std::max<VkDeviceSize>(16, per_bin + per_light);
     const VkDeviceSize list_bytes = std::max<VkDeviceSize>(16, VkDeviceSize(list.size()) * 4);
     for (auto [buffer, bytes, name] : {std::tuple{&s.bins, bin_bytes, "gi light bins"}, std::tuple{&s.proxy_bins, proxy_bytes, "gi proxy bins"},
                                        std::tuple{&s.dirty, list_bytes, "gi dirty light bins"}})
@@ -515,7 +520,8 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     }
     r.count_workgroups(bin_count, lit.size() + plain.size() + dark.size());
     const glm::ivec2 counts(int(lights.point_lights.size()), int(lights.emissive_lights.size()));
-    r.cmd.bind(r.pipeline<LightBinParams>("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 8, .group_y = 8}));
+    // One workgroup per bin: 4 strips by 8 rows of bands (gi_light_bins).
+    r.cmd.bind(r.pipeline<LightBinParams>("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 4, .group_y = 8}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_buffer(0, s.lights)
                                .storage_buffer(1, s.bins)
@@ -528,9 +534,9 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
               .bin_w = std::int32_t(4 * r.group_x()), .bin_h = std::int32_t(r.block_h() * r.group_y()),
               .proxy_words = std::int32_t(proxy_words),
               .proxy_pad = proxy_pad(in),
-              .per_light = proxy_per_light ? 1 : 0};
+              .per_light = std::int32_t(bands)};
     r.cmd.push_constants(b);
-    r.cmd.dispatch((bins_x + 7) / 8, (bins_y + 7) / 8);
+    r.cmd.dispatch(bins_x, bins_y);
     r.cmd.barrier_compute_to_compute();
 
     const std::uint32_t features = base_features | (point_map ? feature_point_map : 0u);
@@ -563,7 +569,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     p.pass.light_softness = in.settings.light_softness;
     p.pass.face_exponent = in.settings.wall_face_exponent;
     p.pass.wall_height = in.wall_height;
-    p.pass.proxy_per_light = proxy_per_light ? 1 : 0;
+    p.pass.proxy_per_light = std::int32_t(bands);
     p.pass.bins_x = std::int32_t(bins_x);
     p.pass.bins_y = std::int32_t(bins_y);
     auto run = [&](std::uint32_t variant, std::size_t first, std::size_t count, bool proxies = true) {

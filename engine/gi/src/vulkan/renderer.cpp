@@ -95,6 +95,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(gpu::Device& device, const Re
     r->group_x_ = options.group_x ? options.group_x : (cpu ? 8u : 16u);
     r->group_y_ = options.group_y ? options.group_y : (cpu ? 8u : 8u);
     r->dirty_bins_ = options.dirty_bins;
+    r->proxy_list_bytes_ = options.proxy_list_bytes;
     // The direct pass repacks its workgroup's shadow texels through shared memory (4 bytes a
     // texel): keep it within the 16 KiB every Vulkan device offers.
     const std::uint64_t shared_bytes = std::uint64_t(r->group_x_) * r->group_y_ * 4u * r->block_h_ * 4u;

@@ -71,6 +71,7 @@ class PassRecorder {
     bool planned_since(std::uint64_t serial) const { return r_.unplanned_[std::size_t(row_.pass)] <= serial; }
     // RendererOptions::dirty_bins.
     bool dirty_bins() const { return r_.dirty_bins_; }
+    std::uint64_t proxy_list_bytes() const { return r_.proxy_list_bytes_; }
     // This pass recorded `recorded` of its `workgroups` (Renderer::partial_work).
     void count_workgroups(std::uint64_t workgroups, std::uint64_t recorded) {
         Renderer::PartialWork& w = r_.partial_work_[std::size_t(row_.pass)];

@@ -55,6 +55,10 @@ struct RendererOptions {
     // With it the heat pass also keeps its tap masks while the window, the walls and its
     // settings stay (a torch's flicker reruns the heat, not the masks).
     bool dirty_bins = true;
+    // Memory for the direct pass's proxy lists per (workgroup, point light, sub-block): the
+    // finest sub-blocks whose lists fit (docs/gi.md, "Proxy lists per light and sub-bin");
+    // beyond it, one list per workgroup. The results are the same; only the time differs.
+    std::uint64_t proxy_list_bytes = std::uint64_t(16) << 20;
 };
 
 struct PassTiming {
@@ -87,6 +91,8 @@ class Renderer {
     std::vector<std::uint8_t> read_back_walls();
     // Records the light, proxy and sun data of `in` (small: copied into the command buffer).
     void upload_lights(gpu::CommandList& cmd, const FrameInputs& in);
+    // RendererOptions::proxy_list_bytes from the next frame recorded on.
+    void set_proxy_list_bytes(std::uint64_t bytes) { proxy_list_bytes_ = bytes; }
 
     // Records one pass (with its timestamps and the barriers it needs after it).
     void record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, const PassPlan& plan);
@@ -191,6 +197,7 @@ class Renderer {
     std::uint64_t plans_ = 0;
     std::array<std::uint64_t, pass_count> unplanned_{};
     bool dirty_bins_ = true;
+    std::uint64_t proxy_list_bytes_ = std::uint64_t(16) << 20;
     gpu::Buffer lights_, proxies_, suns_; // uniform buffers, written with update_buffer
     // Each row's own GPU state, one object per row and state type (a row may keep several:
     // the mixed row keeps the direct pass's and the suns' pass's).
