@@ -24,6 +24,8 @@ const bool POINT_MAP = (FEATURES & 4u) != 0u; // gi.shadow_method = shadow_map: 
 // gi.light_softness is 1 (the default): the falloff is linear, no pow. lavapipe evaluates
 // pow as exp2(log2) per (texel, light) pair: about 40 % of the emissives' cost.
 const bool LINEAR_FALLOFF = (FEATURES & 8u) != 0u;
+// gi.wall_face_exponent is 1 (the default): the face weights without pow (wall_facing).
+const bool LINEAR_FACES = (FEATURES & 256u) != 0u;
 // Dirty light bins (docs/gi.md): workgroup i computes bin u_dirty.bins[list_first + i]
 // (row-major in a bins_x x bins_y grid) and the other bins keep what they hold.
 const bool LIST = (FEATURES & 16u) != 0u;
@@ -93,7 +95,7 @@ vec4 face_weights(vec4 mask, vec2 p, vec2 light_pos) {
     precise vec2 to_light = light_pos - p;
     precise float squared = max(to_light.x * to_light.x + to_light.y * to_light.y, 1e-6);
     precise float inv_len = gi_div(1.0, gi_sqrt(squared));
-    return mask * wall_facing(to_light * inv_len, pc.pass.face_exponent);
+    return mask * wall_facing(to_light * inv_len, pc.pass.face_exponent, LINEAR_FACES);
 }
 
 // The lights this workgroup's bin lists, in ascending order: point lights first. lavapipe

@@ -23,6 +23,7 @@ const bool SUN_MAP = (FEATURES & 2u) != 0u; // the suns' grid shadows by their s
 // The mixed suns (the mixed row), else the realtime ones (frame_inputs.hpp is_mixed_sun:
 // bounce.y != 0).
 const bool MIXED_SUNS = (FEATURES & 64u) != 0u;
+const bool LINEAR_FACES = (FEATURES & 256u) != 0u; // gi.wall_face_exponent 1: no pow (wall_facing)
 
 layout(binding = 0) uniform usamplerBuffer u_walls;
 layout(std140, binding = 1) uniform ProxyBlock { GpuShadowProxy proxies[256]; } u_proxies;
@@ -80,7 +81,7 @@ void sun_texel(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
         vec2 to_sun = vec2(-sun.direction_base.x, -sun.direction_base.z);
         precise float len = gi_length(to_sun);
         // The sun overhead lights no face (len < 1e-4).
-        vec4 weight = len < 1e-4 ? vec4(0.0) : mask * wall_facing(gi_div(to_sun, max(len, 1e-4)), pc.pass.face_exponent);
+        vec4 weight = len < 1e-4 ? vec4(0.0) : mask * wall_facing(gi_div(to_sun, max(len, 1e-4)), pc.pass.face_exponent, LINEAR_FACES);
         int fx = weight.x > 0.0 ? 0 : 1, fz = weight.z > 0.0 ? 2 : 3;
         for (int s = 0; s < targets; ++s) {
             int f = s == 0 ? fx : fz;

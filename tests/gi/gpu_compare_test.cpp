@@ -201,6 +201,48 @@ TEST_F(GiGpuCompare, PointLightProxyListsOfEveryGrainEqualTheReference) {
     }
 }
 
+// The pass table times parts of a pass on their own (PassRecorder::begin_part): the direct
+// pass's light culling, gi_light_bins, is a part named "light bins" of the direct row, timed
+// inside the row's own region, and not counted again in the frame's total. A second frame
+// of the same inputs records no bin (dirty light bins), so it has no such part.
+TEST_F(GiGpuCompare, TheDirectPassTimesItsLightCullingAsAPart) {
+    if (!device().capabilities().timestamps) GTEST_SKIP() << "the device has no timestamps";
+    NamedScene named = gi_test::comparison_scene("proxies");
+    named.scene.gi.resolution = 8;
+    auto window = compute_window(named.scene.view, named.scene.gi);
+    ASSERT_TRUE(window);
+    const FrameInputs in = gather_frame_inputs(named.scene, *window);
+    ASSERT_FALSE(in.point_lights.empty());
+    auto renderer = vk::Renderer::create(device());
+    ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+    for (int frame = 0; frame < 2; ++frame) {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        auto gpu = run_vulkan_frame(*renderer.value(), in, plan_passes(in, false, Pass::direct), false);
+        ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+        double sum = 0.0;
+        int direct_rows = 0;
+        for (const PassReport& p : gpu->passes) {
+            sum += p.gpu_ms;
+            if (p.pass != Pass::direct) {
+                EXPECT_TRUE(p.parts.empty()) << pass_name(p.pass);
+                continue;
+            }
+            ++direct_rows;
+            ASSERT_TRUE(p.ran);
+            if (frame == 1) {
+                EXPECT_TRUE(p.parts.empty()) << "a frame that recorded no bin timed its culling";
+                continue;
+            }
+            ASSERT_EQ(p.parts.size(), 1u);
+            EXPECT_EQ(p.parts[0].name, "light bins");
+            EXPECT_GT(p.parts[0].gpu_ms, 0.0);
+            EXPECT_LE(p.parts[0].gpu_ms, p.gpu_ms); // within the pass's region
+        }
+        EXPECT_EQ(direct_rows, 1);
+        EXPECT_NEAR(gpu->total_ms, sum, 1e-9 * (1.0 + sum)); // the parts not counted twice
+    }
+}
+
 // The sun's pass visits only the proxies whose shadow can reach each workgroup (masks built
 // on the host, record_directional's sun_proxy_bins); the reference visits every proxy. The
 // proxies scene (every shape, width mode, penumbra mode and end-cap blend) over a cave at

@@ -12,6 +12,7 @@ struct SeedTableOptions {
     std::vector<int> rows;   // the rows of the table to run (0-based); empty: all
     std::string markdown_out; // also write the summary table here
     unsigned block_h = 0, group_x = 0, group_y = 0; // 0: the renderer's default for the device
+    long long proxy_list_kib = -1; // RendererOptions::proxy_list_bytes / 1024; -1: its default
 };
 int seed_table(const SeedTableOptions& options);
 

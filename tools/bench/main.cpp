@@ -42,7 +42,7 @@ constexpr const char* commands =
 
 int seed_table_main(int argc, char** argv) {
     lantern::bench::SeedTableOptions o;
-    int block_h = int(o.block_h), group_x = int(o.group_x), group_y = int(o.group_y);
+    int block_h = int(o.block_h), group_x = int(o.group_x), group_y = int(o.group_y), proxy_kib = -1;
     Parser p("lantern-bench seed-table", "[options]",
              "Seed 000's performance table on this device: per-pass GPU time (timestamps, median), each\n"
              "next to a copy kernel writing the same bytes, and the C++ reference.");
@@ -64,7 +64,11 @@ int seed_table_main(int argc, char** argv) {
     p.integer("--block-h", "N", "block height (default: the renderer's for the device)", block_h, 1, 64);
     p.integer("--group-x", "N", "workgroup width (default: the renderer's for the device)", group_x, 1, 64);
     p.integer("--group-y", "N", "workgroup height (default: the renderer's for the device)", group_y, 1, 64);
+    p.integer("--proxy-list-kib", "N",
+              "memory for the direct pass's proxy lists per point light (default 16384; 0: the bins' lists alone)",
+              proxy_kib, 0, 1 << 22);
     if (auto exit = p.parse(argc, argv, 2)) return *exit;
+    o.proxy_list_kib = proxy_kib;
     o.block_h = unsigned(block_h);
     o.group_x = unsigned(group_x);
     o.group_y = unsigned(group_y);

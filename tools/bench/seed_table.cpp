@@ -29,6 +29,7 @@ struct RowResult {
     SeedRow row;
     int width = 0, height = 0;
     std::map<gi::Pass, PassNumbers> passes;  // with gi.shadow_method = shadow_map (the default)
+    std::map<gi::Pass, std::vector<std::pair<std::string, double>>> parts; // timed parts, median ms
     PassNumbers direct_by_dda;               // the direct pass with gi.shadow_method = dda
     double total_gpu = 0.0, total_copy = 0.0, total_cpp = 0.0;
 };
@@ -48,8 +49,9 @@ Result<RowResult> run_row(gi::vk::Renderer& renderer, const SeedRow& row, const 
     gi::FrameInputs by_dda = in;
     by_dda.settings.shadow_method = scene::ShadowMethod::dda;
     const gi::PassPlan plan = gi::plan_passes(in, false);
-    RowResult r{row, window->width, window->height, {}, {}, 0, 0, 0};
+    RowResult r{row, window->width, window->height, {}, {}, {}, 0, 0, 0};
     std::map<gi::Pass, std::vector<double>> samples;
+    std::map<std::pair<gi::Pass, std::string>, std::vector<double>> part_samples;
     std::vector<double> dda_samples;
     // The two shadow methods alternate frame by frame, so that both see the same machine.
     for (int rep = 0; rep <= o.repeats; ++rep) { // rep 0 warms up (pipeline creation)
@@ -58,11 +60,14 @@ Result<RowResult> run_row(gi::vk::Renderer& renderer, const SeedRow& row, const 
         auto dda = gi::run_vulkan_frame(renderer, by_dda, plan, false);
         if (!dda) return dda.error();
         if (rep == 0) continue;
-        for (const gi::PassReport& p : frame->passes)
+        for (const gi::PassReport& p : frame->passes) {
             if (p.ran) samples[p.pass].push_back(p.gpu_ms);
+            for (const gi::PartReport& part : p.parts) part_samples[{p.pass, part.name}].push_back(part.gpu_ms);
+        }
         for (const gi::PassReport& p : dda->passes)
             if (p.ran && p.pass == gi::Pass::direct) dda_samples.push_back(p.gpu_ms);
     }
+    for (auto& [key, v] : part_samples) r.parts[key.first].push_back({key.second, median(v)});
     r.direct_by_dda.ran = !dda_samples.empty();
     r.direct_by_dda.gpu_ms = median(dda_samples);
     for (auto& [pass, v] : samples) {
@@ -102,6 +107,9 @@ void print_row(const RowResult& r, bool reference) {
                     n.copy_ms > 0 ? n.gpu_ms / n.copy_ms : 0.0);
         if (reference) std::printf(" %10.2f %8.1f", n.cpp_ms, n.gpu_ms > 0 ? n.cpp_ms / n.gpu_ms : 0.0);
         std::printf("\n");
+        if (auto parts = r.parts.find(pass); parts != r.parts.end())
+            for (const auto& [name, ms] : parts->second) // within the pass's time above
+                std::printf("    %-12s %10.3f\n", ("- " + name).c_str(), ms);
     }
     if (r.direct_by_dda.ran) {
         const PassNumbers& d = r.direct_by_dda;
@@ -285,6 +293,7 @@ int seed_table(const SeedTableOptions& o) {
     ro.block_h = o.block_h;
     ro.group_x = o.group_x;
     ro.group_y = o.group_y;
+    if (o.proxy_list_kib >= 0) ro.proxy_list_bytes = std::uint64_t(o.proxy_list_kib) * 1024u;
     auto renderer = gi::vk::Renderer::create(**device, ro);
     if (!renderer) {
         std::fprintf(stderr, "lantern-bench: %s\n", renderer.error().message.c_str());
@@ -294,8 +303,9 @@ int seed_table(const SeedTableOptions& o) {
                 "copy = the copy kernel writing the same bytes in the same dispatches%s\n",
                 (*device)->name().c_str(), describe_machine().c_str(), o.repeats,
                 o.reference ? "; C++ = the scalar reference, one thread" : "");
-    std::printf("block: 4 x %u texels per invocation, workgroup %u x %u blocks\n", (*renderer)->block_h(),
-                (*renderer)->group_x(), (*renderer)->group_y());
+    std::printf("block: 4 x %u texels per invocation, workgroup %u x %u blocks; proxy lists within %llu KiB\n",
+                (*renderer)->block_h(), (*renderer)->group_x(), (*renderer)->group_y(),
+                static_cast<unsigned long long>(ro.proxy_list_bytes / 1024u));
     std::vector<RowResult> rows;
     const auto all = seed_rows();
     for (std::size_t i = 0; i < all.size(); ++i) {

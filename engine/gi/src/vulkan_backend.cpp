@@ -59,7 +59,8 @@ class VulkanBackend final : public Backend {
         for (const vk::FrameTimings& f : renderer_.completed_timings()) {
             FrameTimes t{f.frame, {}};
             for (const vk::PassTiming& p : f.passes)
-                t.passes.push_back({p.pass, p.gpu_ms, p.region.cpu_begin_ns, p.region.cpu_end_ns});
+                if (!p.part) // the profiler's lanes show whole passes
+                    t.passes.push_back({p.pass, p.gpu_ms, p.region.cpu_begin_ns, p.region.cpu_end_ns});
             out.push_back(std::move(t));
         }
         return out;

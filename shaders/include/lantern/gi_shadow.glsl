@@ -131,10 +131,13 @@ vec4 face_bits_mask(uint faces) {
 }
 bool computes_face(uint faces, int face) { return ((faces >> uint(face)) & 1u) != 0u; }
 // Each face's weight (+x, -x, +z, -z) for light from unit direction d, raised to `exponent`
-// (gi.wall_face_exponent; 1 leaves it as it is, bit for bit).
-vec4 wall_facing(vec2 d, float exponent) {
+// (gi.wall_face_exponent). `linear`: the exponent is 1, so no pow (the reference's
+// std::pow(x, 1) is x); pass a specialisation constant. lavapipe evaluates both sides of a
+// select, and pow as exp2(log2) on each of the four: with a run-time test alone that cost
+// the direct pass 13 % per (texel, light) pair (docs/performance.md).
+vec4 wall_facing(vec2 d, float exponent, const bool linear) {
     vec4 w = vec4(saturate(d.x), saturate(-d.x), saturate(d.y), saturate(-d.y));
-    return exponent == 1.0 ? w : pow(w, vec4(exponent));
+    return linear || exponent == 1.0 ? w : pow(w, vec4(exponent));
 }
 
 // Where a wall face's shadow ray ends (or starts, for the sun): just outside the face.

@@ -129,10 +129,16 @@ constexpr std::uint32_t feature_list = 16; // gi_direct.comp: one workgroup per 
 constexpr std::uint32_t feature_no_lights = 32; // gi_direct.comp: bins no light reaches (the light loops left out)
 constexpr std::uint32_t feature_mixed_suns = 64; // gi_directional.comp: the mixed suns (else the realtime ones)
 constexpr std::uint32_t feature_suns = 128; // gi_direct.comp: adds the realtime suns' own textures (sun_set)
+constexpr std::uint32_t feature_linear_faces = 256; // gi.wall_face_exponent 1: no pow (wall_facing)
+
+// The feature bits both the direct and the directional shaders take from the settings.
+std::uint32_t face_features(const FrameInputs& in) {
+    return in.settings.wall_face_exponent == 1.0f ? feature_linear_faces : 0u;
+}
 
 // The directional shader's FEATURES for a frame (also what the direct row prefetches).
 std::uint32_t directional_features(const FrameInputs& in, bool sun_map) {
-    return (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (sun_map ? feature_sun_map : 0u);
+    return (unfolds_proxy_shadows(in) ? feature_upper : 0u) | (sun_map ? feature_sun_map : 0u) | face_features(in);
 }
 
 // ---- conduction
@@ -433,7 +439,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const VkDeviceSize per_light = per_band * bands;
     const std::uint32_t base_features = (unfolds_proxy_shadows(in) ? feature_upper : 0u) |
                                         (in.settings.light_softness == 1.0f ? feature_linear_falloff : 0u) |
-                                        (suns ? feature_suns : 0u);
+                                        face_features(in) | (suns ? feature_suns : 0u);
 
     // Dirty light bins: the bins to record, all of them unless only lights changed. Of those,
     // the bins no light reaches take the light-free variant.
@@ -520,7 +526,8 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     }
     r.count_workgroups(bin_count, lit.size() + plain.size() + dark.size());
     const glm::ivec2 counts(int(lights.point_lights.size()), int(lights.emissive_lights.size()));
-    // One workgroup per bin: 4 strips by 8 rows of bands (gi_light_bins).
+    // One workgroup per bin: 4 strips by 8 rows of bands (gi_light_bins), timed on its own.
+    const std::uint32_t bins_part = r.begin_part("light bins");
     r.cmd.bind(r.pipeline<LightBinParams>("gi_light_bins.comp", {.proxies = false, .block_h = 1, .group_x = 4, .group_y = 8}));
     r.cmd.push_descriptors(gpu::DescriptorWrites()
                                .uniform_buffer(0, s.lights)
@@ -538,6 +545,7 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     r.cmd.push_constants(b);
     r.cmd.dispatch(bins_x, bins_y);
     r.cmd.barrier_compute_to_compute();
+    r.end_part(bins_part);
 
     const std::uint32_t features = base_features | (point_map ? feature_point_map : 0u);
     gpu::DescriptorWrites writes = gpu::DescriptorWrites()

@@ -110,7 +110,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(gpu::Device& device, const Re
     r->pipelines_->exact_rounding = cpu ? 0u : (driver_fuses_fma(device) ? 2u : 1u);
     if (device.capabilities().timestamps) {
         for (int i = 0; i < num_query_sets; ++i) {
-            auto q = device.create_timestamp_queries(pass_count + 8, "gi passes");
+            auto q = device.create_timestamp_queries(2 * pass_count + 8, "gi passes"); // passes and parts
             if (!q) return q.error();
             r->queries_.push_back(QuerySet{std::move(q.value()), {}, false, 0});
         }
@@ -265,7 +265,7 @@ void Renderer::record(gpu::CommandList& cmd, Pass pass, const FrameInputs& in, c
     std::uint32_t region = 0;
     if (set) {
         region = set->queries.begin(cmd, pass_name(pass));
-        set->passes.push_back(pass);
+        set->passes.push_back({pass});
     }
     const PassRow* row = find_row(method(in.settings.method), pass);
     LANTERN_ASSERT(row && row->record, "record() of a pass that is not in the frame's gi.method");

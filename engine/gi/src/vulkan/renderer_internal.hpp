@@ -168,7 +168,11 @@ struct Renderer::Pipelines {
 
 struct Renderer::QuerySet {
     gpu::TimestampQueries queries;
-    std::vector<Pass> passes; // region i measured passes[i]
+    struct Measured {
+        Pass pass;
+        const char* part = nullptr; // a part of the pass (PassRecorder::begin_part), else the whole
+    };
+    std::vector<Measured> passes; // region i measured passes[i]
     bool pending = false;     // recorded, not yet read
     std::uint64_t frame = 0;
 };

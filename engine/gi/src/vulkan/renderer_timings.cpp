@@ -24,7 +24,8 @@ void Renderer::begin_frame(gpu::CommandList& cmd, std::uint64_t frame) {
 FrameTimings Renderer::collect_timings(const QuerySet& set, const gpu::TimestampResult& result) {
     FrameTimings out{set.frame, {}};
     for (std::size_t i = 0; i < result.regions.size() && i < set.passes.size(); ++i)
-        out.passes.push_back({set.passes[i], double(result.regions[i].duration_ns) * 1e-6, result.regions[i]});
+        out.passes.push_back(
+            {set.passes[i].pass, double(result.regions[i].duration_ns) * 1e-6, result.regions[i], set.passes[i].part});
     return out;
 }
 
@@ -41,6 +42,20 @@ std::vector<FrameTimings> Renderer::completed_timings() {
         }
     }
     return out;
+}
+
+std::uint32_t Renderer::begin_part(gpu::CommandList& cmd, Pass pass, const char* part) {
+    QuerySet* set = (!queries_.empty() && frame_slot_ >= 0) ? &queries_[std::size_t(frame_slot_)] : nullptr;
+    // Parts are an extra: past the set's capacity they go untimed rather than fail.
+    if (!set || set->queries.size() >= set->queries.capacity()) return no_part;
+    const std::uint32_t region = set->queries.begin(cmd, part);
+    set->passes.push_back({pass, part});
+    return region;
+}
+
+void Renderer::end_part(gpu::CommandList& cmd, std::uint32_t region) {
+    if (region == no_part) return;
+    queries_[std::size_t(frame_slot_)].queries.end(cmd, region);
 }
 
 std::vector<PassTiming> Renderer::wait_timings() {

@@ -20,11 +20,17 @@ namespace vk {
 class Renderer;
 }
 
+struct PartReport {
+    std::string name;    // PassRecorder::begin_part's
+    double gpu_ms = 0.0; // within its pass's gpu_ms
+};
+
 struct PassReport {
     Pass pass;
     bool ran = false;
     std::string reason; // why it was left out
     double gpu_ms = 0.0; // timestamps (Vulkan) or wall time (reference)
+    std::vector<PartReport> parts; // timed parts of the pass (Vulkan), summed by name
 };
 
 struct FrameResult {

@@ -130,6 +130,11 @@ class PassRecorder {
         return std::uint64_t(g.x) * g.y;
     }
     void clear(Tex t) { r_.clear(cmd, t); }
+    // Times the commands recorded until end_part as a part of this pass (a row of its own
+    // under the pass in the pass table: PassTiming::part, PassReport::parts). `name` must
+    // outlive the frame's timings (a literal). Untimed where the device has no timestamps.
+    std::uint32_t begin_part(const char* name) { return r_.begin_part(cmd, row_.pass, name); }
+    void end_part(std::uint32_t part) { r_.end_part(cmd, part); }
 
     template <typename T>
     T& state() {

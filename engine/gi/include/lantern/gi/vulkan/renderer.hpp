@@ -65,6 +65,9 @@ struct PassTiming {
     Pass pass;
     double gpu_ms = 0.0;
     gpu::TimestampRegion region; // raw and CPU-clock times (for the profiler's GPU lane)
+    // A timed part of the pass (PassRecorder::begin_part: "light bins"), measured inside the
+    // pass's own region; nullptr for the whole pass. Sum only the wholes.
+    const char* part = nullptr;
 };
 
 struct FrameTimings {
@@ -184,6 +187,9 @@ class Renderer {
     void prefetch_pipeline(ShaderLookup shaders, const char* shader, const PipelineSpec& spec,
                            std::span<const gpu::ScalarKind> kinds);
     static FrameTimings collect_timings(const QuerySet& set, const gpu::TimestampResult& result);
+    static constexpr std::uint32_t no_part = ~0u;
+    std::uint32_t begin_part(gpu::CommandList& cmd, Pass pass, const char* part);
+    void end_part(gpu::CommandList& cmd, std::uint32_t region);
 
     gpu::Device& device_;
     std::unique_ptr<Pipelines> pipelines_;
