@@ -65,7 +65,7 @@ int seed_table_main(int argc, char** argv) {
     p.integer("--group-x", "N", "workgroup width (default: the renderer's for the device)", group_x, 1, 64);
     p.integer("--group-y", "N", "workgroup height (default: the renderer's for the device)", group_y, 1, 64);
     p.integer("--proxy-list-kib", "N",
-              "memory for the direct pass's proxy lists per point light (default 16384; 0: the bins' lists alone)",
+              "memory for the direct pass's per-light proxy lists, all of them (default 16384; 0: the bins' lists alone)",
               proxy_kib, 0, 1 << 22);
     if (auto exit = p.parse(argc, argv, 2)) return *exit;
     o.proxy_list_kib = proxy_kib;
