@@ -123,9 +123,11 @@ uint light_word_mask(int w, int first, int end) {
 // outside the face. Grid shadows by the seed's DDA, or by the light's map (POINT_MAP): a
 // target the map cannot decide adds nothing and sets its bit in `later` (bit s: target
 // s); the caller calls again with `deferred` and those bits in `only`, and the DDA decides.
-void point_light(int i, const bool deferred, uint only, bool wall, ivec2 cell, vec2 p, vec4 mask, float softness,
-                 inout TexelLight t, inout uint later) {
-    if (pc.pass.proxy_per_light != 0) // this light's proxies in this texel's sub-bin (gi_light_bins)
+// Without `proxies`, no proxy shades the light here (its list for the texel's sub-bin is
+// empty), and the proxy loops are left out.
+void point_light(int i, const bool deferred, const bool proxies, uint only, bool wall, ivec2 cell, vec2 p, vec4 mask,
+                 float softness, inout TexelLight t, inout uint later) {
+    if (proxies && pc.pass.proxy_per_light != 0) // this light's proxies in this texel's sub-bin (gi_light_bins)
         g_proxy_base = (g_bins_total + ((g_bin * pc.counts.x + i) * pc.pass.proxy_per_light + g_band) * int(BLOCK_W) + g_sub) *
                        g_proxy_words;
     GpuPointLight l = u_lights.lights[i];
@@ -152,10 +154,10 @@ void point_light(int i, const bool deferred, uint only, bool wall, ivec2 cell, v
         }
         vec3 light = skip ? vec3(0.0) : contribution; // adding 0 leaves every sum as it is
         if (UPPER && wall) {
-            add_face(t, f, light * w, grid, point_proxy_face_shadow(pos, target, pc.pass.wall_height));
+            add_face(t, f, light * w, grid, proxies ? point_proxy_face_shadow(pos, target, pc.pass.wall_height) : vec3(1.0, 1.0, 0.0));
             continue;
         }
-        float shadow = skip ? 0.0 : min(grid, point_proxy_shadow(pos, target));
+        float shadow = skip ? 0.0 : (proxies ? min(grid, point_proxy_shadow(pos, target)) : grid);
         if (wall) {
             add_face_light(t, f, light * (w * shadow)); // w = 0: adds 0, as the reference's skip
         } else {
@@ -189,22 +191,38 @@ void texel_light(bool wall, ivec2 cell, vec2 p, inout TexelLight t) {
     float softness = pc.pass.light_softness;
     int points = pc.counts.x, lights = pc.counts.x + pc.counts.y;
     // Point lights 32 at a time (a word of the bin's mask): first every target the map (or
-    // the DDA) decides, then, in a loop of their own, the map's close calls by the DDA. The
-    // reference adds in the same order (reference_passes.cpp, PendingTargets).
-    for (int w = 0; w < (points + 31) >> 5; ++w) {
+    // the DDA) decides, the lights no proxy shades in the texel's sub-bin (gi_light_bins's
+    // mask of the lights with a proxy list there) before the others, then, in a loop of their
+    // own, the map's close calls by the DDA. The reference adds the lights in ascending order
+    // (with the close calls last, reference_passes.cpp, PendingTargets): the sums agree to
+    // rounding, not bit for bit.
+    int point_words = (points + 31) >> 5;
+    int has_base = g_bins_total * g_proxy_words * (1 + points * pc.pass.proxy_per_light * int(BLOCK_W)) +
+                   ((g_bin * pc.pass.proxy_per_light + g_band) * int(BLOCK_W) + g_sub) * point_words;
+    for (int w = 0; w < point_words; ++w) {
         uint later0 = 0u, later1 = 0u;
-        for (uint bits = u_bins.masks[g_bin_base + w] & light_word_mask(w, 0, points); bits != 0u; bits &= bits - 1u) {
+        uint lit = u_bins.masks[g_bin_base + w] & light_word_mask(w, 0, points);
+        uint shaded = !HAS_PROXIES ? 0u : (pc.pass.proxy_per_light != 0 ? u_proxy_bins.masks[has_base + w] : ~0u);
+        for (uint bits = lit & ~shaded; bits != 0u; bits &= bits - 1u) {
             int j = findLSB(bits);
             uint later = 0u;
-            point_light(w * 32 + j, false, 0u, wall, cell, p, mask, softness, t, later);
+            point_light(w * 32 + j, false, false, 0u, wall, cell, p, mask, softness, t, later);
             later0 |= (later & 1u) << uint(j);
             later1 |= ((later >> 1u) & 1u) << uint(j);
         }
+        if (HAS_PROXIES)
+            for (uint bits = lit & shaded; bits != 0u; bits &= bits - 1u) {
+                int j = findLSB(bits);
+                uint later = 0u;
+                point_light(w * 32 + j, false, true, 0u, wall, cell, p, mask, softness, t, later);
+                later0 |= (later & 1u) << uint(j);
+                later1 |= ((later >> 1u) & 1u) << uint(j);
+            }
         if (POINT_MAP)
             for (uint bits = later0 | later1; bits != 0u; bits &= bits - 1u) {
                 int j = findLSB(bits);
                 uint only = ((later0 >> uint(j)) & 1u) | (((later1 >> uint(j)) & 1u) << 1u), unused = 0u;
-                point_light(w * 32 + j, true, only, wall, cell, p, mask, softness, t, unused);
+                point_light(w * 32 + j, true, HAS_PROXIES, only, wall, cell, p, mask, softness, t, unused);
             }
     }
     FOR_EACH_BIN_LIGHT(i, points, lights) emissive_light(i, wall, p, mask, softness, t);

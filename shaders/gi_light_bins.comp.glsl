@@ -13,7 +13,10 @@
 // farther than sqrt(D^2 - reach^2) from it (its shadow lies within `reach` of it, behind it
 // as seen from the light), and only points inside a wedge round its direction from the
 // light (`outside_shadow_wedge`); a sub-bin wholly nearer, or wholly outside the wedge, or
-// beyond the proxy's reach, keeps none of its shadow.
+// beyond the proxy's reach, keeps none of its shadow. After those lists, a light mask per
+// sub-bin: bit i set when point light i's list there is not empty (the direct pass visits the
+// lights with an empty list in a loop of their own, without the proxy loop: lavapipe runs a
+// loop's body at least once, masked, so an empty list costs what a proxy does).
 // One workgroup per bin, BLOCK_W x some rows of invocations: the bin's masks first, shared,
 // then invocation (k, b) the per-light masks of strip k in bands b, b + rows, ...
 // size = texture (w, h, -, res); parameters: LightBinParams.
@@ -149,6 +152,8 @@ void main() {
     // walks the same lights and proxies (the bin's masks).
     int points = pc.counts.x;
     int bins_total = bins.x * bins.y;
+    int point_words = (points + 31) >> 5;
+    int has_base = bins_total * pc.pass.proxy_words * (1 + points * bands * LIGHT_SUBS);
     int sub_w = bin_size.x / LIGHT_SUBS, sub_h = bin_size.y / bands;
     int k = int(gl_LocalInvocationID.x);
     for (int band = int(gl_LocalInvocationID.y); band < bands; band += int(gl_WorkGroupSize.y)) {
@@ -157,7 +162,13 @@ void main() {
         bool empty = x0 > last.x || y0 > last.y;
         vec2 slo = texel_center(x0, y0) - pc.pass.proxy_pad;
         vec2 shi = texel_center(max(x1, x0), max(y1, y0)) + pc.pass.proxy_pad;
+        int has_at = has_base + (((bin.y * bins.x + bin.x) * bands + band) * LIGHT_SUBS + k) * point_words;
+        uint has = 0u; // the lights of word i >> 5 whose list is not empty
         for (int i = 0; i < points; ++i) {
+            if (i > 0 && (i & 31) == 0) {
+                o_proxy_bins.masks[has_at + (i >> 5) - 1] = has;
+                has = 0u;
+            }
             if ((s_lights[i >> 5] & (1u << uint(i & 31))) == 0u) continue;
             vec2 l = u_lights.lights[i].position_radius.xy;
             vec2 far_d = max(abs(slo - l), abs(shi - l));
@@ -181,7 +192,9 @@ void main() {
                     kept |= shades && !empty ? (1u << uint(j & 31)) : 0u;
                 }
                 o_proxy_bins.masks[out_base + w] = kept;
+                has |= kept != 0u ? 1u << uint(i & 31) : 0u;
             }
         }
+        if (points > 0) o_proxy_bins.masks[has_at + point_words - 1] = has;
     }
 }

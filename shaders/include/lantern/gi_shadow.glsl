@@ -181,7 +181,12 @@ float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
 // defines GI_PROXY_MASK(w), word w of a mask of the proxies to visit (the direct and
 // directional passes: the proxies its workgroup's bin lists for the light; one left out
 // occludes nothing there, so the result is the same), and GI_PROXY_WORDS, its length. Then
-// they are visited in ascending order, as without a mask.
+// they are visited in ascending order, as without a mask:
+//     for (ProxyCursor c = proxy_list(); proxy_step(c);) { ... proxy c.i ... }
+// With PROXY_REGISTERS (the frame's proxies fit two mask words) the list's words are read
+// once, into the cursor: proxy_next reads a word per proxy visited and loops over the empty
+// words, and lavapipe runs every storage-buffer load lane by lane and every loop at least
+// once, masked, so each visit paid two loads and an inner loop (docs/performance.md).
 #ifdef GI_PROXY_MASK
 int proxy_next(int i) {
     int j = i + 1;
@@ -197,6 +202,36 @@ int proxy_next(int i) {
 #else
 int proxy_next(int i) { return i + 1; }
 #endif
+
+struct ProxyCursor {
+    int i;       // the proxy visited (-1 before the first)
+    uint lo, hi; // PROXY_REGISTERS: the list's words 0 and 1, less the proxies visited
+};
+ProxyCursor proxy_list() {
+    ProxyCursor c;
+    c.i = -1;
+#ifdef GI_PROXY_MASK
+    c.lo = PROXY_REGISTERS && GI_PROXY_WORDS > 0 ? GI_PROXY_MASK(0) : 0u;
+    c.hi = PROXY_REGISTERS && GI_PROXY_WORDS > 1 ? GI_PROXY_MASK(1) : 0u;
+#else
+    c.lo = c.hi = 0u;
+#endif
+    return c;
+}
+// Moves to the next proxy of the list (c.i); false past the last.
+bool proxy_step(inout ProxyCursor c) {
+#ifdef GI_PROXY_MASK
+    if (PROXY_REGISTERS) {
+        bool more = (c.lo | c.hi) != 0u;
+        c.i = c.lo != 0u ? findLSB(c.lo) : 32 + findLSB(c.hi);
+        if (c.lo != 0u) c.lo &= c.lo - 1u;
+        else c.hi &= c.hi - 1u;
+        return more;
+    }
+#endif
+    c.i = proxy_next(c.i);
+    return c.i < pc.counts.w;
+}
 
 // The axis of proxy p's shadow from a point light (reference_shadow.cpp point_shadow_axis).
 bool point_shadow_axis(GpuShadowProxy p, vec2 light, vec2 dir, out vec2 dir_shadow) {
@@ -220,8 +255,8 @@ float point_proxy_shadow(vec2 light, vec2 pixel) {
     if (ray_len < 1e-4) return 1.0;
     precise vec2 dir = gi_div(ray, ray_len);
     float shadow = 1.0;
-    for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
-        GpuShadowProxy p = u_proxies.proxies[i];
+    for (ProxyCursor c = proxy_list(); proxy_step(c);) {
+        GpuShadowProxy p = u_proxies.proxies[c.i];
         vec2 dir_shadow;
         if (!point_shadow_axis(p, light, dir, dir_shadow)) continue;
         shadow = min(shadow, 1.0 - proxy_occlusion(p, pixel, dir_shadow));
@@ -236,8 +271,8 @@ float directional_proxy_shadow(vec2 pixel, vec3 light_dir) {
     if (xz_length < 1e-4) return 1.0;
     precise vec2 travel = vec2(gi_div(light_dir.x, xz_length), gi_div(light_dir.z, xz_length));
     float shadow = 1.0;
-    for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
-        shadow = min(shadow, 1.0 - proxy_occlusion(u_proxies.proxies[i], pixel, travel));
+    for (ProxyCursor c = proxy_list(); proxy_step(c);) {
+        shadow = min(shadow, 1.0 - proxy_occlusion(u_proxies.proxies[c.i], pixel, travel));
         if (shadow <= 0.001) break;
     }
     return shadow;
@@ -272,8 +307,8 @@ vec3 point_proxy_face_shadow(vec2 light, vec2 target, float height) {
     s.y = point_proxy_shadow(light, target + dir * height);
     if (!(s.y > s.x)) return s;
     float reach = 0.0;
-    for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
-        GpuShadowProxy p = u_proxies.proxies[i];
+    for (ProxyCursor c = proxy_list(); proxy_step(c);) {
+        GpuShadowProxy p = u_proxies.proxies[c.i];
         vec2 dir_shadow;
         if (point_shadow_axis(p, light, dir, dir_shadow) && proxy_occlusion(p, target, dir_shadow) > 0.0)
             reach = max(reach, unfolded_reach(p, target, dir, dir_shadow));
@@ -291,8 +326,8 @@ vec3 directional_proxy_face_shadow(vec2 target, vec3 light_dir, float height) {
     s.y = directional_proxy_shadow(target + travel * height, light_dir);
     if (!(s.y > s.x)) return s;
     float reach = 0.0;
-    for (int i = proxy_next(-1); i < pc.counts.w; i = proxy_next(i)) {
-        GpuShadowProxy p = u_proxies.proxies[i];
+    for (ProxyCursor c = proxy_list(); proxy_step(c);) {
+        GpuShadowProxy p = u_proxies.proxies[c.i];
         if (proxy_occlusion(p, target, travel) > 0.0) reach = max(reach, unfolded_reach(p, target, travel, travel));
     }
     s.z = clamp(reach, 0.0, height);

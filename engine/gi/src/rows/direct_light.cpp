@@ -429,9 +429,11 @@ void record_direct_lights(PassRecorder& r, const FrameInputs& lights, std::span<
     const std::uint32_t proxy_words = std::uint32_t((in.proxies.size() + 31) / 32);
     // Proxy masks per bin, then per (bin, point light, band, strip): the bin's rows in
     // `bands` bands (one per workgroup row at most) by the invocations' 4 texel columns,
-    // the finest whose masks fit in RendererOptions::proxy_list_bytes (0 bands: none fit).
+    // the finest whose masks fit in RendererOptions::proxy_list_bytes (0 bands: none fit);
+    // then per (bin, band, strip) a mask of the point lights whose list there is not empty.
     const VkDeviceSize per_bin = VkDeviceSize(bins_x) * bins_y * proxy_words * 4;
-    const VkDeviceSize per_band = per_bin * lights.point_lights.size() * 4;
+    const VkDeviceSize point_words = (lights.point_lights.size() + 31) / 32;
+    const VkDeviceSize per_band = (per_bin * lights.point_lights.size() + VkDeviceSize(bins_x) * bins_y * point_words * 4) * 4;
     std::uint32_t bands = 0;
     if (proxy_words > 0 && per_band > 0)
         for (std::uint32_t b = r.group_y(); b >= 1 && bands == 0; --b)

@@ -293,7 +293,8 @@ namespace {
 // A spec with the renderer's block and workgroup sizes filled in.
 ResolvedSpec resolve(const PipelineSpec& spec, std::uint32_t block_h, std::uint32_t gx, std::uint32_t gy) {
     return {spec.block_h ? spec.block_h : block_h, spec.group_x ? spec.group_x : gx, spec.group_y ? spec.group_y : gy,
-            spec.proxies, spec.walls, spec.per_channel, spec.segment_check, spec.features, spec.faces, spec.linear_penumbra};
+            spec.proxies, spec.walls, spec.per_channel, spec.segment_check, spec.features, spec.faces, spec.linear_penumbra,
+            spec.proxy_registers};
 }
 } // namespace
 

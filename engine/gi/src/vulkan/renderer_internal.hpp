@@ -46,16 +46,17 @@ void check_params_layout(const char* shader, std::span<const std::uint32_t> spir
 // creates itself (a frame must not wait for the whole queue ahead of it: the shader warm-up's
 // frames, systems::GiFrameOptions::warm_up_shaders, need several at once). Each lavapipe
 // pipeline holds about 5 MB of JIT code, so only those are prefetched.
-using PipelineKey = std::tuple<ShaderLookup, std::string, bool, bool, bool, bool, bool, std::uint32_t, std::uint32_t>;
+using PipelineKey = std::tuple<ShaderLookup, std::string, bool, bool, bool, bool, bool, bool, std::uint32_t, std::uint32_t>;
 
 // A PipelineSpec with the renderer's block and workgroup sizes filled in.
 struct ResolvedSpec {
     std::uint32_t block_h, gx, gy;
     bool proxies, walls, per_channel, segment_check;
     std::uint32_t features, faces;
-    bool linear_penumbra;
+    bool linear_penumbra, proxy_registers;
     PipelineKey key(ShaderLookup shaders, const char* shader) const {
-        return {shaders, std::string(shader), proxies, walls, per_channel, segment_check, linear_penumbra, features, faces};
+        return {shaders, std::string(shader), proxies, walls, per_channel, segment_check, linear_penumbra, proxy_registers,
+                features, faces};
     }
 };
 
@@ -110,7 +111,7 @@ struct Renderer::Pipelines {
                                {spec_has_walls, s.walls ? 1u : 0u}, {spec_per_channel, s.per_channel ? 1u : 0u},
                                {spec_segment_check, s.segment_check ? 1u : 0u}, {spec_features, s.features},
                                {spec_faces, s.faces},           {spec_linear_penumbra, s.linear_penumbra ? 1u : 0u},
-                               {spec_exact_rounding, exact_rounding}};
+                               {spec_proxy_registers, s.proxy_registers ? 1u : 0u}, {spec_exact_rounding, exact_rounding}};
         if (std::string(shader) == "gi_direct.comp" || std::string(shader) == "gi_light_bins.comp")
             desc.specialization.push_back({spec_max_lights, max_gpu_lights});
         desc.push_constant_size = sizeof(GiPassParams);

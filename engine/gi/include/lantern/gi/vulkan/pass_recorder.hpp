@@ -39,6 +39,9 @@ struct PipelineSpec {
     // Every proxy's penumbra power is 1 (LINEAR_PENUMBRA): the penumbras' pow compiled out.
     // PassRecorder sets it from the frame wherever `proxies` is set.
     bool linear_penumbra = false;
+    // The frame's proxies fit two words of a proxy mask (PROXY_REGISTERS): the proxy loops of
+    // the passes that visit a mask keep its words in registers. Set by PassRecorder likewise.
+    bool proxy_registers = false;
 };
 
 class PassRecorder {
@@ -104,9 +107,10 @@ class PassRecorder {
         const std::array<gpu::ScalarKind, 8> kinds = field_kinds<P>();
         r_.prefetch_pipeline(row_.shaders, shader, frame_spec(spec), kinds);
     }
-    // `spec` with what the frame decides filled in (linear_penumbra).
+    // `spec` with what the frame decides filled in (linear_penumbra, proxy_registers).
     PipelineSpec frame_spec(PipelineSpec spec) const {
         spec.linear_penumbra = spec.proxies && penumbras_linear(in);
+        spec.proxy_registers = spec.proxies && in.proxies.size() <= proxy_register_count;
         return spec;
     }
     // The push constants of a width x height texture: the shared fields (window, grid,
