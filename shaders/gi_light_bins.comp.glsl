@@ -163,38 +163,41 @@ void main() {
         vec2 slo = texel_center(x0, y0) - pc.pass.proxy_pad;
         vec2 shi = texel_center(max(x1, x0), max(y1, y0)) + pc.pass.proxy_pad;
         int has_at = has_base + (((bin.y * bins.x + bin.x) * bands + band) * LIGHT_SUBS + k) * point_words;
-        uint has = 0u; // the lights of word i >> 5 whose list is not empty
-        for (int i = 0; i < points; ++i) {
-            if (i > 0 && (i & 31) == 0) {
-                o_proxy_bins.masks[has_at + (i >> 5) - 1] = has;
-                has = 0u;
-            }
-            if ((s_lights[i >> 5] & (1u << uint(i & 31))) == 0u) continue;
-            vec2 l = u_lights.lights[i].position_radius.xy;
-            vec2 far_d = max(abs(slo - l), abs(shi - l));
-            float far2 = far_d.x * far_d.x + far_d.y * far_d.y;
-            int out_base = (bins_total + (((bin.y * bins.x + bin.x) * points + i) * bands + band) * LIGHT_SUBS + k) *
-                           pc.pass.proxy_words;
-            for (int w = 0; w < pc.pass.proxy_words; ++w) {
-                uint kept = 0u;
-                for (uint bits = s_proxies[w]; bits != 0u; bits &= bits - 1u) {
-                    int j = w * 32 + findLSB(bits);
-                    GpuShadowProxy p = u_proxies.proxies[j];
-                    vec2 q = p.position_size.xy - l;
-                    float reach = proxy_reach(p);
-                    float dist2 = q.x * q.x + q.y * q.y;
-                    float horizon2 = dist2 - reach * reach;
-                    bool shades = !(far2 < horizon2 * 0.9999 - 1e-3) &&
-                                  !outside_shadow_wedge(p, q, dist2, slo - l, shi - l);
-                    // Within the sub-bin's own reach of the proxy, as the bin's mask is.
-                    vec2 d = max(max(slo - p.position_size.xy, p.position_size.xy - shi), vec2(0.0));
-                    shades = shades && !(sqrt(d.x * d.x + d.y * d.y) > reach);
-                    kept |= shades && !empty ? (1u << uint(j & 31)) : 0u;
+        // The bin's point lights alone, by the bits of its mask: a loop over every light that
+        // skipped the others with `continue` ran the whole body for each of them, masked.
+        for (int lw = 0; lw < point_words; ++lw) {
+            uint has = 0u; // the lights of word lw whose list is not empty
+            uint in_bin = s_lights[lw] & (lw < (points >> 5) ? ~0u : (1u << uint(points & 31)) - 1u);
+            for (; in_bin != 0u; in_bin &= in_bin - 1u) {
+                int i = lw * 32 + findLSB(in_bin);
+                vec2 l = u_lights.lights[i].position_radius.xy;
+                vec2 far_d = max(abs(slo - l), abs(shi - l));
+                float far2 = far_d.x * far_d.x + far_d.y * far_d.y;
+                int out_base = (bins_total + (((bin.y * bins.x + bin.x) * points + i) * bands + band) * LIGHT_SUBS + k) *
+                               pc.pass.proxy_words;
+                uint any = 0u;
+                for (int w = 0; w < pc.pass.proxy_words; ++w) {
+                    uint kept = 0u;
+                    for (uint bits = s_proxies[w]; bits != 0u; bits &= bits - 1u) {
+                        int j = w * 32 + findLSB(bits);
+                        GpuShadowProxy p = u_proxies.proxies[j];
+                        vec2 q = p.position_size.xy - l;
+                        float reach = proxy_reach(p);
+                        float dist2 = q.x * q.x + q.y * q.y;
+                        float horizon2 = dist2 - reach * reach;
+                        bool shades = !(far2 < horizon2 * 0.9999 - 1e-3) &&
+                                      !outside_shadow_wedge(p, q, dist2, slo - l, shi - l);
+                        // Within the sub-bin's own reach of the proxy, as the bin's mask is.
+                        vec2 d = max(max(slo - p.position_size.xy, p.position_size.xy - shi), vec2(0.0));
+                        shades = shades && !(sqrt(d.x * d.x + d.y * d.y) > reach);
+                        kept |= shades && !empty ? (1u << uint(j & 31)) : 0u;
+                    }
+                    o_proxy_bins.masks[out_base + w] = kept;
+                    any |= kept;
                 }
-                o_proxy_bins.masks[out_base + w] = kept;
-                has |= kept != 0u ? 1u << uint(i & 31) : 0u;
+                has |= any != 0u ? 1u << uint(i & 31) : 0u;
             }
+            o_proxy_bins.masks[has_at + lw] = has;
         }
-        if (points > 0) o_proxy_bins.masks[has_at + point_words - 1] = has;
     }
 }
