@@ -6,6 +6,7 @@
 #include "gpu_test_support.hpp"
 #include "shared_renderer.hpp"
 #include "lantern/gi/frame_runner.hpp"
+#include "lantern/gi/vulkan/pass_params.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
 
 #include <gtest/gtest.h>
@@ -144,6 +145,41 @@ TEST_F(GiGpuCompare, PointLightsSkipOnlyProxiesOutsideTheirShadowWedges) {
         SCOPED_TRACE(unfold == lantern::scene::ProxyWallShadows::unfold ? "unfolded" : "folded");
         compare_scene(named, Pass::direct, false);
         compare_scene(named, Pass::direct, false, false, 1.0f, renderer.value().get());
+    }
+}
+
+// The proxy loops keep a list's two mask words in registers when the frame's proxies fit
+// them and its point lights are at most 256 (PROXY_REGISTERS, pass_params.hpp); past 64
+// proxies they read the masks word by word (gi_shadow.glsl proxy_next). That path against
+// the reference: the proxies scene of the test above with its twelve proxies copied round
+// seven rings (84 in view), its four lights and a low sun, folded and unfolded.
+TEST_F(GiGpuCompare, ProxyLoopsPastTwoMaskWordsMatchReference) {
+    NamedScene named = gi_test::comparison_scene("proxies");
+    named.scene.gi.resolution = 8;
+    named.scene.gi.max_shadow_proxies = 256;
+    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f);
+    named.scene.wall_height = 2.5f;
+    const std::vector<lantern::scene::ShadowProxy> ring = named.scene.shadow_proxies;
+    named.scene.shadow_proxies.clear();
+    for (int copy = 0; copy < 7; ++copy)
+        for (lantern::scene::ShadowProxy p : ring) {
+            const glm::vec2 from_centre = p.position - glm::vec2(10.0f);
+            p.position = glm::vec2(10.0f) + from_centre * (0.5f + 0.25f * float(copy)) + glm::vec2(0.13f * float(copy));
+            p.max_length = 3.0f;
+            named.scene.shadow_proxies.push_back(p);
+        }
+    named.scene.point_lights.clear();
+    for (glm::vec2 at : {glm::vec2(1.5f, 1.5f), glm::vec2(18.5f, 2.5f), glm::vec2(17.5f, 18.5f), glm::vec2(10.2f, 9.7f)})
+        named.scene.point_lights.push_back(gi_test::point(at, {1.0f, 0.8f, 0.6f}, 1.5f, 14.0f));
+    named.scene.directional_lights.push_back(
+        {glm::normalize(glm::vec3(0.4f, -0.6f, 0.2f)), {1.0f, 0.95f, 0.8f}, 1.0f, 4.0f, 0.5f});
+    auto window = compute_window(named.scene.view, named.scene.gi);
+    ASSERT_TRUE(window);
+    ASSERT_GT(gather_frame_inputs(named.scene, *window).proxies.size(), vk::proxy_register_count);
+    for (auto unfold : {lantern::scene::ProxyWallShadows::full, lantern::scene::ProxyWallShadows::unfold}) {
+        named.scene.gi.proxy_wall_shadows = unfold;
+        SCOPED_TRACE(unfold == lantern::scene::ProxyWallShadows::unfold ? "unfolded" : "folded");
+        compare_scene(named, Pass::direct, false);
     }
 }
 

@@ -22,8 +22,9 @@ layout(constant_id = 9) const uint FACES = 15u;        // computed_faces: bit f 
 // lavapipe evaluates as exp2(log2) per (texel, light, proxy): a fifth of the direct pass on
 // the seed table's scene. pow(t, 1) is t, as the reference's std::pow.
 layout(constant_id = 11) const bool LINEAR_PENUMBRA = false;
-// The frame's shadow proxies fit two words of a proxy mask (at most 64): gi_shadow.glsl's
-// proxy loops keep their list's words in registers.
+// The frame's shadow proxies fit two words of a proxy mask (at most 64), and its point
+// lights are at most 256 (pass_params.hpp proxy_register_lights): gi_shadow.glsl's proxy
+// loops keep their list's words in registers.
 layout(constant_id = 12) const bool PROXY_REGISTERS = false;
 
 const uint BLOCK_W = 4;

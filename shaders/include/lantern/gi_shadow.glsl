@@ -183,7 +183,7 @@ float proxy_occlusion(GpuShadowProxy p, vec2 pixel, vec2 dir_shadow) {
 // occludes nothing there, so the result is the same), and GI_PROXY_WORDS, its length. Then
 // they are visited in ascending order, as without a mask:
 //     for (ProxyCursor c = proxy_list(); proxy_step(c);) { ... proxy c.i ... }
-// With PROXY_REGISTERS (the frame's proxies fit two mask words) the list's words are read
+// With PROXY_REGISTERS (the frame's proxies fit two mask words, gi_common.glsl) the words are read
 // once, into the cursor: proxy_next reads a word per proxy visited and loops over the empty
 // words, and lavapipe runs every storage-buffer load lane by lane and every loop at least
 // once, masked, so each visit paid two loads and an inner loop (docs/performance.md).

@@ -75,8 +75,12 @@ enum SpecId : unsigned {
     spec_proxy_registers = 12, // gi_common.glsl PROXY_REGISTERS: the frame's proxies fit two mask words
 };
 
-// The most shadow proxies whose masks the proxy loops keep in registers (PROXY_REGISTERS).
+// The most shadow proxies whose masks the proxy loops keep in registers (PROXY_REGISTERS),
+// and the most point lights in the frame for which they do: measured on lavapipe the
+// registers take 9-17 % off the direct pass at 64 and 256 point lights and add 9 % at 1024
+// (seed-table rows 7, 10, 11; docs/performance.md, "Proxy lists in registers").
 inline constexpr std::size_t proxy_register_count = 64;
+inline constexpr std::size_t proxy_register_lights = 256;
 
 inline constexpr int max_gpu_lights = 2048;   // point lights + emissives: one 64 KiB UBO
 inline constexpr int max_gpu_proxies = 256;

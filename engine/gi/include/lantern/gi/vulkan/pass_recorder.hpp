@@ -39,8 +39,9 @@ struct PipelineSpec {
     // Every proxy's penumbra power is 1 (LINEAR_PENUMBRA): the penumbras' pow compiled out.
     // PassRecorder sets it from the frame wherever `proxies` is set.
     bool linear_penumbra = false;
-    // The frame's proxies fit two words of a proxy mask (PROXY_REGISTERS): the proxy loops of
-    // the passes that visit a mask keep its words in registers. Set by PassRecorder likewise.
+    // The frame's proxies fit two words of a proxy mask and its point lights are not too many
+    // (PROXY_REGISTERS, pass_params.hpp): the proxy loops of the passes that visit a mask keep
+    // its words in registers. Set by PassRecorder likewise.
     bool proxy_registers = false;
 };
 
@@ -110,7 +111,8 @@ class PassRecorder {
     // `spec` with what the frame decides filled in (linear_penumbra, proxy_registers).
     PipelineSpec frame_spec(PipelineSpec spec) const {
         spec.linear_penumbra = spec.proxies && penumbras_linear(in);
-        spec.proxy_registers = spec.proxies && in.proxies.size() <= proxy_register_count;
+        spec.proxy_registers = spec.proxies && in.proxies.size() <= proxy_register_count &&
+                               in.point_lights.size() <= proxy_register_lights;
         return spec;
     }
     // The push constants of a width x height texture: the shared fields (window, grid,
