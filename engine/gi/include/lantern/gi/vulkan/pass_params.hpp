@@ -72,7 +72,7 @@ enum SpecId : unsigned {
     spec_faces = 9,    // computed_faces (FACES)
     spec_exact_rounding = 10, // gi_exact.glsl EXACT_ROUNDING: 0 the driver's own, 1 Dekker, 2 fused fma
     spec_linear_penumbra = 11, // gi_common.glsl LINEAR_PENUMBRA: every proxy's penumbra power is 1
-    spec_proxy_registers = 12, // gi_common.glsl PROXY_REGISTERS: the frame's proxies fit two mask words
+    spec_proxy_registers = 12, // gi_common.glsl PROXY_REGISTERS: the proxy loops keep their masks in registers
 };
 
 // The most shadow proxies whose masks the proxy loops keep in registers (PROXY_REGISTERS),
