@@ -65,6 +65,16 @@ class GiGpuCompare : public lantern::test::GpuTest {
 
 class GiGpuScenes : public GiGpuCompare, public ::testing::WithParamInterface<std::string> {};
 
+// The proxies comparison scene at giRes 8 over a 20 x 20 cave with walls 2.5 high: faces for
+// the proxies' shadows to climb, and room for long shadows.
+NamedScene proxies_over_a_cave() {
+    NamedScene named = gi_test::comparison_scene("proxies");
+    named.scene.gi.resolution = 8;
+    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f);
+    named.scene.wall_height = 2.5f;
+    return named;
+}
+
 } // namespace
 
 TEST_P(GiGpuScenes, DirectPassesMatchReference) {
@@ -128,10 +138,7 @@ TEST_F(GiGpuCompare, OtherWorkgroupShapesMatchReference) {
 // over a cave, with lights far from the proxies (so the wedges are narrow) and long shadows,
 // folded and unfolded, on the default workgroup and on a narrower one.
 TEST_F(GiGpuCompare, PointLightsSkipOnlyProxiesOutsideTheirShadowWedges) {
-    NamedScene named = gi_test::comparison_scene("proxies");
-    named.scene.gi.resolution = 8;
-    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f);
-    named.scene.wall_height = 2.5f;
+    NamedScene named = proxies_over_a_cave();
     for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
     named.scene.point_lights.clear();
     for (glm::vec2 at : {glm::vec2(1.5f, 1.5f), glm::vec2(18.5f, 2.5f), glm::vec2(17.5f, 18.5f), glm::vec2(2.5f, 16.5f)})
@@ -154,11 +161,8 @@ TEST_F(GiGpuCompare, PointLightsSkipOnlyProxiesOutsideTheirShadowWedges) {
 // the reference: the proxies scene of the test above with its twelve proxies copied round
 // seven rings (84 in view), its four lights and a low sun, folded and unfolded.
 TEST_F(GiGpuCompare, ProxyLoopsPastTwoMaskWordsMatchReference) {
-    NamedScene named = gi_test::comparison_scene("proxies");
-    named.scene.gi.resolution = 8;
+    NamedScene named = proxies_over_a_cave();
     named.scene.gi.max_shadow_proxies = 256;
-    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f);
-    named.scene.wall_height = 2.5f;
     const std::vector<lantern::scene::ShadowProxy> ring = named.scene.shadow_proxies;
     named.scene.shadow_proxies.clear();
     for (int copy = 0; copy < 7; ++copy)
@@ -192,10 +196,7 @@ TEST_F(GiGpuCompare, ProxyLoopsPastTwoMaskWordsMatchReference) {
 // texel's sub-bin are summed before the others (gi_direct.comp), so the grains agree with the
 // reference to rounding, not bit for bit with each other.
 TEST_F(GiGpuCompare, PointLightProxyListsOfEveryGrainEqualTheReference) {
-    NamedScene named = gi_test::comparison_scene("proxies");
-    named.scene.gi.resolution = 8;
-    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f);
-    named.scene.wall_height = 2.5f;
+    NamedScene named = proxies_over_a_cave();
     named.scene.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::full;
     for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
     named.scene.point_lights.clear();
@@ -282,10 +283,7 @@ TEST_F(GiGpuCompare, TheDirectPassTimesItsLightCullingAsAPart) {
 // them, towards each quadrant and along an axis, with folded and unfolded proxy shadows on
 // tall walls.
 TEST_F(GiGpuCompare, SunsSkipOnlyProxiesWhoseShadowsCannotReachAWorkgroup) {
-    NamedScene named = gi_test::comparison_scene("proxies");
-    named.scene.gi.resolution = 8;
-    named.scene.walls = gi_test::cave(20, 20, 9, 0.3f); // faces for the proxies' shadows to climb
-    named.scene.wall_height = 2.5f;
+    NamedScene named = proxies_over_a_cave();
     for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
     int suns = 0;
     for (glm::vec3 dir : {glm::vec3(0.7f, -0.35f, 0.4f), glm::vec3(-0.5f, -0.3f, -0.6f), glm::vec3(0.0f, -0.4f, 1.0f)})
