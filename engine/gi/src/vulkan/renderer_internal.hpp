@@ -76,13 +76,17 @@ struct Renderer::Pipelines {
     bool stopping = false;
     std::thread worker;
 
+    // The queued pipelines are dropped, not created (their futures, never waited for now,
+    // hold broken promises); the one under way is waited for.
     ~Pipelines() {
+        std::deque<std::pair<Key, std::packaged_task<gpu::ComputePipeline()>>> dropped;
         {
             std::lock_guard lock(mutex);
             stopping = true;
+            dropped.swap(queue);
         }
         wake.notify_one();
-        if (worker.joinable()) worker.join(); // runs what was queued, so every future is ready
+        if (worker.joinable()) worker.join();
     }
 
     void work() {
