@@ -5,16 +5,13 @@
 #include "lantern/core/clock.hpp"
 #include "lantern/core/hash.hpp"
 #include "lantern/core/log.hpp"
+#include "lantern/core/machine.hpp"
 #include "lantern/game/game_components.hpp"
 #include "lantern/profile/profiler.hpp"
 #include "lantern/scene/day.hpp"
 #include "lantern/scene/loader.hpp"
 #include "lantern/systems/gi_frame.hpp"
 #include "lantern/systems/streaming.hpp"
-
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -98,7 +95,7 @@ WorldBaker::~WorldBaker() {
 
 void WorldBaker::run() {
     // The lowest priority: the frame (and lavapipe's threads) go first.
-    setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 19);
+    lower_thread_priority();
     profile::set_thread_name("baker");
     for (;;) {
         std::unique_ptr<Job> job;

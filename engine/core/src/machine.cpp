@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <sys/resource.h>
+#include <sys/syscall.h>
 #include <sys/utsname.h>
 #include <thread>
 #include <unistd.h>
@@ -59,6 +61,11 @@ std::uint64_t resident_set_bytes() {
     if (!(statm >> size_pages >> resident_pages)) return 0;
     const long page = sysconf(_SC_PAGESIZE);
     return resident_pages * std::uint64_t(page > 0 ? page : 4096);
+}
+
+bool lower_thread_priority() {
+    // On Linux a priority set for a thread id holds for that thread only.
+    return setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 19) == 0;
 }
 
 } // namespace lantern
