@@ -5,7 +5,6 @@
 
 #include "lantern/gi/vulkan/pass_params.hpp"
 #include "lantern/gi/vulkan/renderer.hpp"
-#include "lantern/core/machine.hpp"
 #include "lantern/gpu/reflect.hpp"
 #include "lantern/profile/profiler.hpp"
 #include "lantern_gi_shaders.hpp"
@@ -91,9 +90,6 @@ struct Renderer::Pipelines {
     }
 
     void work() {
-        // Below the frame: a pipeline is prefetched for a later frame, and lavapipe's threads
-        // running this one's passes were losing a core to it (docs/performance.md).
-        lower_thread_priority();
         for (;;) {
             std::packaged_task<gpu::ComputePipeline()> task;
             {
