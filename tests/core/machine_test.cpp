@@ -16,7 +16,7 @@ int this_thread_priority() { return getpriority(PRIO_PROCESS, id_t(syscall(SYS_g
 } // namespace
 
 // A thread that lowers its priority runs at nice 19 from then on; the thread that started it
-// keeps its own (the frame's threads must not be slowed by a baker or a pipeline prefetch).
+// keeps its own (the frame's threads must not be slowed along with the world baker).
 TEST(Machine, LowerThreadPriorityLowersOnlyTheCallingThread) {
     const int before = this_thread_priority();
     int in_thread = -100, after_call = -100;

@@ -25,8 +25,10 @@ std::uint64_t resident_set_bytes();
 
 // Puts the calling thread at the lowest scheduling priority (Linux: nice 19 for this thread
 // alone), so that it runs on the cores the frame and the Vulkan driver's threads leave idle:
-// for background work a frame does not wait on (the world baker, pipeline prefetch). Returns
-// false where it could not (then the thread keeps its priority).
+// for background work no frame needs soon (the world baker). Not for work a later frame needs
+// (the pipeline prefetch): a game running flat out leaves no idle core, and such a thread
+// starves (docs/performance.md). Returns false where it could not (then the thread keeps its
+// priority).
 bool lower_thread_priority();
 
 } // namespace lantern
