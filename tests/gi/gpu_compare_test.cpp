@@ -75,6 +75,17 @@ NamedScene proxies_over_a_cave() {
     return named;
 }
 
+// That scene with shadows up to 5 long and four lights near the cave's corners, far from the
+// proxies (so each proxy's shadow wedge from a light is narrow), reaching 18.
+NamedScene proxies_lit_from_the_corners() {
+    NamedScene named = proxies_over_a_cave();
+    for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
+    named.scene.point_lights.clear();
+    for (glm::vec2 at : {glm::vec2(1.5f, 1.5f), glm::vec2(18.5f, 2.5f), glm::vec2(17.5f, 18.5f), glm::vec2(2.5f, 16.5f)})
+        named.scene.point_lights.push_back(gi_test::point(at, {1.0f, 0.8f, 0.6f}, 1.5f, 18.0f));
+    return named;
+}
+
 } // namespace
 
 TEST_P(GiGpuScenes, DirectPassesMatchReference) {
@@ -138,11 +149,7 @@ TEST_F(GiGpuCompare, OtherWorkgroupShapesMatchReference) {
 // over a cave, with lights far from the proxies (so the wedges are narrow) and long shadows,
 // folded and unfolded, on the default workgroup and on a narrower one.
 TEST_F(GiGpuCompare, PointLightsSkipOnlyProxiesOutsideTheirShadowWedges) {
-    NamedScene named = proxies_over_a_cave();
-    for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
-    named.scene.point_lights.clear();
-    for (glm::vec2 at : {glm::vec2(1.5f, 1.5f), glm::vec2(18.5f, 2.5f), glm::vec2(17.5f, 18.5f), glm::vec2(2.5f, 16.5f)})
-        named.scene.point_lights.push_back(gi_test::point(at, {1.0f, 0.8f, 0.6f}, 1.5f, 18.0f));
+    NamedScene named = proxies_lit_from_the_corners();
     vk::RendererOptions narrow;
     narrow.group_x = narrow.group_y = 4;
     auto renderer = vk::Renderer::create(device(), narrow);
@@ -196,12 +203,8 @@ TEST_F(GiGpuCompare, ProxyLoopsPastTwoMaskWordsMatchReference) {
 // texel's sub-bin are summed before the others (gi_direct.comp), so the grains agree with the
 // reference to rounding, not bit for bit with each other.
 TEST_F(GiGpuCompare, PointLightProxyListsOfEveryGrainEqualTheReference) {
-    NamedScene named = proxies_over_a_cave();
+    NamedScene named = proxies_lit_from_the_corners();
     named.scene.gi.proxy_wall_shadows = lantern::scene::ProxyWallShadows::full;
-    for (auto& p : named.scene.shadow_proxies) p.max_length = 5.0f;
-    named.scene.point_lights.clear();
-    for (glm::vec2 at : {glm::vec2(1.5f, 1.5f), glm::vec2(18.5f, 2.5f), glm::vec2(17.5f, 18.5f), glm::vec2(2.5f, 16.5f)})
-        named.scene.point_lights.push_back(gi_test::point(at, {1.0f, 0.8f, 0.6f}, 1.5f, 18.0f));
     auto window = compute_window(named.scene.view, named.scene.gi);
     ASSERT_TRUE(window);
     const FrameInputs in = gather_frame_inputs(named.scene, *window);

@@ -79,11 +79,10 @@ struct Renderer::Pipelines {
     // The queued pipelines are dropped, not created (their futures, never waited for now,
     // hold broken promises); the one under way is waited for.
     ~Pipelines() {
-        std::deque<std::pair<Key, std::packaged_task<gpu::ComputePipeline()>>> dropped;
         {
             std::lock_guard lock(mutex);
             stopping = true;
-            dropped.swap(queue);
+            queue.clear();
         }
         wake.notify_one();
         if (worker.joinable()) worker.join();
